@@ -1,0 +1,58 @@
+#include "core/texture.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+
+namespace skybake {
+
+Texture::Texture(int w, int h, int d, int l, std::vector<std::string> ch)
+    : width(w), height(h), depth(d), layers(l), channels(std::move(ch)) {
+  data.assign(texel_count() * channels.size(), 0.0f);
+}
+
+int Texture::channel_index(const std::string& name) const {
+  for (size_t i = 0; i < channels.size(); ++i)
+    if (channels[i] == name) return static_cast<int>(i);
+  return -1;
+}
+
+std::string Texture::shape_string() const {
+  std::string s = fmt::format("{}x{}", width, height);
+  if (depth > 1) s += fmt::format("x{}", depth);
+  if (layers > 1) s += fmt::format("[{}]", layers);
+  return s;
+}
+
+void set_meta(Metadata& meta, const std::string& key, const std::string& value) {
+  meta[key] = value;
+}
+void set_meta(Metadata& meta, const std::string& key, double value) {
+  meta[key] = fmt::format("{:.17g}", value);
+}
+void set_meta(Metadata& meta, const std::string& key, int value) {
+  meta[key] = std::to_string(value);
+}
+
+void check_finite(const Texture& tex, const std::string& what) {
+  const size_t nc = tex.channels.size();
+  for (size_t i = 0; i < tex.data.size(); ++i) {
+    if (std::isfinite(tex.data[i])) continue;
+    size_t t = i / nc;
+    const int c = int(i % nc);
+    const int x = int(t % tex.width);
+    t /= tex.width;
+    const int y = int(t % tex.height);
+    t /= tex.height;
+    const int z = int(t % tex.depth);
+    const int layer = int(t / tex.depth);
+    throw IoError(fmt::format(
+        "{}: refusing to write a non-finite value ({}) at texel x={} y={} z={} layer={} "
+        "channel {}",
+        what, tex.data[i], x, y, z, layer, tex.channels[c]));
+  }
+}
+
+}  // namespace skybake
