@@ -11,6 +11,7 @@ packages=(
   libglm-dev nlohmann-json3-dev rapidjson-dev libcli11-dev libtbb-dev
   libfmt-dev libspdlog-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libnvtt-bin
 )
 
 missing=()

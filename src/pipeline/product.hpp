@@ -30,6 +30,8 @@ struct ProductInfo {
   std::vector<std::string> default_formats;  // when the preset gives none
   std::vector<std::string> allowed_formats;  // subset of exr, dds, vdb, png
   std::vector<std::string> dependencies;     // products whose textures bake() reads
+  std::vector<std::string> scene_sections;   // top-level preset keys the result depends on
+  std::string default_dds_format;            // empty: from precision and channel count
   BakeFn bake;
 };
 

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# The one command of a fresh machine: installs what is missing, builds, and
+# bakes the default presets into out/. Extra arguments go to `skybake bake`
+# (e.g. --force, --threads 2).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+./scripts/install-deps.sh
+./scripts/build.sh
+./build/skybake bake presets/*.json -o out "$@"

@@ -1,0 +1,101 @@
+// Area-weighted box mip chains (see mip_chain.hpp for the filter and why it
+// preserves the mean and the tiling at every size).
+#include "core/mip_chain.hpp"
+
+#include <algorithm>
+#include <cassert>
+
+#include <tbb/parallel_for.h>
+
+#include "core/math.hpp"
+
+namespace skybake {
+namespace {
+
+struct Tap {
+  int index;      // input texel along the axis
+  double weight;  // overlap / footprint width; the taps of one output sum to 1
+};
+
+// Taps for every output texel of an axis going from n_in to n_out texels.
+// Positions are scaled by n_in * n_out so every boundary is an integer:
+// input texel i spans [i * n_out, (i+1) * n_out), output j spans
+// [j * n_in, (j+1) * n_in), and the weights are exact rationals.
+std::vector<std::vector<Tap>> axis_taps(int n_in, int n_out, MipEdge edge) {
+  std::vector<std::vector<Tap>> taps(n_out);
+  for (int j = 0; j < n_out; ++j) {
+    const long long lo = (long long)j * n_in, hi = (long long)(j + 1) * n_in;
+    for (long long i = lo / n_out; i * n_out < hi; ++i) {
+      const long long overlap = std::min(hi, (i + 1) * n_out) - std::max(lo, i * n_out);
+      if (overlap <= 0) continue;
+      const int at =
+          edge == MipEdge::wrap ? wrap_index(int(i), n_in) : std::clamp(int(i), 0, n_in - 1);
+      taps[j].push_back({at, double(overlap) / double(n_in)});
+    }
+  }
+  return taps;
+}
+
+// Filters one axis (0 = x, 1 = y, 2 = z) of `in` down to `n_out` texels.
+Texture reduce_axis(const Texture& in, int axis, int n_out, MipEdge edge) {
+  int dims[3] = {in.width, in.height, in.depth};
+  const int n_in = dims[axis];
+  dims[axis] = n_out;
+  Texture out(dims[0], dims[1], dims[2], in.layers, in.channels);
+  out.metadata = in.metadata;
+  if (n_in == n_out) {
+    out.data = in.data;
+    return out;
+  }
+  const auto taps = axis_taps(n_in, n_out, edge);
+  const int nc = in.channel_count();
+  // One task per output row (layer, z, y); each output texel is computed
+  // independently, in a fixed order, so the result is deterministic.
+  const int rows = out.layers * out.depth * out.height;
+  tbb::parallel_for(0, rows, [&](int row) {
+    const int y = row % out.height, z = (row / out.height) % out.depth;
+    const int layer = row / (out.height * out.depth);
+    std::vector<double> sum(nc);
+    for (int x = 0; x < out.width; ++x) {
+      const int p[3] = {x, y, z};
+      std::fill(sum.begin(), sum.end(), 0.0);
+      for (const Tap& tap : taps[p[axis]]) {
+        int q[3] = {x, y, z};
+        q[axis] = tap.index;
+        const float* src = in.texel(q[0], q[1], q[2], layer);
+        for (int c = 0; c < nc; ++c) sum[c] += tap.weight * src[c];
+      }
+      float* dst = out.texel(x, y, z, layer);
+      for (int c = 0; c < nc; ++c) dst[c] = float(sum[c]);
+    }
+  });
+  return out;
+}
+
+}  // namespace
+
+int mip_count(int width, int height, int depth) {
+  int n = std::max({width, height, depth, 1});
+  int levels = 1;
+  while (n > 1) {
+    n /= 2;
+    ++levels;
+  }
+  return levels;
+}
+
+std::vector<Texture> build_mip_chain(const Texture& level0, MipEdge edge) {
+  assert(level0.data.size() == level0.texel_count() * level0.channels.size());
+  std::vector<Texture> chain{level0};
+  const int levels = mip_count(level0.width, level0.height, level0.depth);
+  for (int level = 1; level < levels; ++level) {
+    const Texture& prev = chain.back();
+    Texture next = reduce_axis(prev, 0, std::max(1, prev.width / 2), edge);
+    next = reduce_axis(next, 1, std::max(1, prev.height / 2), edge);
+    next = reduce_axis(next, 2, std::max(1, prev.depth / 2), edge);
+    chain.push_back(std::move(next));
+  }
+  return chain;
+}
+
+}  // namespace skybake

@@ -1,0 +1,120 @@
+// Our DDS writer and reader: the "DDS " magic, DDS_HEADER (124 bytes) and
+// always the DDS_HEADER_DXT10 extension (20 bytes), then the pixel data.
+// References (Microsoft Learn): "DDS_HEADER structure", "DDS_PIXELFORMAT",
+// "DDS_HEADER_DXT10 structure", "Programming Guide for DDS", "DXGI_FORMAT".
+//
+// Shapes: 2D, 2D array (Texture::layers > 1) and volume (Texture::depth > 1),
+// each with or without a mip chain. Data order (Programming Guide for DDS):
+// a 2D array stores, for each array slice, all of its mip levels; a volume
+// stores, for each mip level, all of its depth slices. Rows are tightly packed
+// (pitch = width * bytes per texel), all integers little-endian.
+//
+// Channel mapping: the texture's channels fill the format's components in
+// order (R, G, B, A). A missing component is written as 0, a missing alpha as
+// 1; more channels than the format has is an error (nothing is dropped
+// silently). Conversions: UNORM clamps to [0, 1] and stores round(v * 255);
+// half rounds to nearest even and clamps finite values beyond +-65504 to
+// +-65504, since no Inf may reach a file (DESIGN.md "Numerics"); R11G11B10
+// rounds to nearest even, stores negatives as 0 and clamps to the largest
+// finite value (65024 for R and G, 64512 for B).
+//
+// miscFlags2 (alpha mode) is DDS_ALPHA_MODE_UNKNOWN (0): our alpha channels
+// hold data (a fourth LUT component), not coverage, so we do not claim
+// straight or premultiplied alpha, and readers must not reinterpret it.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/texture.hpp"
+
+namespace skybake {
+
+// The supported formats; each value is its DXGI_FORMAT code.
+enum class DdsFormat : uint32_t {
+  R32G32B32A32_FLOAT = 2,
+  R16G16B16A16_FLOAT = 10,
+  R11G11B10_FLOAT = 26,
+  R8G8B8A8_UNORM = 28,
+  R16_FLOAT = 54,
+  R8_UNORM = 61,
+};
+
+// Every supported format, in the order above.
+const std::vector<DdsFormat>& dds_formats();
+// "R16G16B16A16_FLOAT" (the DXGI name without the DXGI_FORMAT_ prefix).
+const char* dxgi_format_name(DdsFormat format);
+// Parses a name as written by dxgi_format_name (the "DXGI_FORMAT_" prefix is
+// accepted too). Throws IoError "<context>: expected one of R32G32B32A32_FLOAT,
+// ..., got "x"" with a "did you mean" suggestion when one is close.
+DdsFormat dds_format_from_name(const std::string& name, const std::string& context = "DDS format");
+// Components stored per texel (4, 3 for R11G11B10, 1 for R8/R16).
+int dds_component_count(DdsFormat format);
+// Bytes per texel: 16, 8, 4, 4, 2, 1.
+int dds_bytes_per_texel(DdsFormat format);
+
+// Writes `mips` (mips[0] full size; level i is max(1, size0 >> i) on every
+// axis; all levels share layers and channels; at most a full chain) to exactly
+// `path`. Checks everything (shape, chain, channel count, check_finite of
+// every level) before the file is opened, so a refused texture creates no
+// file. Throws IoError on a bad input or a failed write. Single-threaded.
+void write_dds(const std::string& path, const std::vector<Texture>& mips, DdsFormat format);
+
+struct DdsImage {
+  std::vector<Texture> mips;  // decoded float values; channels R, G, B, A as the format has
+  DdsFormat format = DdsFormat::R32G32B32A32_FLOAT;
+};
+
+// Reads a DDS file with a DX10 header in one of our formats (2D, 2D array or
+// volume; no cube maps). Validates the magic, the structure sizes, the
+// dimension, and that the file holds exactly the bytes the header announces
+// (a truncated file is an error). Legacy (non-DX10) files are refused with an
+// IoError that says so.
+DdsImage read_dds(const std::string& path);
+
+// DDS_PIXELFORMAT, field by field.
+struct DdsPixelFormat {
+  uint32_t size = 0, flags = 0, four_cc = 0, rgb_bit_count = 0;
+  uint32_t r_bit_mask = 0, g_bit_mask = 0, b_bit_mask = 0, a_bit_mask = 0;
+};
+
+// Every raw field of DDS_HEADER and (when present) DDS_HEADER_DXT10, for
+// `skybake info` and for diagnostics. Nothing is interpreted or defaulted.
+struct DdsHeaderInfo {
+  uint64_t file_size = 0;
+  uint32_t size = 0, flags = 0, height = 0, width = 0, pitch_or_linear_size = 0;
+  uint32_t depth = 0, mip_map_count = 0;
+  std::array<uint32_t, 11> reserved1{};
+  DdsPixelFormat pixel_format;
+  uint32_t caps = 0, caps2 = 0, caps3 = 0, caps4 = 0, reserved2 = 0;
+  bool has_dx10 = false;  // pixel_format has DDPF_FOURCC and FourCC "DX10"
+  uint32_t dxgi_format = 0, resource_dimension = 0, misc_flag = 0, array_size = 0;
+  uint32_t misc_flags2 = 0;
+};
+
+// Reads the headers only. Throws IoError when the file cannot be read, is
+// shorter than its headers or lacks the "DDS " magic.
+DdsHeaderInfo read_dds_header(const std::string& path);
+
+// "DX10", "DXT1"; non-printable bytes as '?'.
+std::string four_cc_string(uint32_t four_cc);
+
+// Flag values from the Microsoft headers, for callers that print headers.
+namespace dds {
+constexpr uint32_t kMagic = 0x20534444;  // "DDS " little-endian
+constexpr uint32_t kDdsdCaps = 0x1, kDdsdHeight = 0x2, kDdsdWidth = 0x4, kDdsdPitch = 0x8;
+constexpr uint32_t kDdsdPixelFormat = 0x1000, kDdsdMipMapCount = 0x20000;
+constexpr uint32_t kDdsdLinearSize = 0x80000, kDdsdDepth = 0x800000;
+constexpr uint32_t kDdpfFourCC = 0x4;
+constexpr uint32_t kCapsComplex = 0x8, kCapsTexture = 0x1000, kCapsMipMap = 0x400000;
+constexpr uint32_t kCaps2Volume = 0x200000, kCaps2CubeMap = 0x200;
+constexpr uint32_t kFourCCDx10 = 0x30315844;  // "DX10" little-endian
+constexpr uint32_t kDimensionTexture2D = 3, kDimensionTexture3D = 4;
+constexpr uint32_t kMiscTextureCube = 0x4;
+constexpr uint32_t kAlphaModeUnknown = 0;
+constexpr uint32_t kHeaderBytes = 4 + 124 + 20;  // magic + DDS_HEADER + DDS_HEADER_DXT10
+}  // namespace dds
+
+}  // namespace skybake

@@ -1,0 +1,50 @@
+// out/<scene>/manifest.json: one entry per written output, recording what an
+// engine needs to decode it (product, files, formats, dimensions, channels,
+// parameterization metadata) and what the incremental cache needs to skip it
+// next time (the input hash). Entries are keyed by output name; a bake merges
+// its entries into the existing manifest under the folder lock.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace skybake {
+
+struct ManifestFile {
+  std::string path;    // relative to the manifest's folder
+  std::string format;  // exr, dds, vdb, png
+  std::string encoding;  // e.g. "float", "half", "R16G16B16A16_FLOAT"
+};
+
+struct ManifestEntry {
+  std::string product;
+  std::string name;
+  std::vector<ManifestFile> files;
+  std::vector<int> dimensions;  // width, height[, depth]
+  int layers = 1;
+  std::vector<std::string> channels;
+  nlohmann::json metadata = nlohmann::json::object();  // parameterization name and constants...
+  std::string input_hash;
+  double bake_seconds = 0.0;
+};
+
+struct Manifest {
+  std::string scene;
+  std::string preset;
+  std::string tool_version;
+  std::map<std::string, ManifestEntry> entries;  // by output name
+};
+
+// Missing file -> empty manifest; unreadable or malformed -> empty manifest
+// too (it is a cache: the outputs will simply be baked again).
+Manifest read_manifest(const std::filesystem::path& file);
+void write_manifest(const std::filesystem::path& file, const Manifest& manifest);
+
+nlohmann::json to_json(const ManifestEntry& entry);
+ManifestEntry manifest_entry_from_json(const nlohmann::json& j);
+
+}  // namespace skybake

@@ -1,0 +1,25 @@
+// Reads any texture file skybake writes (EXR, DDS, VDB), chosen by
+// extension, into the one Texture type: for `skybake info`, `check-tiling`
+// and tests.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/texture.hpp"
+
+namespace skybake {
+
+struct LoadedTexture {
+  Texture texture;       // level 0
+  std::string format;    // "exr", "dds", "vdb"
+  std::string encoding;  // "half", "float", DXGI format name...
+  int mip_levels = 1;
+  nlohmann::json details = nlohmann::json::object();  // format-specific header fields
+};
+
+// Throws IoError for unknown extensions and unreadable files.
+LoadedTexture read_texture_file(const std::string& path);
+
+}  // namespace skybake

@@ -1,0 +1,15 @@
+// "did you mean" for misspelled names (after ninja's SpellcheckString).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace skybake {
+
+// Levenshtein distance.
+size_t edit_distance(const std::string& a, const std::string& b);
+
+// " (did you mean 'x'?)" for the closest candidate within a small distance, else "".
+std::string did_you_mean(const std::string& word, const std::vector<std::string>& candidates);
+
+}  // namespace skybake

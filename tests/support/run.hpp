@@ -1,0 +1,31 @@
+// Test support: runs the real skybake executable and captures its exit code,
+// stdout and stderr; makes fresh scratch folders.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace skybake::test {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs SKYBAKE_EXE with the arguments (shell-quoted here), in `cwd` if given.
+RunResult run_skybake(const std::vector<std::string>& args, const std::filesystem::path& cwd = {});
+
+// An empty folder under SKYBAKE_TEST_TMP named after the test.
+std::filesystem::path fresh_dir(const std::string& name);
+
+std::string read_file(const std::filesystem::path& path);
+
+// Path inside the source tree.
+std::filesystem::path source_path(const std::string& relative);
+
+// All regular files under a folder (recursive), relative paths, sorted.
+std::vector<std::string> list_files(const std::filesystem::path& dir);
+
+}  // namespace skybake::test
