@@ -1,0 +1,62 @@
+// OpenEXR output and input for Textures, through OpenImageIO (DESIGN.md
+// "Texture container and formats": half or float, channel names, metadata as
+// header attributes, 3D as one part per slice or as a slice atlas with the
+// layout recorded in the header).
+//
+// File shapes:
+//   2D (depth 1, layers 1)  one single-part image, width x height.
+//   2D array (layers L)     a multi-part EXR, part i named "layer<i>".
+//   volume, atlas           one image of columns x rows slices, slice z at
+//                           column z % columns, row z / columns, with
+//                           columns = ceil(sqrt(depth)), rows =
+//                           ceil(depth / columns); unused cells are 0.
+//   volume, multipart       a multi-part EXR, part z named "slice<z>".
+// Channels keep the texture's names ("R", "G", "B", "A" or any other name).
+// Compression is zip (lossless; zlib output is deterministic).
+//
+// Header attributes (every part of a multi-part file carries all of them):
+//   skybake:<key>          string, one per Texture::metadata entry.
+//   skybake:shape          string "WxHxDxL" (width, height, depth, layers).
+//   skybake:channels       string, the channel names in texture order, comma
+//                          separated: EXR stores channels sorted by name, so
+//                          the file alone loses the order.
+//   skybake:layout         string "image", "layers", "atlas" or "slices".
+//   skybake:atlas_columns, skybake:atlas_rows, skybake:slice_width,
+//   skybake:slice_height, skybake:slice_depth
+//                          ints, atlas layout only.
+//   DateTime (capDate)     fixed "1970:01:01 00:00:00": OpenImageIO stamps the
+//                          current time otherwise (DESIGN.md "Determinism").
+// Metadata keys may therefore not be one of the structural names above
+// (shape, channels, layout, atlas_*, slice_*); the writer refuses them.
+#pragma once
+
+#include <string>
+
+#include "core/texture.hpp"
+
+namespace skybake {
+
+enum class ExrPrecision { half, float32 };
+enum class ExrVolumeLayout { atlas, multipart };
+
+// Writes `tex` to exactly `path` (no temporary file: the caller renames).
+// Half output rounds to nearest even. Throws IoError (before creating the
+// file) when a value is NaN/Inf or, for half, would round to Inf (|v| >=
+// 65520); when the texture is empty or both a volume and an array; or when
+// OpenImageIO fails (the partial file is removed). Throws
+// Error when a metadata key is reserved (a programmer error).
+void write_exr(const std::string& path, const Texture& tex, ExrPrecision precision,
+               ExrVolumeLayout layout = ExrVolumeLayout::atlas);
+
+// Reads an EXR written by write_exr back into a Texture (shape, channel order
+// and metadata, with the "skybake:" prefix stripped and the structural
+// attributes left out). A foreign EXR reads as a 2D texture (one part) or a
+// 2D array (several parts of one size) with the channels in file order and
+// no metadata. Throws IoError when the file cannot be read or its parts do
+// not match its skybake:* attributes.
+Texture read_exr(const std::string& path);
+
+// Columns of the slice atlas of a volume with `depth` slices: ceil(sqrt(depth)).
+int exr_atlas_columns(int depth);
+
+}  // namespace skybake

@@ -1,0 +1,168 @@
+// PNG previews: panel layout, automatic exposure, tone curves and sRGB
+// encoding as documented in png_preview.hpp.
+#include "io/png_preview.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+
+namespace skybake {
+
+namespace {
+
+// The value mapping before the tone curve: v' = offset + scale * v.
+struct Exposure {
+  double scale = 1.0;
+  double offset = 0.0;
+};
+
+// The channels drawn: the first three in colour mode, all when split.
+int shown_channels(const Texture& tex, const PreviewOptions& opt) {
+  return opt.split_channels ? tex.channel_count() : std::min(tex.channel_count(), 3);
+}
+
+// The texture slab (z or layer) behind a panel.
+const float* panel_texel(const Texture& tex, int panel, int x, int y) {
+  return tex.is_volume() ? tex.texel(x, y, panel, 0) : tex.texel(x, y, 0, panel);
+}
+
+// 99th percentile of `values` (nearest rank), which it reorders.
+double percentile99(std::vector<float>& values) {
+  const size_t k = size_t(0.99 * double(values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + k, values.end());
+  return values[k];
+}
+
+Exposure auto_exposure(const Texture& tex, const PreviewLayout& layout, int shown) {
+  std::vector<float> values;
+  values.reserve(layout.panels.size() * tex.width * tex.height * shown);
+  for (int panel : layout.panels)
+    for (int y = 0; y < tex.height; ++y)
+      for (int x = 0; x < tex.width; ++x)
+        for (int c = 0; c < shown; ++c) values.push_back(panel_texel(tex, panel, x, y)[c]);
+  const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+  if (*lo >= 0.0f && *hi <= 1.0f) return {};
+  if (*lo < 0.0f) {  // signed: [-p, p] -> [0, 1]
+    for (float& v : values) v = std::fabs(v);
+    const double p = percentile99(values);
+    return p > 0.0 ? Exposure{0.5 / p, 0.5} : Exposure{0.5 / std::fabs(*lo), 0.5};
+  }
+  const double top = *hi;
+  const double p = percentile99(values);
+  return {1.0 / (p > 0.0 ? p : top)};
+}
+
+double tone_curve(double x, Tonemap tonemap) {
+  switch (tonemap) {
+    case Tonemap::none:
+      return x;
+    case Tonemap::reinhard:
+      return x > 0.0 ? x / (1.0 + x) : 0.0;
+    case Tonemap::aces:  // Narkowicz 2015, "ACES Filmic Tone Mapping Curve"
+      x = std::max(x, 0.0);
+      return (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
+  }
+  return x;
+}
+
+// IEC 61966-2-1 sRGB transfer function, then 8-bit rounding.
+uint8_t srgb8(double linear) {
+  const double c = std::clamp(linear, 0.0, 1.0);
+  const double s = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+  return uint8_t(std::lround(s * 255.0));
+}
+
+// Draws panel `k` into the RGB8 image.
+void draw_panel(std::vector<uint8_t>& rgb, const PreviewLayout& layout, const Texture& tex,
+                const PreviewOptions& opt, const Exposure& e, int k) {
+  const int shown = shown_channels(tex, opt);
+  const int tiles = opt.tile_2x2 ? 2 : 1;
+  const int sub_panels = opt.split_channels ? shown : 1;
+  const int x0 = (k % layout.columns) * layout.cell_width;
+  const int y0 = (k / layout.columns) * layout.cell_height;
+  std::vector<uint8_t> mapped(shown);
+  for (int y = 0; y < tex.height; ++y)
+    for (int x = 0; x < tex.width; ++x) {
+      const float* v = panel_texel(tex, layout.panels[k], x, y);
+      for (int c = 0; c < shown; ++c)
+        mapped[c] = srgb8(tone_curve(e.offset + e.scale * v[c], opt.tonemap));
+      for (int s = 0; s < sub_panels; ++s) {
+        uint8_t px[3] = {mapped[0], mapped[0], mapped[0]};  // one channel: grey
+        if (opt.split_channels)
+          px[0] = px[1] = px[2] = mapped[s];
+        else if (shown > 1)
+          px[1] = mapped[1], px[2] = shown > 2 ? mapped[2] : 0;
+        for (int ty = 0; ty < tiles; ++ty)
+          for (int tx = 0; tx < tiles; ++tx) {
+            const size_t px_x = x0 + (s * tiles + tx) * tex.width + x;
+            const size_t px_y = y0 + ty * tex.height + y;
+            std::copy(px, px + 3, &rgb[(px_y * layout.width + px_x) * 3]);
+          }
+      }
+    }
+}
+
+}  // namespace
+
+std::vector<int> preview_slices(int depth, int max_slices) {
+  const int n = max_slices > 0 ? std::min(depth, max_slices) : depth;
+  std::vector<int> z(n);
+  for (int i = 0; i < n; ++i) z[i] = int((int64_t(i) * depth) / n);
+  return z;
+}
+
+PreviewLayout preview_layout(const Texture& tex, const PreviewOptions& opt) {
+  PreviewLayout layout;
+  if (tex.is_volume())
+    layout.panels = preview_slices(tex.depth, opt.max_slices);
+  else
+    for (int l = 0; l < tex.layers; ++l) layout.panels.push_back(l);
+  const int n = int(layout.panels.size());
+  layout.columns = std::min(n, std::max(opt.max_columns, 1));
+  layout.rows = (n + layout.columns - 1) / layout.columns;
+  const int tiles = opt.tile_2x2 ? 2 : 1;
+  const int sub_panels = opt.split_channels ? shown_channels(tex, opt) : 1;
+  layout.cell_width = tex.width * tiles * sub_panels;
+  layout.cell_height = tex.height * tiles;
+  layout.width = layout.columns * layout.cell_width;
+  layout.height = layout.rows * layout.cell_height;
+  return layout;
+}
+
+void write_png_preview(const std::string& path, const Texture& tex, const PreviewOptions& opt) {
+  if (tex.width < 1 || tex.height < 1 || tex.depth < 1 || tex.layers < 1 || tex.channels.empty() ||
+      tex.data.size() != tex.texel_count() * tex.channels.size())
+    throw IoError(fmt::format("{}: expected a non-empty texture, got {} with {} channels", path,
+                              tex.shape_string(), tex.channels.size()));
+  if (tex.is_volume() && tex.is_array())
+    throw IoError(fmt::format("{}: expected a volume or a 2D array, got both ({})", path,
+                              tex.shape_string()));
+  check_finite(tex, path);
+  const PreviewLayout layout = preview_layout(tex, opt);
+  const Exposure e =
+      opt.exposure ? Exposure{*opt.exposure} : auto_exposure(tex, layout, shown_channels(tex, opt));
+  std::vector<uint8_t> rgb(size_t(layout.width) * layout.height * 3, 0);
+  for (int k = 0; k < int(layout.panels.size()); ++k) draw_panel(rgb, layout, tex, opt, e, k);
+
+  auto out = OIIO::ImageOutput::create("png");
+  if (!out)
+    throw IoError(fmt::format("{}: cannot create a PNG writer: {}", path, OIIO::geterror()));
+  OIIO::ImageSpec spec(layout.width, layout.height, 3, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", "sRGB");
+  bool ok = out->open(path, spec) && out->write_image(OIIO::TypeDesc::UINT8, rgb.data());
+  ok = out->close() && ok;
+  if (!ok) {
+    const std::string message = out->geterror();
+    out.reset();
+    std::remove(path.c_str());
+    throw IoError(fmt::format("{}: cannot write PNG: {}", path, message));
+  }
+}
+
+}  // namespace skybake

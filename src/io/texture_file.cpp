@@ -1,0 +1,89 @@
+#include "io/texture_file.hpp"
+
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "io/dds.hpp"
+#include "io/exr.hpp"
+#include "io/manifest.hpp"
+#include "io/vdb.hpp"
+
+namespace fs = std::filesystem;
+
+namespace skybake {
+
+namespace {
+
+// The manifest entry beside the file that lists it, if any: DDS has no
+// metadata block, and EXR channels do not say whether they were requested as
+// half or float.
+const ManifestEntry* find_manifest_entry(const Manifest& m, const fs::path& file,
+                                         const ManifestFile** file_record) {
+  for (const auto& [name, entry] : m.entries)
+    for (const ManifestFile& f : entry.files)
+      if (f.path == file.filename().string()) {
+        *file_record = &f;
+        return &entry;
+      }
+  return nullptr;
+}
+
+void attach_manifest_metadata(const fs::path& file, Texture& tex) {
+  const Manifest m = read_manifest(file.parent_path() / "manifest.json");
+  const ManifestFile* record = nullptr;
+  if (const ManifestEntry* entry = find_manifest_entry(m, file, &record))
+    for (const auto& [k, v] : entry->metadata.items())
+      if (!tex.metadata.count(k)) tex.metadata[k] = v.is_string() ? v.get<std::string>() : v.dump();
+}
+
+std::string manifest_encoding(const fs::path& file) {
+  const Manifest m = read_manifest(file.parent_path() / "manifest.json");
+  const ManifestFile* record = nullptr;
+  return find_manifest_entry(m, file, &record) ? record->encoding : "unknown";
+}
+
+LoadedTexture load_dds(const std::string& path) {
+  const DdsHeaderInfo h = read_dds_header(path);
+  DdsImage image = read_dds(path);
+  LoadedTexture out;
+  out.format = "dds";
+  out.encoding = dxgi_format_name(image.format);
+  out.mip_levels = int(image.mips.size());
+  out.texture = std::move(image.mips.front());
+  out.details = {{"flags", fmt::format("0x{:08x}", h.flags)},
+                 {"pitch_or_linear_size", h.pitch_or_linear_size},
+                 {"mip_map_count", h.mip_map_count},
+                 {"caps", fmt::format("0x{:08x}", h.caps)},
+                 {"caps2", fmt::format("0x{:08x}", h.caps2)},
+                 {"dxgi_format", h.dxgi_format},
+                 {"resource_dimension", h.resource_dimension},
+                 {"array_size", h.array_size},
+                 {"file_size", h.file_size}};
+  attach_manifest_metadata(path, out.texture);
+  return out;
+}
+
+}  // namespace
+
+LoadedTexture read_texture_file(const std::string& path) {
+  const std::string ext = fs::path(path).extension().string();
+  if (!fs::exists(path)) throw IoError(fmt::format("{}: no such file", path));
+  if (ext == ".dds") return load_dds(path);
+  LoadedTexture out;
+  if (ext == ".exr") {
+    out.texture = read_exr(path);
+    out.format = "exr";
+    out.encoding = manifest_encoding(path);
+  } else if (ext == ".vdb") {
+    out.texture = read_vdb(path);
+    out.format = "vdb";
+    out.encoding = "float";
+  } else {
+    throw IoError(fmt::format("{}: expected a .exr, .dds or .vdb file, got '{}'", path, ext));
+  }
+  return out;
+}
+
+}  // namespace skybake

@@ -1,0 +1,68 @@
+#include "pipeline/output_writer.hpp"
+
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "core/mip_chain.hpp"
+#include "io/atomic_file.hpp"
+#include "io/dds.hpp"
+#include "io/exr.hpp"
+#include "io/png_preview.hpp"
+#include "io/vdb.hpp"
+#include "pipeline/freshness.hpp"
+#include "pipeline/product_graph.hpp"
+
+namespace skybake {
+
+namespace {
+
+// DDS format when the output does not name one: float32 RGBA keeps every bit
+// (transmittance must stay float32, REFERENCE.md); half asks for 16-bit floats.
+DdsFormat choose_dds_format(const Texture& tex, const ProductInfo& info, const OutputSpec& spec) {
+  std::string name = option_string(spec, "dds_format", info.default_dds_format);
+  if (!name.empty()) return dds_format_from_name(name);
+  if (spec.precision == "half")
+    return tex.channel_count() == 1 ? DdsFormat::R16_FLOAT : DdsFormat::R16G16B16A16_FLOAT;
+  return DdsFormat::R32G32B32A32_FLOAT;
+}
+
+}  // namespace
+
+std::vector<ManifestFile> write_outputs(const Texture& tex, const ProductInfo& info,
+                                        const OutputSpec& spec,
+                                        const std::filesystem::path& scene_dir) {
+  std::vector<std::unique_ptr<AtomicFile>> pending;
+  std::vector<ManifestFile> files;
+  const std::vector<std::string> names = output_files(spec);
+  for (size_t i = 0; i < spec.formats.size(); ++i) {
+    const std::string& format = spec.formats[i];
+    pending.push_back(std::make_unique<AtomicFile>(scene_dir / names[i]));
+    const std::string tmp = pending.back()->temp_path().string();
+    ManifestFile record{names[i], format, ""};
+    if (format == "exr") {
+      const bool half = spec.precision == "half";
+      write_exr(tmp, tex, half ? ExrPrecision::half : ExrPrecision::float32);
+      record.encoding = half ? "half" : "float";
+    } else if (format == "dds") {
+      const DdsFormat dds = choose_dds_format(tex, info, spec);
+      const bool mips = spec.options.value("mips", false);
+      write_dds(tmp, mips ? build_mip_chain(tex, MipEdge::wrap) : std::vector<Texture>{tex}, dds);
+      record.encoding = dxgi_format_name(dds);
+    } else if (format == "vdb") {
+      write_vdb(tmp, tex, 1.0 / tex.width);
+      record.encoding = "float";
+    } else if (format == "png") {
+      write_png_preview(tmp, tex, PreviewOptions{});
+      record.encoding = "srgb8";
+    } else {
+      throw Error(fmt::format("unknown format '{}' passed validation", format));
+    }
+    files.push_back(record);
+  }
+  for (auto& p : pending) p->commit();
+  return files;
+}
+
+}  // namespace skybake

@@ -1,0 +1,273 @@
+// Tests for io/png_preview: previews are read back with OpenImageIO and
+// checked against the documented layout, the sRGB transfer function
+// (IEC 61966-2-1, recomputed here), monotonic tone mapping, exact 2x2 tiling
+// and deterministic bytes without time stamps.
+#include "io/png_preview.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <utility>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+
+namespace skybake {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string tmp_path(const std::string& test, const std::string& file) {
+  const fs::path dir = fs::path(SKYBAKE_TEST_TMP) / "io_png_preview" / test;
+  fs::create_directories(dir);
+  fs::remove(dir / file);
+  return (dir / file).string();
+}
+
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+struct Rgb8 {
+  int width = 0, height = 0, channels = 0;
+  std::vector<uint8_t> px;
+  int at(int x, int y, int c) const { return px[(size_t(y) * width + x) * channels + c]; }
+};
+
+Rgb8 read_png(const std::string& path) {
+  Rgb8 img;
+  auto in = OIIO::ImageInput::open(path);
+  EXPECT_TRUE(in) << OIIO::geterror();
+  if (!in) return img;
+  EXPECT_EQ(in->spec().format, OIIO::TypeDesc::UINT8);
+  img.width = in->spec().width;
+  img.height = in->spec().height;
+  img.channels = in->spec().nchannels;
+  img.px.resize(size_t(img.width) * img.height * img.channels);
+  EXPECT_TRUE(in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::UINT8, img.px.data()));
+  return img;
+}
+
+int srgb8(double linear) {
+  const double s = linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1 / 2.4) - 0.055;
+  return int(std::lround(255.0 * s));
+}
+
+Texture constant(int w, int h, int d, int l, int channels, float value) {
+  std::vector<std::string> names = {"R", "G", "B", "A", "E"};
+  names.resize(channels);
+  Texture tex(w, h, d, l, names);
+  std::fill(tex.data.begin(), tex.data.end(), value);
+  return tex;
+}
+
+TEST(PngPreview, DimensionsFollowTheDocumentedLayout) {
+  struct Case {
+    Texture tex;
+    PreviewOptions opt;
+    int width, height;
+  };
+  PreviewOptions all_slices;
+  all_slices.max_slices = 0;
+  PreviewOptions tiled_split;
+  tiled_split.tile_2x2 = true;
+  tiled_split.split_channels = true;
+  const Case cases[] = {
+      {constant(7, 5, 1, 1, 3, 0.2f), {}, 7, 5},
+      {constant(4, 3, 1, 3, 4, 0.2f), {}, 12, 3},               // layers side by side
+      {constant(4, 3, 20, 1, 1, 0.2f), {}, 32, 3},              // 8 of 20 slices in a row
+      {constant(4, 3, 20, 1, 1, 0.2f), all_slices, 32, 9},      // 20 slices, 8 per row
+      {constant(4, 3, 1, 1, 4, 0.2f), tiled_split, 32, 6},      // 4 channels, each 2x2
+      {constant(4, 3, 2, 1, 2, 0.2f), tiled_split, 2 * 16, 6},  // 2 slices of 2 channels
+  };
+  int n = 0;
+  for (const Case& c : cases) {
+    const std::string path = tmp_path("dimensions", std::to_string(n++) + ".png");
+    write_png_preview(path, c.tex, c.opt);
+    const Rgb8 img = read_png(path);
+    EXPECT_EQ(img.width, c.width) << path;
+    EXPECT_EQ(img.height, c.height) << path;
+    EXPECT_EQ(img.channels, 3) << path;
+  }
+}
+
+TEST(PngPreview, ConstantHalfWithoutTonemapIsSrgbHalf) {
+  const std::string path = tmp_path("constant", "t.png");
+  PreviewOptions opt;
+  opt.tonemap = Tonemap::none;
+  write_png_preview(path, constant(3, 2, 1, 1, 3, 0.5f), opt);
+  const Rgb8 img = read_png(path);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 3; ++x)
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(img.at(x, y, c), 188, 1);
+}
+
+TEST(PngPreview, GradientsMapMonotonically) {
+  for (Tonemap tonemap : {Tonemap::none, Tonemap::reinhard, Tonemap::aces})
+    for (double top : {1.0, 100.0}) {  // [0, 1] data, then HDR data (auto exposure)
+      const std::string path = tmp_path("gradient", "t.png");
+      Texture tex(64, 1, 1, 1, {"L"});
+      for (int x = 0; x < 64; ++x) tex.data[x] = float(top * x / 63.0);
+      PreviewOptions opt;
+      opt.tonemap = tonemap;
+      write_png_preview(path, tex, opt);
+      const Rgb8 img = read_png(path);
+      ASSERT_EQ(img.width, 64);
+      EXPECT_EQ(img.at(0, 0, 0), 0);
+      for (int x = 1; x < 64; ++x) {
+        EXPECT_GE(img.at(x, 0, 0), img.at(x - 1, 0, 0)) << x;
+        EXPECT_EQ(img.at(x, 0, 1), img.at(x, 0, 0));  // one channel shows as grey
+      }
+      EXPECT_GT(img.at(63, 0, 0), 150) << int(tonemap) << " " << top;
+    }
+}
+
+TEST(PngPreview, UnitDataIsShownAsIsAndHdrIsScaledToItsPercentile) {
+  Texture unit(100, 1, 1, 1, {"L"});
+  Texture hdr(100, 1, 1, 1, {"L"});
+  for (int x = 0; x < 100; ++x) {
+    unit.data[x] = float(x) / 99.0f;
+    hdr.data[x] = 1000.0f * float(x) / 99.0f;
+  }
+  const std::string a = tmp_path("auto", "unit.png"), b = tmp_path("auto", "hdr.png");
+  write_png_preview(a, unit, {});
+  write_png_preview(b, hdr, {});
+  const Rgb8 ia = read_png(a), ib = read_png(b);
+  for (int x = 0; x < 100; x += 9) EXPECT_NEAR(ia.at(x, 0, 0), srgb8(x / 99.0), 1) << x;
+  // The 99th percentile of 100 evenly spaced values is the 99th of them
+  // (index 98): it and everything below stay below white, the top clips.
+  EXPECT_EQ(ib.at(98, 0, 0), 255);
+  EXPECT_LT(ib.at(97, 0, 0), 255);
+  EXPECT_NEAR(ib.at(49, 0, 0), srgb8(49.0 / 98.0), 1);
+}
+
+TEST(PngPreview, SignedDataCentresZeroOnMidGrey) {
+  const std::string path = tmp_path("signed", "t.png");
+  Texture tex(3, 1, 1, 1, {"curl"});
+  tex.data = {-1.0f, 0.0f, 1.0f};
+  write_png_preview(path, tex, {});
+  const Rgb8 img = read_png(path);
+  EXPECT_EQ(img.at(0, 0, 0), 0);
+  EXPECT_NEAR(img.at(1, 0, 0), srgb8(0.5), 1);
+  EXPECT_EQ(img.at(2, 0, 0), 255);
+}
+
+TEST(PngPreview, ChannelsMapToColourAndAlphaIsNotShown) {
+  Texture two(2, 2, 1, 1, {"R", "G"});
+  Texture rgba(2, 2, 1, 1, {"R", "G", "B", "A"});
+  for (int t = 0; t < 4; ++t) {
+    two.data[t * 2] = 0.25f, two.data[t * 2 + 1] = 0.75f;
+    rgba.data[t * 4] = 0.1f, rgba.data[t * 4 + 1] = 0.2f, rgba.data[t * 4 + 2] = 0.3f;
+    rgba.data[t * 4 + 3] = t % 2 ? 1.0f : 0.0f;
+  }
+  const std::string a = tmp_path("channels", "two.png"), b = tmp_path("channels", "rgba.png");
+  write_png_preview(a, two, {});
+  write_png_preview(b, rgba, {});
+  const Rgb8 ia = read_png(a), ib = read_png(b);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 2; ++x) {
+      EXPECT_NEAR(ia.at(x, y, 0), srgb8(0.25), 1);
+      EXPECT_NEAR(ia.at(x, y, 1), srgb8(0.75), 1);
+      EXPECT_EQ(ia.at(x, y, 2), 0);
+      EXPECT_NEAR(ib.at(x, y, 0), srgb8(0.1), 1);
+      EXPECT_NEAR(ib.at(x, y, 1), srgb8(0.2), 1);
+      EXPECT_NEAR(ib.at(x, y, 2), srgb8(0.3), 1);
+    }
+}
+
+TEST(PngPreview, SplitChannelsShowsEachChannelAsGrey) {
+  const std::string path = tmp_path("split", "t.png");
+  Texture tex(2, 1, 1, 1, {"R", "G", "B", "A"});
+  const float values[4] = {0.1f, 0.4f, 0.7f, 1.0f};
+  for (int x = 0; x < 2; ++x)
+    for (int c = 0; c < 4; ++c) tex.at(x, 0, 0, 0, c) = values[c];
+  PreviewOptions opt;
+  opt.split_channels = true;
+  write_png_preview(path, tex, opt);
+  const Rgb8 img = read_png(path);
+  ASSERT_EQ(img.width, 8);
+  for (int c = 0; c < 4; ++c)
+    for (int x = 0; x < 2; ++x)
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(img.at(2 * c + x, 0, k), srgb8(values[c]), 1);
+}
+
+TEST(PngPreview, VolumeSlicesAreEvenlyPickedInOrder) {
+  EXPECT_EQ(preview_slices(16, 8), (std::vector<int>{0, 2, 4, 6, 8, 10, 12, 14}));
+  EXPECT_EQ(preview_slices(5, 8), (std::vector<int>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(preview_slices(3, 0), (std::vector<int>{0, 1, 2}));
+
+  const std::string path = tmp_path("slices", "t.png");
+  Texture tex(2, 2, 16, 1, {"L"});
+  for (int z = 0; z < 16; ++z)
+    for (int i = 0; i < 4; ++i) tex.data[z * 4 + i] = float(z) / 15.0f;
+  write_png_preview(path, tex, {});
+  const Rgb8 img = read_png(path);
+  ASSERT_EQ(img.width, 16);
+  for (int k = 0; k < 8; ++k) EXPECT_NEAR(img.at(2 * k + 1, 1, 0), srgb8(2 * k / 15.0), 1) << k;
+}
+
+TEST(PngPreview, Tile2x2RepeatsThePanelExactly) {
+  Texture tex(5, 3, 1, 1, {"R", "G", "B"});
+  for (size_t i = 0; i < tex.data.size(); ++i) tex.data[i] = float(0.5 + 0.5 * std::sin(1.3 * i));
+  PreviewOptions tiled;
+  tiled.tile_2x2 = true;
+  const std::string a = tmp_path("tile", "plain.png"), b = tmp_path("tile", "tiled.png");
+  write_png_preview(a, tex, {});
+  write_png_preview(b, tex, tiled);
+  const Rgb8 plain = read_png(a), img = read_png(b);
+  ASSERT_EQ(img.width, 10);
+  ASSERT_EQ(img.height, 6);
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 10; ++x)
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(img.at(x, y, c), plain.at(x % 5, y % 3, c));
+}
+
+// PNG chunks in file order as (type, data) (PNG spec sec. 5.3: length, type,
+// data, CRC).
+std::vector<std::pair<std::string, std::string>> png_chunks(const std::string& bytes) {
+  std::vector<std::pair<std::string, std::string>> chunks;
+  for (size_t p = 8; p + 8 <= bytes.size();) {
+    const auto b = [&](size_t i) { return uint32_t(uint8_t(bytes[p + i])); };
+    const uint32_t length = b(0) << 24 | b(1) << 16 | b(2) << 8 | b(3);
+    chunks.emplace_back(bytes.substr(p + 4, 4), bytes.substr(p + 8, length));
+    p += 12 + length;
+  }
+  return chunks;
+}
+
+TEST(PngPreview, BytesAreDeterministicWithoutTimeStamps) {
+  Texture tex(6, 4, 3, 1, {"R", "G", "B", "A"});
+  for (size_t i = 0; i < tex.data.size(); ++i) tex.data[i] = float(5.0 + 4.0 * std::sin(0.9 * i));
+  const std::string a = tmp_path("determinism", "a.png"), b = tmp_path("determinism", "b.png");
+  write_png_preview(a, tex, {});
+  write_png_preview(b, tex, {});
+  const std::string bytes = read_bytes(a);
+  EXPECT_TRUE(bytes == read_bytes(b));
+  const auto chunks = png_chunks(bytes);
+  ASSERT_FALSE(chunks.empty());
+  EXPECT_EQ(chunks.front().first, "IHDR");
+  EXPECT_EQ(chunks.back().first, "IEND");
+  for (const auto& [type, data] : chunks) {
+    EXPECT_NE(type, "tIME");
+    if (type != "tEXt" && type != "zTXt" && type != "iTXt") continue;
+    const std::string keyword = data.substr(0, data.find('\0'));  // sec. 11.3.4
+    for (const char* stamp : {"Time", "Date", "Software", "Host"})
+      EXPECT_EQ(keyword.find(stamp), std::string::npos) << keyword;
+  }
+}
+
+TEST(PngPreview, NonFiniteValuesAreRefusedBeforeAFileExists) {
+  const std::string path = tmp_path("nonfinite", "t.png");
+  Texture tex = constant(3, 3, 1, 1, 1, 0.5f);
+  tex.data[4] = std::nanf("");
+  EXPECT_THROW(write_png_preview(path, tex, {}), IoError);
+  EXPECT_FALSE(fs::exists(path));
+}
+
+}  // namespace
+}  // namespace skybake

@@ -1,0 +1,146 @@
+// Tests for io/vdb: files are read back with plain OpenVDB calls (io::File,
+// grids by name, accessors, transform, metadata) that share no code with
+// read_vdb, and through read_vdb. Plus determinism and refusals.
+// The only test file that includes OpenVDB (slow headers).
+#include "io/vdb.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <gtest/gtest.h>
+#include <openvdb/openvdb.h>
+
+#include "core/error.hpp"
+
+namespace skybake {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string tmp_path(const std::string& test, const std::string& file) {
+  const fs::path dir = fs::path(SKYBAKE_TEST_TMP) / "io_vdb" / test;
+  fs::create_directories(dir);
+  fs::remove(dir / file);
+  return (dir / file).string();
+}
+
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// Irregular values with a run of exact zeros (density-like empty space).
+Texture make_volume(int w, int h, int d) {
+  Texture tex(w, h, d, 1, {"R", "G", "B", "A"});
+  for (size_t i = 0; i < tex.data.size(); ++i)
+    tex.data[i] = i % 7 < 2 ? 0.0f : float(1.5 * std::sin(0.37 * i + 0.1));
+  tex.metadata["product"] = "noise_shape";
+  tex.metadata["period"] = "1";
+  return tex;
+}
+
+TEST(Vdb, GridsReadWithPlainOpenVdbMatchTheTexture) {
+  const std::string path = tmp_path("plain", "t.vdb");
+  const Texture tex = make_volume(5, 4, 3);
+  write_vdb(path, tex, 0.25);
+
+  openvdb::initialize();
+  openvdb::io::File file(path);
+  file.open();
+  std::vector<std::string> names;
+  for (auto it = file.beginName(); it != file.endName(); ++it) names.push_back(it.gridName());
+  // OpenVDB lists grids by name; the texture order is in skybake:channels.
+  EXPECT_EQ(names, (std::vector<std::string>{"A", "B", "G", "R"}));
+  for (int c = 0; c < 4; ++c) {
+    auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(file.readGrid(tex.channels[c]));
+    ASSERT_TRUE(grid) << tex.channels[c];
+    EXPECT_EQ(grid->background(), 0.0f);
+    EXPECT_EQ(grid->voxelSize(), openvdb::Vec3d(0.25));
+    // Texel centres at (i + 0.5) * voxel size (DESIGN.md "Numerics").
+    EXPECT_EQ(grid->indexToWorld(openvdb::Coord(0, 0, 0)), openvdb::Vec3d(0.125));
+    EXPECT_EQ(grid->indexToWorld(openvdb::Coord(4, 3, 2)), openvdb::Vec3d(1.125, 0.875, 0.625));
+    EXPECT_EQ(grid->metaValue<std::string>("skybake:product"), "noise_shape");
+    EXPECT_EQ(grid->metaValue<std::string>("skybake:period"), "1");
+    EXPECT_EQ(grid->metaValue<std::string>("skybake:shape"), "5x4x3x1");
+    EXPECT_EQ(grid->metaValue<std::string>("skybake:channels"), "R,G,B,A");
+    EXPECT_EQ(grid->activeVoxelCount(), openvdb::Index64(5 * 4 * 3));  // dense, zeros too
+    auto acc = grid->getConstAccessor();
+    for (int z = 0; z < 3; ++z)
+      for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 5; ++x) {
+          const openvdb::Coord ijk(x, y, z);
+          EXPECT_EQ(acc.getValue(ijk), tex.at(x, y, z, 0, c));
+          EXPECT_TRUE(acc.isValueOn(ijk));
+        }
+    EXPECT_FALSE(acc.isValueOn(openvdb::Coord(5, 0, 0)));
+    EXPECT_FALSE(acc.isValueOn(openvdb::Coord(0, 0, -1)));
+  }
+  file.close();
+}
+
+TEST(Vdb, ReadVdbRestoresVolumeAnd2DTextures) {
+  const Texture volume = make_volume(6, 5, 4);
+  Texture flat = make_volume(7, 3, 1);
+  flat.channels = {"density", "temperature", "x", "a"};  // not alphabetical: file order counts
+  int n = 0;
+  for (const Texture* tex : {&volume, static_cast<const Texture*>(&flat)}) {
+    const std::string path = tmp_path("read_vdb", std::to_string(n++) + ".vdb");
+    write_vdb(path, *tex, 1.0 / tex->width);
+    const Texture back = read_vdb(path);
+    EXPECT_EQ(back.shape_string(), tex->shape_string());
+    EXPECT_EQ(back.channels, tex->channels);
+    EXPECT_EQ(back.metadata, tex->metadata);
+    ASSERT_EQ(back.data.size(), tex->data.size());
+    for (size_t i = 0; i < back.data.size(); ++i) ASSERT_EQ(back.data[i], tex->data[i]) << i;
+  }
+}
+
+TEST(Vdb, ReadVdbTakesAForeignFileShapeFromItsActiveVoxels) {
+  const std::string path = tmp_path("foreign", "t.vdb");
+  openvdb::initialize();
+  auto grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName("density");
+  grid->tree().setValue(openvdb::Coord(10, 20, 30), 2.0f);
+  grid->tree().setValue(openvdb::Coord(12, 20, 31), 3.0f);
+  openvdb::io::File(path).write({grid});
+  const Texture tex = read_vdb(path);
+  EXPECT_EQ(tex.shape_string(), "3x1x2");
+  EXPECT_EQ(tex.channels, std::vector<std::string>{"density"});
+  EXPECT_EQ(tex.at(0, 0, 0, 0, 0), 2.0f);
+  EXPECT_EQ(tex.at(2, 0, 1, 0, 0), 3.0f);
+  EXPECT_EQ(tex.at(1, 0, 0, 0, 0), 0.0f);
+}
+
+TEST(Vdb, SameTextureGivesIdenticalBytes) {
+  const Texture tex = make_volume(9, 8, 7);
+  const std::string a = tmp_path("determinism", "a.vdb"), b = tmp_path("determinism", "b.vdb");
+  write_vdb(a, tex, 0.5);
+  write_vdb(b, tex, 0.5);
+  const std::string bytes = read_bytes(a);
+  EXPECT_GT(bytes.size(), 100u);
+  EXPECT_TRUE(bytes == read_bytes(b));
+  // Different content, different file identity.
+  Texture other = tex;
+  other.data[0] += 1.0f;
+  const std::string c = tmp_path("determinism", "c.vdb");
+  write_vdb(c, other, 0.5);
+  openvdb::io::File fa(a), fc(c);
+  fa.open();
+  fc.open();
+  EXPECT_NE(fa.getUniqueTag(), fc.getUniqueTag());
+}
+
+TEST(Vdb, NonFiniteValuesAndArraysAreRefusedBeforeAFileExists) {
+  const std::string path = tmp_path("refused", "t.vdb");
+  Texture tex = make_volume(3, 3, 3);
+  tex.at(1, 2, 1, 0, 3) = std::nanf("");
+  EXPECT_THROW(write_vdb(path, tex, 1.0), IoError);
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_THROW(write_vdb(path, Texture(2, 2, 1, 3, {"R"}), 1.0), IoError);
+  EXPECT_FALSE(fs::exists(path));
+}
+
+}  // namespace
+}  // namespace skybake
