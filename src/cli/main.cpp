@@ -1,2 +1,122 @@
+// The skybake executable: parses the command line with CLI11 (only here) and
+// dispatches to the subcommands of commands.hpp. Errors are caught once:
+// `skybake: error: <message>` on stderr and the exit code of core/error.hpp.
 #include <cstdio>
-int main() { std::puts("skybake " SKYBAKE_VERSION); return 0; }
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.hpp"
+#include "core/error.hpp"
+#include "pipeline/product.hpp"
+
+namespace {
+
+std::string products_help() {
+  std::string s = "\nProducts:\n";
+  for (const skybake::ProductInfo& p : skybake::product_registry()) {
+    std::string size;
+    for (size_t i = 0; i < p.default_size.size(); ++i)
+      size += (i ? "x" : "") + std::to_string(p.default_size[i]);
+    s += "  " + p.name + std::string(p.name.size() < 20 ? 20 - p.name.size() : 1, ' ') + size +
+         "  " + p.summary + "\n";
+  }
+  return s;
+}
+
+const char* kFooter = R"(
+Examples:
+  skybake bake presets/earth.json                 bake what the scene asks for into out/earth/
+  skybake bake presets/*.json --threads 2 --json  farm mode: machine-readable summary on stdout
+  skybake plan presets/earth.json                 show products, dependencies and what is stale
+  skybake info out/earth/transmittance.dds        read a baked file back
+
+Exit codes: 0 ok, 1 check failed, 2 usage, 3 invalid preset, 4 file error, 5 internal error.
+Docs: README.md, docs/presets.md.)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"skybake " SKYBAKE_VERSION
+               " - bakes real-time sky assets (atmosphere LUTs, cloud noise, weather textures)\n"
+               "from JSON scene presets into EXR, DDS, VDB and PNG files."};
+  app.set_version_flag("--version", "skybake " SKYBAKE_VERSION);
+  app.require_subcommand(1);
+  app.footer(products_help() + kFooter);
+  app.get_formatter()->column_width(34);
+
+  bool json_errors = false;
+
+  skybake::cli::BakeArgs bake;
+  CLI::App* bake_cmd = app.add_subcommand(
+      "bake", "Bake the outputs each scene preset asks for (only what is stale).");
+  bake_cmd->add_option("presets", bake.presets, "Scene preset files (JSON)")->required();
+  bake_cmd->add_option("-o,--out", bake.out_dir, "Output folder; files go to DIR/<scene>/")
+      ->capture_default_str();
+  bake_cmd->add_option("--only", bake.only,
+                       "Bake only these products (comma separated); their dependencies are "
+                       "computed in memory")
+      ->delimiter(',');
+  bake_cmd->add_option("-j,--threads", bake.threads, "Worker threads; 0 = all cores")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1024));
+  bake_cmd->add_flag("-f,--force", bake.force, "Bake even outputs that are up to date");
+  bake_cmd->add_flag("-q,--quiet", bake.quiet, "No progress and no summary lines");
+  bake_cmd->add_flag("--json", bake.json, "Print a machine-readable summary on stdout");
+  bake_cmd->footer(
+      "\nOutputs are written to a temporary name and renamed when complete; "
+      "DIR/<scene>/manifest.json records every output (files, shape, channels, "
+      "parameterization, input hash, bake time). Re-running an unchanged bake does no work.");
+
+  skybake::cli::ValidateArgs validate;
+  CLI::App* validate_cmd =
+      app.add_subcommand("validate", "Check presets against schemas/ and the semantic rules.");
+  validate_cmd->add_option("presets", validate.presets, "Preset files (JSON)")->required();
+  validate_cmd->add_flag("-q,--quiet", validate.quiet, "Print only errors");
+  validate_cmd->add_flag("--json", validate.json, "Print results as JSON on stdout");
+  validate_cmd->footer("\nExit 0 when every preset is valid, 1 otherwise.");
+
+  skybake::cli::PlanArgs plan;
+  CLI::App* plan_cmd = app.add_subcommand(
+      "plan", "Show the products a scene needs, their dependencies, sizes, formats and state.");
+  plan_cmd->add_option("presets", plan.presets, "Scene preset files (JSON)")->required();
+  plan_cmd->add_option("-o,--out", plan.out_dir, "Output folder to compare against")
+      ->capture_default_str();
+  plan_cmd->add_option("--only", plan.only, "Restrict to these products")->delimiter(',');
+  plan_cmd->add_flag("--json", plan.json, "Print the graph as JSON on stdout");
+
+  skybake::cli::InfoArgs info;
+  CLI::App* info_cmd =
+      app.add_subcommand("info", "Read back EXR, DDS or VDB files and print shape and metadata.");
+  info_cmd->add_option("files", info.files, "Files written by skybake")
+      ->required()
+      ->check(CLI::ExistingFile);
+  info_cmd->add_flag("--json", info.json, "Print as JSON on stdout");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : skybake::kExitUsage;
+  }
+
+  json_errors = (bake_cmd->parsed() && bake.json) || (plan_cmd->parsed() && plan.json) ||
+                (info_cmd->parsed() && info.json);
+  try {
+    if (bake_cmd->parsed()) return skybake::cli::run_bake(bake);
+    if (validate_cmd->parsed()) return skybake::cli::run_validate(validate);
+    if (plan_cmd->parsed()) return skybake::cli::run_plan(plan);
+    if (info_cmd->parsed()) return skybake::cli::run_info(info);
+  } catch (const skybake::Error& e) {
+    std::fprintf(stderr, "skybake: error: %s\n", e.what());
+    if (json_errors)
+      std::cout << nlohmann::json{{"ok", false}, {"error", e.what()}, {"exit_code", e.exit_code()}}
+                       .dump(2)
+                << "\n";
+    return e.exit_code();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "skybake: internal error: %s\n", e.what());
+    return skybake::kExitInternal;
+  }
+  return skybake::kExitUsage;
+}

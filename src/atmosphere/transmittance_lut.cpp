@@ -1,0 +1,323 @@
+// Transmittance LUT: mapping, quadrature, bake and lookups. See the header for
+// the parameterization (Hillaire 2020 sec. 5.2, Bruneton 2017).
+//
+// Why this quadrature: the midpoint rule with the paper's 40 uniform samples
+// is off by up to ~2% in optical depth on Earth (Mie's 1.2 km scale height
+// over a 100 km vertical ray; the ozone tent's kinks). Cutting the ray at the
+// kinks and the perigee leaves smooth pieces, where composite 3-point
+// Gauss-Legendre on a grid graded toward the dense end converges at 6th
+// order: ~1e-4 at 20 steps, ~2e-6 at 40, ~4e-8 at 80 over the whole table.
+#include "atmosphere/transmittance_lut.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "atmosphere/geometry.hpp"
+#include "core/error.hpp"
+#include "core/math.hpp"
+
+namespace skybake {
+
+namespace {
+
+// sqrt(Rt^2 - Rb^2), factored to keep the digits of a thin shell.
+double horizon_distance(const Atmosphere& atm) {
+  const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+  return safe_sqrt((rt - rb) * (rt + rb));
+}
+
+// ---- Kinks of the density profiles ----
+
+// Appends the altitudes strictly inside (0, top_h) where `profile` is not
+// smooth: the boundaries between layers and the altitudes where a layer's
+// formula crosses 0 or 1 and the clamp bends it (the ozone tent at 10 and
+// 40 km). Crossings are solved for the pure-linear and pure-exponential
+// layers, the only shapes the profile helpers build.
+void add_profile_kinks(const DensityProfile& profile, double top_h, std::vector<double>& out) {
+  const double inf = std::numeric_limits<double>::infinity();
+  double bottom = 0.0;
+  for (size_t i = 0; i < profile.layers.size(); ++i) {
+    const DensityLayer& l = profile.layers[i];
+    const bool last = i + 1 == profile.layers.size();
+    const double top = last ? inf : bottom + l.width_m;
+    auto add = [&](double h, double lo, double hi) {
+      if (h > lo && h < hi && h > 0.0 && h < top_h) out.push_back(h);
+    };
+    if (!last) add(top, -inf, inf);
+    for (double v : {0.0, 1.0}) {
+      if (l.exp_term == 0.0 && l.linear_term_per_m != 0.0) {
+        add((v - l.constant_term) / l.linear_term_per_m, bottom, top);
+      } else if (l.linear_term_per_m == 0.0 && l.exp_term != 0.0 && l.exp_scale_per_m != 0.0) {
+        const double q = (v - l.constant_term) / l.exp_term;  // exp(b h) = q
+        if (q > 0.0) add(std::log(q) / l.exp_scale_per_m, bottom, top);
+      }
+    }
+    bottom = top;
+  }
+}
+
+// Sorted kink altitudes of every component that has any extinction.
+std::vector<double> kink_altitudes(const Atmosphere& atm) {
+  std::vector<double> kinks;
+  const double top_h = atm.top_radius_m - atm.bottom_radius_m;
+  for (const MediumComponent& c : atm.components) {
+    const glm::dvec3 sigma_t = c.scattering_per_m + c.absorption_per_m;
+    if (sigma_t == glm::dvec3(0.0)) continue;
+    add_profile_kinks(c.density, top_h, kinks);
+  }
+  std::sort(kinks.begin(), kinks.end());
+  kinks.erase(std::unique(kinks.begin(), kinks.end()), kinks.end());
+  return kinks;
+}
+
+// Distances in [0, d] cutting the segment (r, mu, d) into smooth pieces of
+// monotone altitude: its ends, the perigee s = -r mu and where it crosses the
+// sphere of each kink altitude, s = -r mu +- sqrt(r^2 mu^2 + (R - r)(R + r)).
+std::vector<double> segment_breakpoints(const Atmosphere& atm, const std::vector<double>& kinks,
+                                        double r, double mu, double d) {
+  std::vector<double> s = {0.0, d};
+  const double perigee = -r * mu;
+  if (perigee > 0.0 && perigee < d) s.push_back(perigee);
+  for (double h : kinks) {
+    const double radius = atm.bottom_radius_m + h;
+    const double disc = r * r * mu * mu + (radius - r) * (radius + r);
+    if (disc <= 0.0) continue;
+    const double q = std::sqrt(disc);
+    for (double crossing : {perigee - q, perigee + q})
+      if (crossing > 0.0 && crossing < d) s.push_back(crossing);
+  }
+  std::sort(s.begin(), s.end());
+  // Drop pieces too short to matter (a kink grazed at the perigee, rounding).
+  const double min_length = 1e-12 * d;
+  std::vector<double> out = {s.front()};
+  for (size_t i = 1; i + 1 < s.size(); ++i)
+    if (s[i] - out.back() > min_length) out.push_back(s[i]);
+  if (out.size() > 1 && d - out.back() <= min_length) out.pop_back();
+  out.push_back(d);
+  return out;
+}
+
+// Segments per piece: proportional to the piece's length, at least one each,
+// the remainder to the pieces with the longest segments.
+std::vector<int> segments_per_piece(const std::vector<double>& s, int steps) {
+  const size_t pieces = s.size() - 1;
+  const double d = s.back() - s.front();
+  std::vector<int> n(pieces);
+  int used = 0;
+  for (size_t i = 0; i < pieces; ++i) {
+    n[i] = std::max(1, int(steps * ((s[i + 1] - s[i]) / d)));
+    used += n[i];
+  }
+  for (; used < steps; ++used) {
+    size_t longest = 0;
+    for (size_t i = 1; i < pieces; ++i)
+      if ((s[i + 1] - s[i]) / n[i] > (s[longest + 1] - s[longest]) / n[longest]) longest = i;
+    ++n[longest];
+  }
+  return n;
+}
+
+// 3-point Gauss-Legendre on [a, b] (exact for quintics) of sigma_t along the ray.
+glm::dvec3 gauss3_extinction(const Atmosphere& atm, double r, double mu, double a, double b) {
+  constexpr double kNodes[3] = {-0.77459666924148338, 0.0, 0.77459666924148338};  // -+sqrt(3/5)
+  constexpr double kWeights[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
+  glm::dvec3 sum(0.0);
+  for (int k = 0; k < 3; ++k) {
+    const double s = mid + half * kNodes[k];
+    const double h = std::max(0.0, radius_after(r, mu, s) - atm.bottom_radius_m);
+    sum += kWeights[k] * extinction_at(atm, h);
+  }
+  return half * sum;
+}
+
+// The quadrature of compute_optical_depth with the kinks already known.
+glm::dvec3 integrate_optical_depth(const Atmosphere& atm, const std::vector<double>& kinks,
+                                   double r, double mu, double d, int steps) {
+  if (!(d > 0.0) || atm.components.empty()) return glm::dvec3(0.0);
+  const std::vector<double> s = segment_breakpoints(atm, kinks, r, mu, d);
+  const std::vector<int> n = segments_per_piece(s, steps);
+  const double perigee = -r * mu;
+  glm::dvec3 tau(0.0);
+  for (size_t i = 0; i + 1 < s.size(); ++i) {
+    // Grade s = low_end +- L t^2 toward the lowest altitude of the piece: its
+    // end when the ray still descends to the perigee, else its start.
+    const bool descending = s[i + 1] <= perigee;
+    const double length = s[i + 1] - s[i];
+    const double low_end = descending ? s[i + 1] : s[i];
+    const double sign = descending ? -1.0 : 1.0;
+    double prev = low_end;
+    for (int k = 1; k <= n[i]; ++k) {
+      const double t = double(k) / n[i];
+      const double next =
+          k == n[i] ? (descending ? s[i] : s[i + 1]) : low_end + sign * length * t * t;
+      tau += gauss3_extinction(atm, r, mu, std::min(prev, next), std::max(prev, next));
+      prev = next;
+    }
+  }
+  return tau;
+}
+
+glm::dvec3 transmittance_from_optical_depth(glm::dvec3 tau) {
+  return glm::clamp(glm::exp(-glm::max(tau, glm::dvec3(0.0))), 0.0, 1.0);
+}
+
+// Bilinear read of channels 0..2 with clamp to edge; texel (x, y) has its
+// centre at ((x + 0.5) / W, (y + 0.5) / H).
+glm::dvec3 sample_bilinear_rgb(const Texture& tex, glm::dvec2 uv) {
+  const double x = uv.x * tex.width - 0.5, y = uv.y * tex.height - 0.5;
+  const double x_floor = std::floor(x), y_floor = std::floor(y);
+  const double ax = x - x_floor, ay = y - y_floor;
+  const int x0 = std::clamp(int(x_floor), 0, tex.width - 1);
+  const int x1 = std::clamp(int(x_floor) + 1, 0, tex.width - 1);
+  const int y0 = std::clamp(int(y_floor), 0, tex.height - 1);
+  const int y1 = std::clamp(int(y_floor) + 1, 0, tex.height - 1);
+  auto rgb = [&](int xi, int yi) {
+    const float* t = tex.texel(xi, yi);
+    return glm::dvec3(t[0], t[1], t[2]);
+  };
+  const glm::dvec3 bottom = glm::mix(rgb(x0, y0), rgb(x1, y0), ax);
+  const glm::dvec3 top = glm::mix(rgb(x0, y1), rgb(x1, y1), ax);
+  return glm::mix(bottom, top, ay);
+}
+
+void set_transmittance_metadata(Metadata& meta, const Atmosphere& atm,
+                                const TransmittanceLutSpec& spec) {
+  set_meta(meta, "parameterization", std::string("bruneton_transmittance"));
+  set_meta(meta, "quantity",
+           std::string("transmittance from (r, mu) to the top atmosphere boundary, "
+                       "dimensionless, R/G/B at 680/550/440 nm"));
+  set_meta(meta, "bottom_radius_m", atm.bottom_radius_m);
+  set_meta(meta, "top_radius_m", atm.top_radius_m);
+  set_meta(meta, "horizon_distance_m", horizon_distance(atm));
+  set_meta(meta, "width", spec.width);
+  set_meta(meta, "height", spec.height);
+  set_meta(meta, "integration_steps", spec.steps);
+  set_meta(meta, "texel_centers",
+           std::string("texel (x, y) has its centre at u = (x + 0.5)/W, v = (y + 0.5)/Ht; "
+                       "y = 0 is the ground (r = Rb), x = 0 the zenith (mu = 1)"));
+  set_meta(meta, "mapping",
+           std::string("Rb = bottom_radius_m, Rt = top_radius_m, W = width, Ht = height, "
+                       "H = sqrt(Rt^2 - Rb^2), rho = sqrt(r^2 - Rb^2), "
+                       "d = -r*mu + sqrt(r^2*(mu^2 - 1) + Rt^2), d_min = Rt - r, d_max = rho + H, "
+                       "x_mu = (d - d_min)/(d_max - d_min), x_r = rho/H, "
+                       "u = 0.5/W + x_mu*(1 - 1/W), v = 0.5/Ht + x_r*(1 - 1/Ht)"));
+  set_meta(meta, "inverse_mapping",
+           std::string("x_mu = (u - 0.5/W)/(1 - 1/W), x_r = (v - 0.5/Ht)/(1 - 1/Ht), "
+                       "rho = H*x_r, r = sqrt(rho^2 + Rb^2), d = d_min + x_mu*(d_max - d_min), "
+                       "mu = (d == 0) ? 1 : (H^2 - rho^2 - d^2)/(2*r*d)"));
+  set_meta(meta, "domain",
+           std::string("rays that do not hit the ground, mu >= -sqrt(1 - Rb^2/r^2); for a ray "
+                       "toward the ground from p to q use T(q, -mu_q)/T(p, -mu) "
+                       "(Bruneton 2017 GetTransmittance)"));
+}
+
+}  // namespace
+
+// ---- Mapping ----
+
+glm::dvec2 transmittance_uv_from_r_mu(const Atmosphere& atm, double r, double mu, int width,
+                                      int height) {
+  const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+  r = std::clamp(r, rb, rt);
+  const double H = horizon_distance(atm);
+  const double rho = safe_sqrt((r - rb) * (r + rb));
+  const double d = distance_to_top_boundary(rt, r, clamp_cosine(mu));
+  const double d_min = rt - r, d_max = rho + H;
+  const double x_mu = std::clamp((d - d_min) / (d_max - d_min), 0.0, 1.0);
+  const double x_r = rho / H;
+  return {texel_coord_from_unit(x_mu, width), texel_coord_from_unit(x_r, height)};
+}
+
+void r_mu_from_transmittance_uv(const Atmosphere& atm, glm::dvec2 uv, int width, int height,
+                                double& r, double& mu) {
+  const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+  const double x_mu = std::clamp(unit_from_texel_coord(uv.x, width), 0.0, 1.0);
+  const double x_r = std::clamp(unit_from_texel_coord(uv.y, height), 0.0, 1.0);
+  const double H = horizon_distance(atm);
+  const double rho = H * x_r;
+  r = std::clamp(std::sqrt(rho * rho + rb * rb), rb, rt);
+  const double d_min = rt - r, d_max = rho + H;
+  const double d = d_min + x_mu * (d_max - d_min);
+  // Law of cosines in the triangle centre / point / exit point; H^2 - rho^2 is
+  // written (Rt - r)(Rt + r) so that it keeps its digits near the top.
+  mu = d == 0.0 ? 1.0 : clamp_cosine(((rt - r) * (rt + r) - d * d) / (2.0 * r * d));
+}
+
+// ---- Integration ----
+
+glm::dvec3 compute_optical_depth(const Atmosphere& atm, double r, double mu, double d, int steps) {
+  return integrate_optical_depth(atm, kink_altitudes(atm), r, mu, d, steps);
+}
+
+glm::dvec3 compute_optical_depth_to_top(const Atmosphere& atm, double r, double mu, int steps) {
+  return compute_optical_depth(atm, r, mu, distance_to_top_boundary(atm.top_radius_m, r, mu),
+                               steps);
+}
+
+glm::dvec3 compute_transmittance_to_top(const Atmosphere& atm, double r, double mu, int steps) {
+  return transmittance_from_optical_depth(compute_optical_depth_to_top(atm, r, mu, steps));
+}
+
+// ---- Bake ----
+
+Texture bake_transmittance_lut(const Atmosphere& atm, const TransmittanceLutSpec& spec,
+                               const BakeContext& ctx) {
+  // One texel along an axis has no texel-centre mapping (1 - 1/N = 0).
+  if (spec.width < 2 || spec.height < 2 || spec.steps < 1)
+    throw Error(fmt::format(
+        "transmittance LUT: expected at least 2x2 texels and 1 step, got {}x{} and {} steps",
+        spec.width, spec.height, spec.steps));
+  Texture tex(spec.width, spec.height, 1, 1, {"R", "G", "B"});
+  set_transmittance_metadata(tex.metadata, atm, spec);
+  const std::vector<double> kinks = kink_altitudes(atm);
+  ProgressCounter progress(ctx, size_t(spec.height));
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, spec.height), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y != rows.end(); ++y) {
+          for (int x = 0; x < spec.width; ++x) {
+            const glm::dvec2 uv(texel_center(x, spec.width), texel_center(y, spec.height));
+            double r = 0.0, mu = 0.0;
+            r_mu_from_transmittance_uv(atm, uv, spec.width, spec.height, r, mu);
+            const double d = distance_to_top_boundary(atm.top_radius_m, r, mu);
+            const glm::dvec3 T = transmittance_from_optical_depth(
+                integrate_optical_depth(atm, kinks, r, mu, d, spec.steps));
+            float* texel = tex.texel(x, y);
+            for (int c = 0; c < 3; ++c) texel[c] = float(T[c]);
+          }
+          progress.tick();
+        }
+      });
+  return tex;
+}
+
+// ---- Lookups ----
+
+glm::dvec3 lookup_transmittance_to_top(const Texture& lut, const Atmosphere& atm, double r,
+                                       double mu) {
+  return sample_bilinear_rgb(lut, transmittance_uv_from_r_mu(atm, r, mu, lut.width, lut.height));
+}
+
+glm::dvec3 lookup_transmittance(const Texture& lut, const Atmosphere& atm, double r, double mu,
+                                double d, bool ray_hits_ground) {
+  const double r_d = std::clamp(radius_after(r, mu, d), atm.bottom_radius_m, atm.top_radius_m);
+  const double mu_d = mu_after(r, mu, d, r_d);
+  // T(p, q) T(q, top) = T(p, top) along one straight line; a ray toward the
+  // ground is reversed so that both lookups are rays that point up.
+  const glm::dvec3 numerator = ray_hits_ground ? lookup_transmittance_to_top(lut, atm, r_d, -mu_d)
+                                               : lookup_transmittance_to_top(lut, atm, r, mu);
+  const glm::dvec3 denominator = ray_hits_ground ? lookup_transmittance_to_top(lut, atm, r, -mu)
+                                                 : lookup_transmittance_to_top(lut, atm, r_d, mu_d);
+  glm::dvec3 T(0.0);
+  for (int c = 0; c < 3; ++c)
+    T[c] = denominator[c] > 0.0 ? std::min(numerator[c] / denominator[c], 1.0) : 0.0;
+  return T;
+}
+
+}  // namespace skybake

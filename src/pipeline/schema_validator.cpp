@@ -1,0 +1,437 @@
+// rapidjson does the parsing and the validation; this file adds what its
+// 1.1.0 release lacks: readable rules (it reports only a keyword and a
+// pointer), duplicate-key detection, and a remote "$ref" provider (its
+// GetRemoteDocument passes a length one short, so the URI is re-read up to
+// its '#').
+#include "pipeline/schema_validator.hpp"
+
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <rapidjson/document.h>
+#include <rapidjson/error/en.h>
+#include <rapidjson/schema.h>
+#include <rapidjson/stringbuffer.h>
+
+#include "core/error.hpp"
+#include "pipeline/suggest.hpp"
+
+namespace skybake {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+fs::path schema_dir() {
+  const char* env = std::getenv("SKYBAKE_SCHEMA_DIR");
+  return (env && *env) ? fs::path(env) : fs::path(SKYBAKE_SCHEMA_DIR);
+}
+
+bool schema_exists(const std::string& schema) {
+  std::error_code ec;
+  return fs::is_regular_file(schema_dir() / schema, ec);
+}
+
+std::string describe_json(const json& v) {
+  switch (v.type()) {
+    case json::value_t::null:
+      return "null";
+    case json::value_t::boolean:
+      return "boolean " + v.dump();
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned:
+      return "integer " + v.dump();
+    case json::value_t::number_float:
+      return "number " + v.dump();
+    case json::value_t::string:
+      return "string " + v.dump();
+    case json::value_t::array:
+      return "array";
+    case json::value_t::object:
+      return "object";
+    default:
+      return "value";
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Strict parsing
+
+namespace {
+
+// rapidjson DOM -> nlohmann, keeping integers integers; reports the first
+// duplicate key (rapidjson keeps both members, nlohmann would keep the last).
+std::optional<SchemaViolation> convert(const rapidjson::Value& v, const std::string& pointer,
+                                       json& out) {
+  if (v.IsObject()) {
+    out = json::object();
+    for (auto it = v.MemberBegin(); it != v.MemberEnd(); ++it) {
+      const std::string key(it->name.GetString(), it->name.GetStringLength());
+      const std::string child = pointer + (json::json_pointer() / key).to_string();
+      if (out.contains(key))
+        return SchemaViolation{
+            child,
+            "duplicateKey",
+            fmt::format("duplicate key '{}' (a key may appear once per object)", key),
+            {}};
+      if (auto bad = convert(it->value, child, out[key])) return bad;
+    }
+  } else if (v.IsArray()) {
+    out = json::array();
+    for (rapidjson::SizeType i = 0; i < v.Size(); ++i) {
+      out.push_back(nullptr);
+      if (auto bad = convert(v[i], pointer + "/" + std::to_string(i), out.back())) return bad;
+    }
+  } else if (v.IsString()) {
+    out = std::string(v.GetString(), v.GetStringLength());
+  } else if (v.IsBool()) {
+    out = v.GetBool();
+  } else if (v.IsUint64()) {
+    out = v.GetUint64();
+  } else if (v.IsInt64()) {
+    out = v.GetInt64();
+  } else if (v.IsDouble()) {
+    out = v.GetDouble();
+  } else {
+    out = nullptr;
+  }
+  return std::nullopt;
+}
+
+std::string lower_first(std::string s) {
+  if (!s.empty() && s[0] >= 'A' && s[0] <= 'Z') s[0] = char(s[0] - 'A' + 'a');
+  while (!s.empty() && (s.back() == '.' || s.back() == ' ')) s.pop_back();
+  return s;
+}
+
+}  // namespace
+
+std::optional<SchemaViolation> parse_strict_json(const std::string& text, json& out) {
+  rapidjson::Document doc;
+  doc.Parse<rapidjson::kParseValidateEncodingFlag | rapidjson::kParseFullPrecisionFlag>(
+      text.data(), text.size());
+  if (doc.HasParseError()) {
+    const size_t offset = std::min(doc.GetErrorOffset(), text.size());
+    size_t line = 1, line_start = 0;
+    for (size_t i = 0; i < offset; ++i)
+      if (text[i] == '\n') {
+        ++line;
+        line_start = i + 1;
+      }
+    std::string reason = lower_first(rapidjson::GetParseError_En(doc.GetParseError()));
+    // rapidjson calls a raw newline inside a string an invalid escape.
+    if (doc.GetParseError() == rapidjson::kParseErrorStringEscapeInvalid && offset < text.size() &&
+        static_cast<unsigned char>(text[offset]) < 0x20)
+      reason =
+          "a string is not closed before the end of the line (or holds a raw control character)";
+    if (doc.GetParseError() == rapidjson::kParseErrorObjectMissName ||
+        doc.GetParseError() == rapidjson::kParseErrorValueInvalid)
+      reason += " (a trailing comma, a comment, NaN or Infinity are not JSON)";
+    return SchemaViolation{"",
+                           "syntax",
+                           fmt::format("invalid JSON at line {}, column {}: {}", line,
+                                       offset - line_start + 1, reason),
+                           {}};
+  }
+  return convert(doc, "", out);
+}
+
+// ---------------------------------------------------------------------------
+// Schema store: parsed (nlohmann, for messages and defaults) and compiled
+// (rapidjson, for validation) copies of each schema file, keyed by path.
+
+namespace {
+
+struct SchemaFile {
+  std::string rel;  // relative to the schema folder, '/' separated
+  rapidjson::Document raw;
+  json tree;
+  std::unique_ptr<rapidjson::SchemaDocument> compiled;
+};
+
+class SchemaStore : public rapidjson::IRemoteSchemaDocumentProvider {
+ public:
+  // Caller holds mutex().
+  SchemaFile& get(const std::string& rel) {
+    const std::string key = (schema_dir() / rel).lexically_normal().string();
+    auto it = files_.find(key);
+    if (it != files_.end()) {
+      if (!it->second->compiled) throw Error("schema $ref cycle through " + key);
+      return *it->second;
+    }
+    // The entry exists (uncompiled) while its own $refs load, to detect cycles.
+    auto file = std::make_unique<SchemaFile>();
+    SchemaFile& f = *file;
+    files_[key] = std::move(file);
+    try {
+      load(f, rel, key);
+    } catch (...) {
+      files_.erase(key);
+      throw;
+    }
+    return f;
+  }
+
+  const rapidjson::SchemaDocument* GetRemoteDocument(const char* uri,
+                                                     rapidjson::SizeType) override {
+    std::string name;
+    for (const char* c = uri; *c && *c != '#'; ++c) name += *c;
+    return get(resolve(bases_.back(), name)).compiled.get();
+  }
+
+  // A "$ref" file part relative to the schema `base` that holds it.
+  static std::string resolve(const std::string& base, const std::string& ref_file) {
+    if (ref_file.empty()) return base;
+    return (fs::path(base).parent_path() / ref_file).lexically_normal().generic_string();
+  }
+
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  static SchemaStore& instance() {
+    static SchemaStore store;
+    return store;
+  }
+
+ private:
+  void load(SchemaFile& f, const std::string& rel, const std::string& key) {
+    f.rel = fs::path(rel).lexically_normal().generic_string();
+    std::ifstream in(key, std::ios::binary);
+    if (!in)
+      throw IoError(
+          fmt::format("cannot read schema {} (is SKYBAKE_SCHEMA_DIR the schemas folder?)", key));
+    std::stringstream text;
+    text << in.rdbuf();
+    if (auto bad = parse_strict_json(text.str(), f.tree))
+      throw Error(fmt::format("schema {}: {}: {}", key, bad->pointer, bad->rule));
+    f.raw.Parse(text.str().c_str());
+    bases_.push_back(f.rel);
+    try {
+      f.compiled = std::make_unique<rapidjson::SchemaDocument>(f.raw, this);
+    } catch (...) {
+      bases_.pop_back();
+      throw;
+    }
+    bases_.pop_back();
+  }
+
+  std::map<std::string, std::unique_ptr<SchemaFile>> files_;
+  std::vector<std::string> bases_;
+};
+
+// A node of a parsed schema and the file it sits in (for relative $refs).
+struct Node {
+  const json* j = nullptr;
+  std::string file;
+};
+
+// Follows "$ref"s to the schema that applies.
+Node resolve_refs(Node n) {
+  for (int hops = 0; hops < 32 && n.j && n.j->is_object() && n.j->contains("$ref"); ++hops) {
+    const std::string ref = n.j->at("$ref").get<std::string>();
+    const size_t hash = ref.find('#');
+    const std::string file = SchemaStore::resolve(n.file, ref.substr(0, hash));
+    const std::string fragment = hash == std::string::npos ? "" : ref.substr(hash + 1);
+    const json& tree = SchemaStore::instance().get(file).tree;
+    const json::json_pointer p(fragment);
+    n = Node{tree.contains(p) ? &tree.at(p) : nullptr, file};
+  }
+  return n;
+}
+
+// The schema of member `key` (or array item `index`) of a value whose schema is `parent`.
+Node child_node(const Node& parent_raw, const std::string& token) {
+  const Node parent = resolve_refs(parent_raw);
+  if (!parent.j || !parent.j->is_object()) return {};
+  const json& s = *parent.j;
+  if (s.contains("properties") && s["properties"].contains(token))
+    return {&s["properties"][token], parent.file};
+  if (s.contains("items")) {
+    const json& items = s["items"];
+    if (items.is_object()) return {&items, parent.file};
+    char* end = nullptr;
+    const unsigned long i = std::strtoul(token.c_str(), &end, 10);
+    if (items.is_array() && end && *end == '\0' && i < items.size())
+      return {&items[i], parent.file};
+  }
+  if (s.contains("additionalProperties") && s["additionalProperties"].is_object())
+    return {&s["additionalProperties"], parent.file};
+  return {};
+}
+
+std::vector<std::string> split_pointer(const std::string& pointer) {
+  std::vector<std::string> tokens;
+  const json::json_pointer p(pointer);
+  json::json_pointer cur = p;
+  while (!cur.empty()) {
+    tokens.insert(tokens.begin(), cur.back());
+    cur.pop_back();
+  }
+  return tokens;
+}
+
+Node node_at(const Node& root, const std::string& pointer) {
+  Node n = root;
+  for (const std::string& t : split_pointer(pointer)) {
+    n = child_node(n, t);
+    if (!n.j) return {};
+  }
+  return resolve_refs(n);
+}
+
+std::string quote_list(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "'" : ", '") + n + "'";
+  return s;
+}
+
+std::vector<std::string> property_names(const json& schema) {
+  std::vector<std::string> names;
+  if (schema.contains("properties"))
+    for (auto& [k, v] : schema["properties"].items()) names.push_back(k);
+  return names;
+}
+
+std::string expected_type(const json& schema) {
+  if (!schema.contains("type")) return "a valid value";
+  const json& t = schema["type"];
+  if (t.is_string()) return t.get<std::string>();
+  std::string s;
+  for (size_t i = 0; i < t.size(); ++i)
+    s += (i == 0 ? "" : i + 1 == t.size() ? " or " : ", ") + t[i].get<std::string>();
+  return s;
+}
+
+// The readable rule for `keyword` failing on `value` (at `pointer`) with schema `s`.
+SchemaViolation explain(const std::string& keyword, std::string pointer, const json& doc,
+                        const Node& root) {
+  SchemaViolation v{pointer, keyword, "", {}};
+  if (keyword == "additionalProperties") {
+    // rapidjson points at the unknown key itself; its schema is the parent's.
+    json::json_pointer p(pointer);
+    const std::string key = p.empty() ? "" : p.back();
+    if (!p.empty()) p.pop_back();
+    const Node parent = node_at(root, p.to_string());
+    v.allowed_keys = parent.j ? property_names(*parent.j) : std::vector<std::string>{};
+    v.rule = fmt::format("unknown key '{}'{}", key, did_you_mean(key, v.allowed_keys));
+    return v;
+  }
+  const Node node = node_at(root, pointer);
+  const json no_schema = json::object();
+  const json& s = node.j ? *node.j : no_schema;
+  const json::json_pointer jp(pointer);
+  const json value = doc.contains(jp) ? doc.at(jp) : json();
+  const std::string got = value.is_string() ? "'" + value.get<std::string>() + "'" : value.dump();
+
+  if (keyword == "type") {
+    v.rule = fmt::format("expected {}, got {}", expected_type(s), describe_json(value));
+  } else if (keyword == "required") {
+    std::vector<std::string> missing;
+    if (s.contains("required"))
+      for (const json& k : s["required"])
+        if (!value.is_object() || !value.contains(k.get<std::string>()))
+          missing.push_back(k.get<std::string>());
+    v.rule = missing.size() == 1 ? "missing required key '" + missing[0] + "'"
+                                 : "missing required keys " + quote_list(missing);
+  } else if (keyword == "minimum" || keyword == "maximum") {
+    const bool exclusive =
+        s.value(keyword == "minimum" ? "exclusiveMinimum" : "exclusiveMaximum", false);
+    const char* op = keyword == "minimum" ? (exclusive ? ">" : ">=") : (exclusive ? "<" : "<=");
+    v.rule = fmt::format("must be {} {}, got {}", op, s.value(keyword, json()).dump(), got);
+  } else if (keyword == "enum") {
+    std::vector<std::string> options;
+    for (const json& e : s.value("enum", json::array()))
+      options.push_back(e.is_string() ? e.get<std::string>() : e.dump());
+    v.rule = fmt::format("expected one of {}, got {}", quote_list(options), got);
+    if (value.is_string()) v.rule += did_you_mean(value.get<std::string>(), options);
+  } else if (keyword == "minItems" || keyword == "maxItems") {
+    const int n = s.value(keyword, 0);
+    v.rule =
+        fmt::format("expected {} {} item{}, got {}", keyword == "minItems" ? "at least" : "at most",
+                    n, n == 1 ? "" : "s", value.size());
+  } else if (keyword == "uniqueItems") {
+    v.rule = fmt::format("duplicate item {} (each item may appear once)", got);
+  } else if (keyword == "minLength") {
+    v.rule = "must not be empty";
+  } else if (keyword == "maxLength") {
+    v.rule = fmt::format("must be at most {} characters", s.value("maxLength", 0));
+  } else if (keyword == "pattern") {
+    v.rule = fmt::format("{}, got {}",
+                         s.value("errorMessage", "must match " + s.value("pattern", std::string())),
+                         got);
+  } else if (keyword == "minProperties" || keyword == "maxProperties") {
+    const std::vector<std::string> names = property_names(s);
+    std::vector<std::string> present;
+    for (auto& [k, x] : value.items()) present.push_back(k);
+    if (s.value("minProperties", 0) == 1 && s.value("maxProperties", 0) == 1)
+      v.rule = fmt::format("expected exactly one of {}, got {}", quote_list(names),
+                           present.empty() ? "none" : quote_list(present));
+    else
+      v.rule = fmt::format("has {} keys, outside [{}, {}]", present.size(),
+                           s.value("minProperties", 0), s.value("maxProperties", 0));
+  } else {
+    v.rule = fmt::format("fails schema keyword '{}'", keyword);
+  }
+  return v;
+}
+
+void fill_defaults(json& value, const Node& raw) {
+  const Node n = resolve_refs(raw);
+  if (!n.j || !n.j->is_object()) return;
+  const json& s = *n.j;
+  if (value.is_object() && s.contains("properties")) {
+    for (auto& [key, prop] : s["properties"].items()) {
+      const Node child{&prop, n.file};
+      if (!value.contains(key)) {
+        // A default beside a "$ref" wins over one inside the referenced schema.
+        const Node target = resolve_refs(child);
+        if (prop.contains("default"))
+          value[key] = prop["default"];
+        else if (target.j && target.j->contains("default"))
+          value[key] = target.j->at("default");
+        else
+          continue;
+      }
+      fill_defaults(value[key], child);
+    }
+  } else if (value.is_array() && s.contains("items") && s["items"].is_object()) {
+    for (json& item : value) fill_defaults(item, Node{&s["items"], n.file});
+  }
+}
+
+}  // namespace
+
+std::optional<SchemaViolation> validate_against_schema(const json& doc, const std::string& schema) {
+  std::lock_guard<std::mutex> lock(SchemaStore::mutex());
+  SchemaFile& file = SchemaStore::instance().get(schema);
+  rapidjson::Document rdoc;
+  const std::string text = doc.dump();
+  rdoc.Parse<rapidjson::kParseFullPrecisionFlag>(text.c_str());
+  rapidjson::SchemaValidator validator(*file.compiled);
+  if (rdoc.Accept(validator)) return std::nullopt;
+  rapidjson::StringBuffer pointer;
+  validator.GetInvalidDocumentPointer().Stringify(pointer);
+  const char* keyword = validator.GetInvalidSchemaKeyword();
+  return explain(keyword ? keyword : "", pointer.GetString(), doc, Node{&file.tree, file.rel});
+}
+
+void apply_schema_defaults(json& doc, const std::string& schema) {
+  std::lock_guard<std::mutex> lock(SchemaStore::mutex());
+  SchemaFile& file = SchemaStore::instance().get(schema);
+  fill_defaults(doc, Node{&file.tree, file.rel});
+}
+
+std::vector<std::string> schema_property_names(const std::string& schema) {
+  std::lock_guard<std::mutex> lock(SchemaStore::mutex());
+  SchemaFile& file = SchemaStore::instance().get(schema);
+  const Node root = resolve_refs(Node{&file.tree, file.rel});
+  return root.j ? property_names(*root.j) : std::vector<std::string>{};
+}
+
+}  // namespace skybake
