@@ -35,7 +35,7 @@ inline double distance_to_nearest_boundary(double bottom_m, double top_m, double
 }
 
 // Radius and zenith cosine after travelling distance d along (r, mu)
-// (law of cosines), clamped to the shell.
+// (law of cosines); the square root is safe, callers clamp to the shell.
 inline double radius_after(double r, double mu, double d) {
   return safe_sqrt(d * d + 2.0 * r * mu * d + r * r);
 }

@@ -83,6 +83,7 @@ int run_bake(const BakeArgs& args) {
                                 {"folder", scene_dir},
                                 {"outputs", outputs},
                                 {"computed", summary.computed},
+                                {"loaded", summary.loaded},
                                 {"seconds", summary.seconds}});
   }
   if (args.json) std::cout << report.dump(2) << "\n";

@@ -1,12 +1,14 @@
 #include "pipeline/bake.hpp"
 
 #include <chrono>
+#include <fstream>
 #include <optional>
 
 #include <fmt/format.h>
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/texture_file.hpp"
 #include "pipeline/freshness.hpp"
 #include "pipeline/output_writer.hpp"
 #include "pipeline/product_graph.hpp"
@@ -37,7 +39,52 @@ ManifestEntry make_entry(const GraphNode& node, const Texture& tex,
   return e;
 }
 
+// A requested dependency that is current on disk is read back instead of
+// recomputed (so `bake --only X` reads X's inputs baked by another node), but
+// only from a lossless file: float EXR or R32G32B32A32_FLOAT DDS store the
+// float32 values bit-exactly, so dependents come out identical either way.
+std::optional<Texture> load_current_output(const ManifestEntry& entry, const fs::path& dir) {
+  for (const ManifestFile& f : entry.files) {
+    try {
+      if (f.format == "exr" && f.encoding == "float") {
+        Texture tex = read_texture_file((dir / f.path).string()).texture;
+        if (tex.channels == entry.channels) return tex;
+      }
+      if (f.format == "dds" && f.encoding == "R32G32B32A32_FLOAT") {
+        Texture tex = read_texture_file((dir / f.path).string()).texture;
+        if (tex.channel_count() < int(entry.channels.size())) continue;
+        // The DDS holds RGBA; keep the channels the product has.
+        Texture trimmed(tex.width, tex.height, tex.depth, tex.layers, entry.channels);
+        const size_t nc = entry.channels.size(), nd = size_t(tex.channel_count());
+        for (size_t t = 0; t < tex.texel_count(); ++t)
+          for (size_t c = 0; c < nc; ++c) trimmed.data[t * nc + c] = tex.data[t * nd + c];
+        for (const auto& [k, v] : entry.metadata.items())
+          trimmed.metadata[k] = v.is_string() ? v.get<std::string>() : v.dump();
+        return trimmed;
+      }
+    } catch (const Error&) {
+      // Unreadable: fall back to baking it again.
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
+
+void update_stamp(const fs::path& scene_dir, const std::string& name, const std::string& hash) {
+  const fs::path stamp = stamp_path(scene_dir, name);
+  std::error_code ec;
+  fs::create_directories(stamp.parent_path(), ec);
+  std::ifstream in(stamp);
+  std::string old;
+  std::getline(in, old);
+  if (old == hash) return;  // untouched, so ninja's restat sees no change
+  write_text_atomic(stamp, hash + "\n");
+}
+
+fs::path stamp_path(const fs::path& scene_dir, const std::string& name) {
+  return scene_dir / ".stamps" / (name + ".stamp");
+}
 
 BakeSummary bake_scene(const Scene& scene, const BakeOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -77,12 +124,25 @@ BakeSummary bake_scene(const Scene& scene, const BakeOptions& options) {
     const GraphNode& node = graph.nodes[i];
     if (!needed[i]) {
       if (node.requested) {
+        update_stamp(summary.scene_dir, node.spec.name, node.input_hash);
         OutputRecord rec{node.info->name, "up to date", reasons[i],
                          before.entries.at(node.spec.name)};
         if (options.on_output) options.on_output(rec);
         summary.outputs.push_back(std::move(rec));
       }
       continue;
+    }
+    if (!stale[i] && node.requested) {
+      textures[i] = load_current_output(before.entries.at(node.spec.name), summary.scene_dir);
+      if (textures[i]) {
+        update_stamp(summary.scene_dir, node.spec.name, node.input_hash);
+        OutputRecord rec{node.info->name, "up to date", reasons[i],
+                         before.entries.at(node.spec.name)};
+        if (options.on_output) options.on_output(rec);
+        summary.outputs.push_back(std::move(rec));
+        summary.loaded.push_back(node.info->name);
+        continue;
+      }
     }
     ProductInputs inputs;
     for (size_t d : node.deps) inputs[graph.nodes[d].info->name] = &*textures[d];
@@ -99,11 +159,12 @@ BakeSummary bake_scene(const Scene& scene, const BakeOptions& options) {
     set_meta(tex.metadata, "input_hash", node.input_hash);
     set_meta(tex.metadata, "preset", scene.file.filename().string());
     summary.computed.push_back(node.info->name);
-    if (!stale[i]) continue;
+    if (!node.requested) continue;
     std::vector<ManifestFile> files = write_outputs(tex, *node.info, node.spec, summary.scene_dir);
     OutputRecord rec{node.info->name, "baked", reasons[i],
                      make_entry(node, tex, std::move(files), seconds_since(t_bake))};
     written.push_back(rec.entry);
+    update_stamp(summary.scene_dir, node.spec.name, node.input_hash);
     if (options.on_output) options.on_output(rec);
     summary.outputs.push_back(std::move(rec));
   }

@@ -35,9 +35,17 @@ struct BakeSummary {
   std::filesystem::path scene_dir;
   std::vector<OutputRecord> outputs;
   std::vector<std::string> computed;  // products computed in memory, in order
+  std::vector<std::string> loaded;    // current dependencies read back from disk
   double seconds = 0.0;
 };
 
 BakeSummary bake_scene(const Scene& scene, const BakeOptions& options);
+
+// <scene_dir>/.stamps/<output name>.stamp holds the output's input hash. It is
+// rewritten only when the hash changes, so a build tool that compares file
+// times (ninja with restat) sees an unchanged stamp when a re-run was a no-op.
+std::filesystem::path stamp_path(const std::filesystem::path& scene_dir, const std::string& name);
+void update_stamp(const std::filesystem::path& scene_dir, const std::string& name,
+                  const std::string& hash);
 
 }  // namespace skybake

@@ -1,0 +1,91 @@
+// Atmospheres for the atmosphere tests, built with the medium.hpp helpers:
+// Earth with the constants of REFERENCE.md (Hillaire 2020 and its demo), a
+// small fake planet, and media simple enough to have closed forms (empty, a
+// uniform slab, a single exponential or tent layer). Header only; every test
+// of tests/atmosphere may include it.
+#pragma once
+
+#include <string>
+#include <utility>
+
+#include "atmosphere/medium.hpp"
+
+namespace skybake::fixtures {
+
+inline MediumComponent make_component(std::string name, glm::dvec3 scattering_per_m,
+                                      glm::dvec3 absorption_per_m, DensityProfile density,
+                                      PhaseKind phase = PhaseKind::none, double g = 0.0) {
+  MediumComponent c;
+  c.name = std::move(name);
+  c.scattering_per_m = scattering_per_m;
+  c.absorption_per_m = absorption_per_m;
+  c.density = std::move(density);
+  c.phase = phase;
+  c.g = g;
+  return c;
+}
+
+inline MediumComponent earth_rayleigh() {
+  return make_component("rayleigh", {5.802e-6, 13.558e-6, 33.1e-6}, glm::dvec3(0.0),
+                        exponential_profile(8e3), PhaseKind::rayleigh);
+}
+inline MediumComponent earth_mie() {
+  return make_component("mie", glm::dvec3(3.996e-6), glm::dvec3(0.444e-6),
+                        exponential_profile(1.2e3), PhaseKind::cornette_shanks, 0.8);
+}
+inline MediumComponent earth_ozone() {
+  return make_component("ozone", glm::dvec3(0.0), {0.650e-6, 1.881e-6, 0.085e-6},
+                        tent_profile(10e3, 25e3, 40e3));
+}
+
+// Earth: Rb 6360 km, Rt 6460 km, Rayleigh + Mie + ozone (REFERENCE.md).
+inline Atmosphere earth_atmosphere() {
+  Atmosphere atm;
+  atm.bottom_radius_m = 6360e3;
+  atm.top_radius_m = 6460e3;
+  atm.ground_albedo = glm::dvec3(0.3);
+  atm.components = {earth_rayleigh(), earth_mie(), earth_ozone()};
+  return atm;
+}
+
+// A tiny planet (DESIGN.md extreme cases): 1 km radius under a 200 m thick
+// dense sky, an exponential of 50 m scale height 1000x Earth's Rayleigh.
+inline Atmosphere tiny_planet_atmosphere() {
+  Atmosphere atm;
+  atm.bottom_radius_m = 1e3;
+  atm.top_radius_m = 1.2e3;
+  atm.components = {make_component("rayleigh", {5.802e-3, 13.558e-3, 33.1e-3}, glm::dvec3(0.0),
+                                   exponential_profile(50.0), PhaseKind::rayleigh)};
+  return atm;
+}
+
+// Earth's radii with no media at all: transmittance is exactly 1.
+inline Atmosphere empty_atmosphere() {
+  Atmosphere atm;
+  atm.bottom_radius_m = 6360e3;
+  atm.top_radius_m = 6460e3;
+  return atm;
+}
+
+// Earth's radii and one absorbing component of the given density profile.
+inline Atmosphere single_component_atmosphere(glm::dvec3 absorption_per_m, DensityProfile density) {
+  Atmosphere atm = empty_atmosphere();
+  atm.components = {make_component("test", glm::dvec3(0.0), absorption_per_m, std::move(density))};
+  return atm;
+}
+
+// Constant extinction sigma_t (split into scattering and absorption) filling
+// the whole shell: a uniform slab from the ground to the top.
+inline Atmosphere uniform_slab_atmosphere(glm::dvec3 scattering_per_m, glm::dvec3 absorption_per_m,
+                                          double bottom_radius_m = 6360e3,
+                                          double top_radius_m = 6460e3) {
+  Atmosphere atm;
+  atm.bottom_radius_m = bottom_radius_m;
+  atm.top_radius_m = top_radius_m;
+  atm.components = {make_component("slab", scattering_per_m, absorption_per_m,
+                                   uniform_profile(0.0, top_radius_m - bottom_radius_m),
+                                   PhaseKind::rayleigh)};
+  return atm;
+}
+
+}  // namespace skybake::fixtures

@@ -1,0 +1,559 @@
+// Tests of the transmittance LUT (atmosphere/transmittance_lut.hpp): the
+// (r, mu) <-> uv mapping round trips, the quadrature against closed forms and
+// an independent brute-force integral, invariants of T, the bake and the
+// lookups.
+#include "atmosphere/transmittance_lut.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <mutex>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include "atmosphere/geometry.hpp"
+#include "core/error.hpp"
+#include "core/math.hpp"
+#include "test_atmospheres.hpp"
+
+namespace skybake {
+namespace {
+
+// Cosine of the horizon at radius r: the ray tangent to the ground.
+double mu_horizon(const Atmosphere& atm, double r) {
+  const double x = atm.bottom_radius_m / r;
+  return -std::sqrt(std::max(0.0, 1.0 - x * x));
+}
+
+struct Ray {
+  double r, mu;
+};
+
+// Rays of the LUT's domain (they do not hit the ground): radii from the
+// ground to the top, cosines from the zenith down to the horizon itself.
+std::vector<Ray> domain_rays(const Atmosphere& atm) {
+  const double rb = atm.bottom_radius_m, rt = atm.top_radius_m, thick = rt - rb;
+  std::vector<Ray> rays;
+  for (double r :
+       {rb, rb + 1e-3 * thick, rb + 0.1 * thick, rb + 0.5 * thick, rt - 1e-4 * thick, rt}) {
+    const double mu_h = mu_horizon(atm, r);
+    for (double t : {0.0, 1e-6, 1e-3, 0.05, 0.2, 0.5, 0.8, 0.99, 1.0}) {
+      const double mu = 1.0 - t * (1.0 - mu_h);  // t = 1 is the horizon
+      // At the top every upward ray has d = 0 (see TopBoundary... below).
+      if (r == rt && mu >= 0.0) continue;
+      rays.push_back({r, mu});
+    }
+  }
+  return rays;
+}
+
+Atmosphere scaled(Atmosphere atm, double factor) {
+  for (MediumComponent& c : atm.components) {
+    c.scattering_per_m *= factor;
+    c.absorption_per_m *= factor;
+  }
+  return atm;
+}
+
+// ---- Mapping ----------------------------------------------------------------
+
+TEST(TransmittanceMapping, RMuRoundTrip) {
+  for (const Atmosphere& atm : {fixtures::earth_atmosphere(), fixtures::tiny_planet_atmosphere()}) {
+    for (const Ray& ray : domain_rays(atm)) {
+      const glm::dvec2 uv = transmittance_uv_from_r_mu(atm, ray.r, ray.mu, 256, 64);
+      double r = 0.0, mu = 0.0;
+      r_mu_from_transmittance_uv(atm, uv, 256, 64, r, mu);
+      EXPECT_NEAR(r, ray.r, 1e-9 * ray.r) << "r " << ray.r << " mu " << ray.mu;
+      EXPECT_NEAR(mu, ray.mu, 1e-9) << "r " << ray.r << " mu " << ray.mu;
+    }
+  }
+}
+
+TEST(TransmittanceMapping, UvRoundTripAtEveryTexelCentre) {
+  const int W = 256, H = 64;
+  for (const Atmosphere& atm : {fixtures::earth_atmosphere(), fixtures::tiny_planet_atmosphere()}) {
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x) {
+        const glm::dvec2 uv(texel_center(x, W), texel_center(y, H));
+        double r = 0.0, mu = 0.0;
+        r_mu_from_transmittance_uv(atm, uv, W, H, r, mu);
+        const glm::dvec2 back = transmittance_uv_from_r_mu(atm, r, mu, W, H);
+        ASSERT_NEAR(back.x, uv.x, 1e-9 / W) << x << " " << y;
+        ASSERT_NEAR(back.y, uv.y, 1e-9 / H) << x << " " << y;
+      }
+  }
+}
+
+TEST(TransmittanceMapping, TexelCentresStayInTheDomain) {
+  // Sampling at i / N instead of texel centres puts the first texel before
+  // x = 0: d < d_min, which is d < 0 at the top (REFERENCE.md pitfalls).
+  const int W = 256, H = 64;
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      double r = 0.0, mu = 0.0;
+      r_mu_from_transmittance_uv(atm, {texel_center(x, W), texel_center(y, H)}, W, H, r, mu);
+      ASSERT_GE(r, rb);
+      ASSERT_LE(r, rt);
+      ASSERT_LE(std::abs(mu), 1.0);
+      ASSERT_GE(mu, mu_horizon(atm, r) - 1e-12)
+          << "texel " << x << " " << y << " below the horizon";
+      const double d = distance_to_top_boundary(rt, r, mu);
+      ASSERT_TRUE(std::isfinite(d));
+      ASSERT_GE(d, 0.0);
+      // The first column is the zenith, the last one the horizon.
+      if (x == 0) {
+        ASSERT_NEAR(mu, 1.0, 1e-12) << y;
+      }
+      if (x == W - 1) {
+        ASSERT_NEAR(mu, mu_horizon(atm, r), 1e-9) << y;
+      }
+    }
+  // And the boundary rays land on the first and last texel centres, not on
+  // the texture's edges.
+  const glm::dvec2 ground_zenith = transmittance_uv_from_r_mu(atm, rb, 1.0, W, H);
+  const glm::dvec2 top_horizon = transmittance_uv_from_r_mu(atm, rt, mu_horizon(atm, rt), W, H);
+  EXPECT_NEAR(ground_zenith.x, 0.5 / W, 1e-15);
+  EXPECT_NEAR(ground_zenith.y, 0.5 / H, 1e-15);
+  EXPECT_NEAR(top_horizon.x, 1.0 - 0.5 / W, 1e-12);
+  EXPECT_NEAR(top_horizon.y, 1.0 - 0.5 / H, 1e-12);
+}
+
+TEST(TransmittanceMapping, TopBoundaryUpwardRaysMapToTheZenithColumn) {
+  // At r = Rt every ray with mu >= 0 leaves at once (d = 0): the mapping
+  // cannot tell them apart, the inverse returns mu = 1, and T = 1 for all.
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  for (double mu : {0.0, 0.3, 1.0}) {
+    const glm::dvec2 uv = transmittance_uv_from_r_mu(atm, atm.top_radius_m, mu, 256, 64);
+    EXPECT_NEAR(uv.x, 0.5 / 256, 1e-15);
+    double r = 0.0, mu_back = 0.0;
+    r_mu_from_transmittance_uv(atm, uv, 256, 64, r, mu_back);
+    EXPECT_NEAR(mu_back, 1.0, 1e-12);
+    EXPECT_EQ(compute_transmittance_to_top(atm, atm.top_radius_m, mu, 40), glm::dvec3(1.0));
+  }
+}
+
+TEST(TransmittanceMapping, BelowTheHorizonClampsToTheHorizonColumn) {
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const double r = atm.bottom_radius_m + 5e3;
+  const glm::dvec2 below = transmittance_uv_from_r_mu(atm, r, -0.5, 256, 64);
+  const glm::dvec2 horizon = transmittance_uv_from_r_mu(atm, r, mu_horizon(atm, r), 256, 64);
+  EXPECT_NEAR(below.x, 1.0 - 0.5 / 256, 1e-15);
+  EXPECT_NEAR(below.x, horizon.x, 1e-9);
+}
+
+// ---- Closed forms -----------------------------------------------------------
+
+// Length of the part of the segment [0, d] of the ray (r, mu) inside the
+// sphere of radius R. Points at distance s have radius^2 = s^2 + 2 r mu s + r^2
+// (law of cosines), below R^2 for s between the roots
+// s = -r mu -+ sqrt(r^2 mu^2 - r^2 + R^2); intersect that interval with [0, d].
+double length_inside_sphere(double R, double r, double mu, double d) {
+  const double disc = r * r * mu * mu + (R - r) * (R + r);
+  if (disc <= 0.0) return 0.0;
+  const double lo = std::max(0.0, -r * mu - std::sqrt(disc));
+  const double hi = std::min(d, -r * mu + std::sqrt(disc));
+  return std::max(0.0, hi - lo);
+}
+
+TEST(ComputeOpticalDepth, UniformSlabFillingTheShellIsSigmaTimesDistance) {
+  // Constant sigma_t along the whole ray: tau = sigma_t d, T = exp(-sigma_t d),
+  // d = -r mu + sqrt(r^2 (mu^2 - 1) + Rt^2). Gauss-Legendre is exact for a
+  // constant, so only rounding remains.
+  const glm::dvec3 sigma_s(1e-5, 2e-5, 0.0), sigma_a(0.0, 1e-5, 4e-5);
+  for (const Atmosphere& atm :
+       {fixtures::uniform_slab_atmosphere(sigma_s, sigma_a),
+        fixtures::uniform_slab_atmosphere(sigma_s * 1e3, sigma_a * 1e3, 1e3, 1.2e3)}) {
+    const glm::dvec3 sigma =
+        atm.components[0].scattering_per_m + atm.components[0].absorption_per_m;
+    for (const Ray& ray : domain_rays(atm)) {
+      const double d = -ray.r * ray.mu + std::sqrt(ray.r * ray.r * (ray.mu * ray.mu - 1.0) +
+                                                   atm.top_radius_m * atm.top_radius_m);
+      const glm::dvec3 tau = compute_optical_depth_to_top(atm, ray.r, ray.mu, 40);
+      const glm::dvec3 T = compute_transmittance_to_top(atm, ray.r, ray.mu, 40);
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(tau[c], sigma[c] * d, 1e-11 * sigma[c] * d + 1e-12) << ray.r << " " << ray.mu;
+        EXPECT_NEAR(T[c], std::exp(-sigma[c] * d), 1e-11) << ray.r << " " << ray.mu;
+      }
+    }
+  }
+}
+
+TEST(ComputeOpticalDepth, UniformSlabAloftIsSigmaTimesChordLength) {
+  // A slab of constant sigma between 10 and 25 km: tau = sigma times the
+  // length of the ray between the spheres Rb + 10 km and Rb + 25 km, i.e.
+  // inside(Rb + 25 km) - inside(Rb + 10 km). The slab's edges are kinks of
+  // the integrand that no smooth rule integrates well unless it cuts the ray
+  // there, for rays that cross the slab at any angle, twice or not at all.
+  const double sigma = 3e-5;
+  const Atmosphere atm =
+      fixtures::single_component_atmosphere(glm::dvec3(sigma), uniform_profile(10e3, 25e3));
+  const double r1 = atm.bottom_radius_m + 10e3, r2 = atm.bottom_radius_m + 25e3;
+  std::vector<Ray> rays = domain_rays(atm);
+  for (double h : {5e3, 12e3, 20e3, 30e3, 60e3})  // perigees below, inside and above the slab
+    for (double mu : {-0.2, -0.1, -0.08, -0.05, -0.02})
+      if (mu > mu_horizon(atm, atm.bottom_radius_m + h))
+        rays.push_back({atm.bottom_radius_m + h, mu});
+  for (const Ray& ray : rays) {
+    const double d = distance_to_top_boundary(atm.top_radius_m, ray.r, ray.mu);
+    const double chord =
+        length_inside_sphere(r2, ray.r, ray.mu, d) - length_inside_sphere(r1, ray.r, ray.mu, d);
+    const glm::dvec3 tau = compute_optical_depth_to_top(atm, ray.r, ray.mu, 40);
+    EXPECT_NEAR(tau.g, sigma * chord, 1e-9 * sigma * d) << ray.r << " " << ray.mu;
+  }
+}
+
+// Vertical ray (mu = 1) from altitude h0 through one exponential layer:
+//   tau = int_{h0}^{Ht} sigma exp(-h / H) dh = sigma H (exp(-h0 / H) - exp(-Ht / H)),
+// Ht = Rt - Rb.
+double exponential_vertical_tau(double sigma, double H, double h0, double top_h) {
+  return sigma * H * (std::exp(-h0 / H) - std::exp(-top_h / H));
+}
+
+TEST(ComputeOpticalDepth, ExponentialAlongTheVertical) {
+  const double sigma = 1e-5;
+  for (double H : {1.2e3, 8e3}) {
+    const Atmosphere atm =
+        fixtures::single_component_atmosphere(glm::dvec3(sigma), exponential_profile(H));
+    const double top_h = atm.top_radius_m - atm.bottom_radius_m;
+    for (double h0 : {0.0, 1e3, 30e3}) {
+      const double r = atm.bottom_radius_m + h0;
+      const double exact = exponential_vertical_tau(sigma, H, h0, top_h);
+      // Default steps: within 1e-6 relative.
+      EXPECT_NEAR(compute_optical_depth_to_top(atm, r, 1.0, 40).r, exact, 1e-6 * exact)
+          << "H " << H << " h0 " << h0;
+      // Convergence: composite 3-point Gauss-Legendre is 6th order, so each
+      // doubling of the steps divides the error by far more than 8 until it
+      // meets rounding.
+      double previous = std::abs(compute_optical_depth_to_top(atm, r, 1.0, 5).r - exact);
+      EXPECT_GT(previous, 1e-12 * exact) << "too few steps should show an error";
+      for (int steps : {10, 20, 40, 80}) {
+        const double error = std::abs(compute_optical_depth_to_top(atm, r, 1.0, steps).r - exact);
+        if (previous > 1e-11 * exact) {
+          EXPECT_LT(error, previous / 8.0) << "H " << H << " h0 " << h0 << " steps " << steps;
+        }
+        previous = error;
+      }
+    }
+  }
+}
+
+TEST(ComputeOpticalDepth, OzoneTentAlongTheVertical) {
+  // Tent 0 at 10 km, 1 at 25 km, 0 at 40 km; along the vertical h = h0 + s,
+  // so tau / sigma is the area under the tent above h0:
+  //   h0 = 0:       the whole triangle, 30 km * 1 / 2 = 15 km;
+  //   h0 = 17.5 km: int_{17.5}^{25} (h - 10)/15 dh + 7.5 km
+  //                 = (15^2 - 7.5^2) / 30 km + 7.5 km = 13.125 km;
+  //   h0 = 30 km:   int_{30}^{40} (40 - h)/15 dh = 10^2 / 30 km = 10/3 km;
+  //   h0 = 45 km:   0.
+  const glm::dvec3 sigma(0.650e-6, 1.881e-6, 0.085e-6);
+  const Atmosphere atm =
+      fixtures::single_component_atmosphere(sigma, tent_profile(10e3, 25e3, 40e3));
+  const std::pair<double, double> cases[] = {
+      {0.0, 15e3}, {17.5e3, 13.125e3}, {30e3, 10e3 / 3.0}, {45e3, 0.0}};
+  for (const auto& [h0, area] : cases) {
+    const glm::dvec3 tau = compute_optical_depth_to_top(atm, atm.bottom_radius_m + h0, 1.0, 40);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(tau[c], sigma[c] * area, 1e-10 * sigma[c] * 15e3) << "h0 " << h0 << " c " << c;
+  }
+}
+
+// An integrator that shares nothing with the one under test: the midpoint
+// rule on a uniform partition of n steps, converged for n = 1e5 on Earth
+// (error ~ (ds / H_mie)^2 / 24 < 1e-7 with ds <= 1.2 m on vertical rays;
+// smaller on slanted ones, where the density varies more slowly along s).
+glm::dvec3 brute_force_optical_depth(const Atmosphere& atm, double r, double mu, double d, int n) {
+  glm::dvec3 tau(0.0);
+  const double ds = d / n;
+  for (int i = 0; i < n; ++i) {
+    const double s = (i + 0.5) * ds;
+    const double h = std::sqrt(s * s + 2.0 * r * mu * s + r * r) - atm.bottom_radius_m;
+    tau += extinction_at(atm, std::max(h, 0.0)) * ds;
+  }
+  return tau;
+}
+
+TEST(ComputeOpticalDepth, EarthMatchesABruteForceIntegral) {
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const double rb = atm.bottom_radius_m;
+  const Ray rays[] = {{rb, 1.0},          {rb, 0.3},
+                      {rb, 0.02},         {rb, 0.0},
+                      {rb + 1e3, 0.5},    {rb + 15e3, mu_horizon(atm, rb + 15e3)},
+                      {rb + 15e3, -0.05}, {rb + 30e3, -0.08},
+                      {rb + 60e3, 0.1},   {atm.top_radius_m, -0.1}};
+  double max_error[4] = {0, 0, 0, 0};
+  const int steps[4] = {10, 20, 40, 80};
+  for (const Ray& ray : rays) {
+    const double d = distance_to_top_boundary(atm.top_radius_m, ray.r, ray.mu);
+    const glm::dvec3 reference = brute_force_optical_depth(atm, ray.r, ray.mu, d, 100000);
+    for (int i = 0; i < 4; ++i) {
+      const glm::dvec3 tau = compute_optical_depth_to_top(atm, ray.r, ray.mu, steps[i]);
+      for (int c = 0; c < 3; ++c)
+        max_error[i] = std::max(max_error[i], std::abs(tau[c] - reference[c]) / reference[c]);
+    }
+  }
+  EXPECT_LT(max_error[2], 1e-5) << "default 40 steps";
+  EXPECT_GT(max_error[0], max_error[1]);
+  EXPECT_GT(max_error[1], max_error[2]);
+}
+
+TEST(ComputeOpticalDepth, SegmentsAddUp) {
+  // tau(0, d) = tau(0, d1) + tau(d1, d), the second part started from the
+  // point at d1: the decomposition lookup_transmittance relies on. The ray
+  // (2 km, mu = -0.02) passes its perigee above the ground (mu_h = -0.025).
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const double r = atm.bottom_radius_m + 2e3, mu = -0.02, d1 = 150e3;
+  const double d = distance_to_top_boundary(atm.top_radius_m, r, mu);
+  const double r1 = radius_after(r, mu, d1), mu1 = mu_after(r, mu, d1, r1);
+  const glm::dvec3 whole = compute_optical_depth(atm, r, mu, d, 400);
+  const glm::dvec3 parts =
+      compute_optical_depth(atm, r, mu, d1, 200) + compute_optical_depth(atm, r1, mu1, d - d1, 200);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(parts[c], whole[c], 1e-7 * whole[c]);
+}
+
+// ---- Invariants -------------------------------------------------------------
+
+TEST(ComputeTransmittance, EmptyAtmosphereIsExactlyOne) {
+  const Atmosphere atm = fixtures::empty_atmosphere();
+  for (const Ray& ray : domain_rays(atm))
+    EXPECT_EQ(compute_transmittance_to_top(atm, ray.r, ray.mu, 40), glm::dvec3(1.0));
+  const Texture lut = bake_transmittance_lut(atm, {32, 8, 40}, BakeContext{});
+  for (float v : lut.data) ASSERT_EQ(v, 1.0f);
+}
+
+TEST(ComputeTransmittance, MonotoneInMuAndR) {
+  // A lower ray crosses more air at every altitude: T does not increase as
+  // mu goes from the zenith to the horizon. Going up along the vertical
+  // leaves less air above: T does not decrease with r.
+  for (const Atmosphere& atm : {fixtures::earth_atmosphere(), fixtures::tiny_planet_atmosphere()}) {
+    const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+    for (double r : {rb, rb + 0.02 * (rt - rb), rb + 0.3 * (rt - rb)}) {
+      const double mu_h = mu_horizon(atm, r);
+      glm::dvec3 previous = compute_transmittance_to_top(atm, r, 1.0, 40);
+      for (int i = 1; i <= 400; ++i) {
+        const double mu = 1.0 - (1.0 - mu_h) * i / 400.0;
+        const glm::dvec3 T = compute_transmittance_to_top(atm, r, mu, 40);
+        for (int c = 0; c < 3; ++c) ASSERT_LE(T[c], previous[c]) << "r " << r << " mu " << mu;
+        previous = T;
+      }
+    }
+    glm::dvec3 previous(0.0);
+    for (int i = 0; i <= 100; ++i) {
+      const glm::dvec3 T = compute_transmittance_to_top(atm, rb + (rt - rb) * i / 100.0, 1.0, 40);
+      for (int c = 0; c < 3; ++c) ASSERT_GE(T[c], previous[c]) << i;
+      previous = T;
+    }
+  }
+}
+
+TEST(BakeTransmittanceLut, InTheUnitIntervalAndMonotoneAlongRows) {
+  // Earth, Earth 100x denser (T underflows to 0 near the horizon, never NaN)
+  // and the tiny planet. Along a row x grows with the distance d, i.e. mu
+  // goes down: T does not increase (float rounding is monotone too).
+  for (const Atmosphere& atm :
+       {fixtures::earth_atmosphere(), scaled(fixtures::earth_atmosphere(), 100.0),
+        fixtures::tiny_planet_atmosphere()}) {
+    const Texture lut = bake_transmittance_lut(atm, {64, 16, 40}, BakeContext{});
+    for (float v : lut.data) {
+      ASSERT_TRUE(std::isfinite(v));
+      ASSERT_GE(v, 0.0f);
+      ASSERT_LE(v, 1.0f);
+    }
+    for (int y = 0; y < lut.height; ++y)
+      for (int x = 1; x < lut.width; ++x)
+        for (int c = 0; c < 3; ++c) ASSERT_LE(lut.at(x, y, 0, 0, c), lut.at(x - 1, y, 0, 0, c));
+  }
+}
+
+// ---- Bake -------------------------------------------------------------------
+
+// Earth baked once at the default size for the tests below.
+class EarthLut : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    atm_ = new Atmosphere(fixtures::earth_atmosphere());
+    lut_ = new Texture(bake_transmittance_lut(*atm_, TransmittanceLutSpec{}, BakeContext{}));
+  }
+  static void TearDownTestSuite() {
+    delete lut_;
+    delete atm_;
+  }
+  static const Atmosphere* atm_;
+  static const Texture* lut_;
+};
+const Atmosphere* EarthLut::atm_ = nullptr;
+const Texture* EarthLut::lut_ = nullptr;
+
+TEST_F(EarthLut, ShapeChannelsAndMetadata) {
+  const Texture& lut = *lut_;
+  EXPECT_EQ(lut.width, 256);
+  EXPECT_EQ(lut.height, 64);
+  EXPECT_EQ(lut.depth, 1);
+  EXPECT_EQ(lut.layers, 1);
+  EXPECT_EQ(lut.channels, (std::vector<std::string>{"R", "G", "B"}));
+  EXPECT_EQ(lut.data.size(), size_t(256 * 64 * 3));
+  const Metadata& m = lut.metadata;
+  EXPECT_EQ(m.at("parameterization"), "bruneton_transmittance");
+  EXPECT_EQ(std::stod(m.at("bottom_radius_m")), atm_->bottom_radius_m);
+  EXPECT_EQ(std::stod(m.at("top_radius_m")), atm_->top_radius_m);
+  EXPECT_NEAR(std::stod(m.at("horizon_distance_m")), std::sqrt(6460e3 * 6460e3 - 6360e3 * 6360e3),
+              1e-6);
+  EXPECT_EQ(m.at("width"), "256");
+  EXPECT_EQ(m.at("height"), "64");
+  EXPECT_EQ(m.at("integration_steps"), "40");
+  for (const char* key : {"quantity", "texel_centers", "mapping", "inverse_mapping", "domain"})
+    EXPECT_FALSE(m.at(key).empty()) << key;
+  EXPECT_NE(m.at("mapping").find("x_mu = (d - d_min)/(d_max - d_min)"), std::string::npos);
+}
+
+TEST_F(EarthLut, TexelsHoldTheTransmittanceOfTheirCentre) {
+  const Texture& lut = *lut_;
+  for (int y = 0; y < lut.height; y += 7)
+    for (int x = 0; x < lut.width; x += 5) {
+      double r = 0.0, mu = 0.0;
+      r_mu_from_transmittance_uv(*atm_, {texel_center(x, 256), texel_center(y, 64)}, 256, 64, r,
+                                 mu);
+      const glm::dvec3 T = compute_transmittance_to_top(*atm_, r, mu, 40);
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(lut.at(x, y, 0, 0, c), float(T[c])) << x << " " << y;
+    }
+  // Sanity against physics: straight up from the ground Earth lets most
+  // light through, toward the horizon blue is almost gone.
+  EXPECT_GT(lut.at(0, 0, 0, 0, 0), 0.9f);
+  EXPECT_LT(lut.at(255, 0, 0, 0, 2), 1e-3f);
+}
+
+TEST(BakeTransmittanceLut, SameDataForOneAndTwoThreads) {
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  std::vector<float> one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{}).data;
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{}).data;
+  }
+  ASSERT_EQ(one.size(), two.size());
+  EXPECT_TRUE(one == two) << "texels differ between 1 and 2 threads";
+}
+
+TEST(BakeTransmittanceLut, ReportsProgressUpToOne) {
+  std::mutex mutex;
+  double last = 0.0;
+  int calls = 0;
+  BakeContext ctx;
+  ctx.on_progress = [&](double f) {
+    std::lock_guard<std::mutex> lock(mutex);
+    last = std::max(last, f);
+    ++calls;
+  };
+  bake_transmittance_lut(fixtures::empty_atmosphere(), {16, 8, 4}, ctx);
+  EXPECT_EQ(calls, 8);  // one per row
+  EXPECT_EQ(last, 1.0);
+}
+
+TEST(BakeTransmittanceLut, RefusesADegenerateSize) {
+  EXPECT_THROW(bake_transmittance_lut(fixtures::empty_atmosphere(), {1, 64, 40}, BakeContext{}),
+               Error);
+  EXPECT_THROW(bake_transmittance_lut(fixtures::empty_atmosphere(), {256, 64, 0}, BakeContext{}),
+               Error);
+}
+
+// ---- Lookups ----------------------------------------------------------------
+
+TEST_F(EarthLut, LookupAtTexelCentresIsTheStoredTexel) {
+  const Texture& lut = *lut_;
+  for (int y = 0; y < lut.height; ++y)
+    for (int x = 0; x < lut.width; ++x) {
+      double r = 0.0, mu = 0.0;
+      r_mu_from_transmittance_uv(*atm_, {texel_center(x, 256), texel_center(y, 64)}, 256, 64, r,
+                                 mu);
+      const glm::dvec3 T = lookup_transmittance_to_top(lut, *atm_, r, mu);
+      for (int c = 0; c < 3; ++c) ASSERT_NEAR(T[c], lut.at(x, y, 0, 0, c), 1e-7) << x << " " << y;
+    }
+}
+
+TEST_F(EarthLut, LookupToTopInterpolatesTheIntegral) {
+  // Between texel centres the bilinear read stays close to the integral. The
+  // error is the table's: along v the altitude is quadratic in rho (h ~
+  // rho^2 / 2 Rb), so even a T linear in h is curved in v, by about
+  // (H / 63)^2 / 8 |dT/dh| / Rb ~ 1e-4 near the ground; the worst case,
+  // ~2e-3, is near the horizon at 40 km, where the ozone tent ends between
+  // two rows.
+  double max_error = 0.0, sum_error = 0.0;
+  int count = 0;
+  const double rb = atm_->bottom_radius_m;
+  for (double h : {0.0, 500.0, 3e3, 12e3, 40e3, 90e3})
+    for (double mu : {1.0, 0.8, 0.4, 0.15, 0.05, 0.01}) {
+      const glm::dvec3 T = lookup_transmittance_to_top(*lut_, *atm_, rb + h, mu);
+      const glm::dvec3 exact = compute_transmittance_to_top(*atm_, rb + h, mu, 200);
+      for (int c = 0; c < 3; ++c) {
+        max_error = std::max(max_error, std::abs(T[c] - exact[c]));
+        sum_error += std::abs(T[c] - exact[c]);
+        ++count;
+      }
+    }
+  EXPECT_LT(max_error, 3e-3);
+  EXPECT_LT(sum_error / count, 3e-4);
+}
+
+TEST_F(EarthLut, LookupBetweenTwoPointsIsTheSegmentTransmittance) {
+  // T(p, q) = exp(-tau of the segment), tau integrated directly. Both kinds
+  // of rays: missing the ground (ratio of two lookups) and hitting it (ratio
+  // of two reversed, upward lookups). Tolerances are the table's, not the
+  // quadrature's: a ratio of two interpolated transmittances carries the sum
+  // of their relative errors, which is largest for low, grazing rays (two
+  // small T near the horizon a few rows above the ground): ~1e-3 for rays
+  // that miss the ground, ~1e-2 for a ray 100 m up that dips to the ground at
+  // mu = -0.02; 1e-4 typically.
+  const double rb = atm_->bottom_radius_m;
+  int hitting = 0, count = 0;
+  double sum_error = 0.0;
+  for (double h : {100.0, 2e3, 10e3, 30e3})
+    for (double mu : {1.0, 0.5, 0.2, 0.05, -0.02, -0.1, -0.4, -1.0})
+      for (double fraction : {0.05, 0.3, 1.0}) {
+        const double r = rb + h;
+        const bool hits = ray_intersects_ground(rb, r, mu);
+        hitting += hits;
+        const double d =
+            fraction * distance_to_nearest_boundary(rb, atm_->top_radius_m, r, mu, hits);
+        const glm::dvec3 exact = glm::exp(-compute_optical_depth(*atm_, r, mu, d, 200));
+        const glm::dvec3 T = lookup_transmittance(*lut_, *atm_, r, mu, d, hits);
+        for (int c = 0; c < 3; ++c) {
+          ASSERT_GE(T[c], 0.0);
+          ASSERT_LE(T[c], 1.0);
+          EXPECT_NEAR(T[c], exact[c], hits ? 1.5e-2 : 2e-3)
+              << "h " << h << " mu " << mu << " d " << d << " c " << c;
+          sum_error += std::abs(T[c] - exact[c]);
+          ++count;
+        }
+      }
+  EXPECT_GT(hitting, 10);
+  EXPECT_LT(sum_error / count, 5e-4);
+}
+
+TEST_F(EarthLut, LookupOfTheWholeRayIsTheLookupToTop) {
+  // From p to the top boundary the second factor is T(Rt, mu_d >= 0) = 1.
+  const double r = atm_->bottom_radius_m + 3e3;
+  for (double mu : {1.0, 0.3, 0.01}) {
+    const double d = distance_to_top_boundary(atm_->top_radius_m, r, mu);
+    const glm::dvec3 whole = lookup_transmittance(*lut_, *atm_, r, mu, d, false);
+    const glm::dvec3 to_top = lookup_transmittance_to_top(*lut_, *atm_, r, mu);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(whole[c], to_top[c], 1e-6) << mu;
+  }
+}
+
+TEST_F(EarthLut, LookupOfAnEmptySegmentIsOne) {
+  const double r = atm_->bottom_radius_m + 1e3;
+  for (double mu : {0.7, -0.5}) {
+    const glm::dvec3 T = lookup_transmittance(*lut_, *atm_, r, mu, 0.0,
+                                              ray_intersects_ground(atm_->bottom_radius_m, r, mu));
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(T[c], 1.0, 1e-6);
+  }
+}
+
+}  // namespace
+}  // namespace skybake
