@@ -27,10 +27,17 @@ struct ValidateArgs {
 int run_validate(const ValidateArgs& args);
 
 struct PlanArgs {
-  std::vector<std::string> presets;
+  std::vector<std::string> catalog;  // preset files, folders, globs
   std::string out_dir = "out";
   std::vector<std::string> only;
   bool json = false;
+  std::string emit;         // "", "ninja" or "slurm"
+  std::string output;       // file for --emit (default stdout)
+  std::string launcher;     // ninja: command prefix for each edge
+  int threads = 1;          // --threads of each emitted task
+  int chunk = 1;            // slurm: presets per array task
+  int max_parallel = 0;     // slurm: array throttle
+  std::string self;         // path of this executable
 };
 int run_plan(const PlanArgs& args);
 

@@ -2,6 +2,7 @@
 // dispatches to the subcommands of commands.hpp. Errors are caught once:
 // `skybake: error: <message>` on stderr and the exit code of core/error.hpp.
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -12,6 +13,13 @@
 #include "pipeline/product.hpp"
 
 namespace {
+
+// The absolute path of this executable, for emitted build files.
+std::string self_path(const char* argv0) {
+  std::error_code ec;
+  const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::filesystem::absolute(argv0).string() : p.string();
+}
 
 std::string products_help() {
   std::string s = "\nProducts:\n";
@@ -78,13 +86,40 @@ int main(int argc, char** argv) {
   validate_cmd->footer("\nExit 0 when every preset is valid, 1 otherwise.");
 
   skybake::cli::PlanArgs plan;
+  plan.self = self_path(argv[0]);
   CLI::App* plan_cmd = app.add_subcommand(
-      "plan", "Show the products a scene needs, their dependencies, sizes, formats and state.");
-  plan_cmd->add_option("presets", plan.presets, "Scene preset files (JSON)")->required();
-  plan_cmd->add_option("-o,--out", plan.out_dir, "Output folder to compare against")
+      "plan", "Show the product graph of scenes or a catalog; emit it for ninja or Slurm.");
+  plan_cmd->add_option("catalog", plan.catalog,
+                       "Scene presets: files, folders (searched recursively) or glob patterns")
+      ->required();
+  plan_cmd->add_option("-d,--out-dir", plan.out_dir, "Output folder the bakes write to")
       ->capture_default_str();
   plan_cmd->add_option("--only", plan.only, "Restrict to these products")->delimiter(',');
-  plan_cmd->add_flag("--json", plan.json, "Print the graph as JSON on stdout");
+  plan_cmd->add_flag("--json", plan.json,
+                     "JSON: per-scene graphs plus the farm graph of stale nodes and edges");
+  plan_cmd->add_option("--emit", plan.emit, "Emit a build file instead: ninja or slurm")
+      ->check(CLI::IsMember({"ninja", "slurm"}));
+  plan_cmd->add_option("-o,--output", plan.output, "Write the plan or emitted file here");
+  plan_cmd->add_option("--launcher", plan.launcher,
+                       "ninja: prefix of every edge, e.g. \"srun -n1 -c1 --exact --quiet\"");
+  plan_cmd->add_option("--task-threads", plan.threads, "--threads of each emitted task")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1024));
+  plan_cmd->add_option("--chunk", plan.chunk, "slurm: presets per array task")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000000));
+  plan_cmd->add_option("--max-parallel", plan.max_parallel,
+                       "slurm: at most this many array tasks at once (0 = no limit)")
+      ->capture_default_str();
+  plan_cmd->footer(
+      "\nExamples:\n"
+      "  skybake plan presets/earth.json                       graph and state of one scene\n"
+      "  skybake plan presets/ --json                          farm graph of a catalog\n"
+      "  skybake plan presets/ --emit ninja -o build.ninja && ninja -f build.ninja -j 8\n"
+      "  skybake plan presets/ --emit ninja --launcher \"srun -n1 -c1 --exact --quiet\" -o "
+      "build.ninja\n"
+      "  skybake plan 'catalog/*.json' --emit slurm --chunk 10 -o bake.sbatch && sbatch "
+      "bake.sbatch");
 
   skybake::cli::InfoArgs info;
   CLI::App* info_cmd =

@@ -1,7 +1,10 @@
-// skybake plan: the product graph of each scene without baking anything:
+// skybake plan: the product graph without baking anything. For each scene:
 // what is requested, what is only computed as a dependency, sizes, formats,
-// files and whether each output is current (with the reason).
+// files and whether each output is current (with the reason). Over a whole
+// catalog (files, folders, globs) it also gives the farm graph of stale nodes,
+// as JSON or emitted as a ninja file or a Slurm batch script.
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 
 #include <fmt/format.h>
@@ -10,52 +13,102 @@
 
 #include "cli/commands.hpp"
 #include "core/error.hpp"
+#include "io/atomic_file.hpp"
 #include "io/manifest.hpp"
+#include "pipeline/catalog.hpp"
+#include "pipeline/farm_graph.hpp"
 #include "pipeline/freshness.hpp"
 #include "pipeline/preset_loader.hpp"
 #include "pipeline/product_graph.hpp"
 
+namespace fs = std::filesystem;
+
 namespace skybake::cli {
 
-int run_plan(const PlanArgs& args) {
-  nlohmann::json scenes = nlohmann::json::array();
-  for (const std::string& preset : args.presets) {
-    const Scene scene = load_scene(preset);
-    const ProductGraph graph = build_product_graph(scene, args.only);
-    const std::filesystem::path dir = std::filesystem::path(args.out_dir) / scene.name;
-    const Manifest manifest = read_manifest(dir / "manifest.json");
-    nlohmann::json nodes = nlohmann::json::array();
-    if (!args.json) std::printf("scene %s (%s) -> %s\n", scene.name.c_str(), preset.c_str(),
-                                dir.string().c_str());
-    for (const GraphNode& node : graph.nodes) {
-      std::vector<std::string> deps;
-      for (size_t d : node.deps) deps.push_back(graph.nodes[d].info->name);
-      const Freshness fresh = node.requested ? check_freshness(node, manifest, dir)
-                                             : Freshness{false, "dependency, not written"};
-      const std::vector<std::string> files = node.requested ? output_files(node.spec)
-                                                            : std::vector<std::string>{};
-      nodes.push_back({{"product", node.info->name},
-                       {"name", node.spec.name},
-                       {"requested", node.requested},
-                       {"size", node.spec.size},
-                       {"formats", node.spec.formats},
-                       {"precision", node.spec.precision},
-                       {"files", files},
-                       {"dependencies", deps},
-                       {"input_hash", node.input_hash},
-                       {"up_to_date", fresh.current},
-                       {"reason", fresh.reason}});
-      if (!args.json)
-        std::printf("  %-18s %-10s %-12s %-16s deps [%s]  %s\n", node.info->name.c_str(),
-                    node.requested ? "write" : "in memory",
-                    fmt::format("{}", fmt::join(node.spec.size, "x")).c_str(),
-                    fmt::format("{}", fmt::join(node.spec.formats, ",")).c_str(),
-                    fmt::format("{}", fmt::join(deps, ", ")).c_str(), fresh.reason.c_str());
-    }
-    scenes.push_back({{"scene", scene.name}, {"preset", preset}, {"folder", dir.string()},
-                      {"nodes", nodes}});
+namespace {
+
+nlohmann::json scene_plan(const Scene& scene, const PlanArgs& args, bool print) {
+  const ProductGraph graph = build_product_graph(scene, args.only);
+  const fs::path dir = fs::path(args.out_dir) / scene.name;
+  const Manifest manifest = read_manifest(dir / "manifest.json");
+  nlohmann::json nodes = nlohmann::json::array();
+  if (print)
+    std::printf("scene %s (%s) -> %s\n", scene.name.c_str(), scene.file.c_str(),
+                dir.string().c_str());
+  for (const GraphNode& node : graph.nodes) {
+    std::vector<std::string> deps;
+    for (size_t d : node.deps) deps.push_back(graph.nodes[d].info->name);
+    const Freshness fresh = node.requested ? check_freshness(node, manifest, dir)
+                                           : Freshness{false, "dependency, computed in memory"};
+    const std::vector<std::string> files =
+        node.requested ? output_files(node.spec) : std::vector<std::string>{};
+    nodes.push_back({{"product", node.info->name},
+                     {"name", node.spec.name},
+                     {"requested", node.requested},
+                     {"size", node.spec.size},
+                     {"formats", node.spec.formats},
+                     {"precision", node.spec.precision},
+                     {"files", files},
+                     {"dependencies", deps},
+                     {"input_hash", node.input_hash},
+                     {"up_to_date", fresh.current},
+                     {"reason", fresh.reason}});
+    if (print)
+      std::printf("  %-18s %-10s %-12s %-14s reads [%s]  %s\n", node.info->name.c_str(),
+                  node.requested ? "write" : "in memory",
+                  fmt::format("{}", fmt::join(node.spec.size, "x")).c_str(),
+                  fmt::format("{}", fmt::join(node.spec.formats, ",")).c_str(),
+                  fmt::format("{}", fmt::join(deps, ", ")).c_str(), fresh.reason.c_str());
   }
-  if (args.json) std::cout << nlohmann::json{{"scenes", scenes}}.dump(2) << "\n";
+  return {{"scene", scene.name}, {"preset", scene.file.string()}, {"folder", dir.string()},
+          {"nodes", nodes}};
+}
+
+void write_or_print(const std::string& text, const std::string& output) {
+  if (output.empty() || output == "-") {
+    std::cout << text;
+    return;
+  }
+  write_text_atomic(output, text);
+}
+
+}  // namespace
+
+int run_plan(const PlanArgs& args) {
+  std::vector<Scene> scenes;
+  for (const fs::path& preset : expand_catalog(args.catalog)) scenes.push_back(load_scene(preset));
+
+  if (!args.emit.empty()) {
+    if (!args.only.empty()) throw UsageError("--emit plans whole scenes; drop --only");
+    const FarmGraph farm = build_farm_graph(scenes, args.out_dir);
+    EmitOptions opt;
+    opt.skybake = args.self;
+    opt.launcher = args.launcher;
+    opt.threads = args.threads;
+    opt.chunk = args.chunk;
+    opt.max_parallel = args.max_parallel;
+    if (args.emit == "ninja") {
+      write_or_print(emit_ninja(farm, opt), args.output);
+    } else if (args.emit == "slurm") {
+      if (!args.launcher.empty()) throw UsageError("--launcher applies to --emit ninja only");
+      write_or_print(emit_slurm(farm, opt), args.output);
+    } else {
+      throw UsageError(fmt::format("--emit: expected ninja or slurm, got '{}'", args.emit));
+    }
+    if (!args.output.empty() && args.output != "-")
+      std::fprintf(stderr, "wrote %s (%zu products of %zu scenes)\n", args.output.c_str(),
+                   farm.nodes.size(), scenes.size());
+    return kExitOk;
+  }
+
+  nlohmann::json plans = nlohmann::json::array();
+  for (const Scene& scene : scenes) plans.push_back(scene_plan(scene, args, !args.json));
+  if (args.json) {
+    nlohmann::json j = args.only.empty() ? farm_graph_json(build_farm_graph(scenes, args.out_dir))
+                                         : nlohmann::json::object();
+    j["scenes"] = plans;
+    write_or_print(j.dump(2) + "\n", args.output);
+  }
   return kExitOk;
 }
 

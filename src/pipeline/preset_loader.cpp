@@ -418,6 +418,11 @@ Scene load_scene(const fs::path& file) {
   const Source scene_src{display, ""};
   validate(doc, "scene.schema.json", scene_src);
 
+  std::vector<fs::path> sources = {file};
+  for (const char* key : {"planet", "atmosphere"})
+    if (doc[key].is_string())
+      sources.push_back((file.parent_path() / doc[key].get<std::string>()).lexically_normal());
+
   Source planet_src, atmosphere_src;
   inline_section(doc, "planet", file, display, planet_src);
   inline_section(doc, "atmosphere", file, display, atmosphere_src);
@@ -426,6 +431,7 @@ Scene load_scene(const fs::path& file) {
 
   Scene scene;
   scene.file = file;
+  scene.sources = std::move(sources);
   scene.name = doc["name"].get<std::string>();
   scene.atmosphere = atmosphere_from(doc["planet"], planet_src, doc["atmosphere"], atmosphere_src);
 

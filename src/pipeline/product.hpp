@@ -33,6 +33,9 @@ struct ProductInfo {
   std::vector<std::string> scene_sections;   // top-level preset keys the result depends on
   std::string default_dds_format;            // empty: from precision and channel count
   BakeFn bake;
+  // Rough cost for farm scheduling: single-thread nanoseconds per output
+  // texel at default settings (measured with bench/, see the issue notes).
+  double ns_per_texel = 1000.0;
 };
 
 // All products, in a stable order (dependencies before dependents).

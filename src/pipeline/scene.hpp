@@ -27,6 +27,7 @@ struct OutputSpec {
 struct Scene {
   std::string name;             // output folder name under the output directory
   std::filesystem::path file;   // the preset file as given on the command line
+  std::vector<std::filesystem::path> sources;  // file and the preset files it references
   Atmosphere atmosphere;        // SI units
   nlohmann::json resolved;      // the preset with references inlined (hash input)
   std::vector<OutputSpec> outputs;

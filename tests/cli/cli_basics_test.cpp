@@ -48,7 +48,7 @@ TEST(Cli, MissingPresetFileIsNamed) {
 TEST(Cli, PlanShowsProductsAndState) {
   const fs::path out = fresh_dir("cli_plan");
   const std::string earth = source_path("presets/earth.json").string();
-  auto r = run_skybake({"plan", earth, "-o", out.string(), "--json"});
+  auto r = run_skybake({"plan", earth, "-d", out.string(), "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   auto j = nlohmann::json::parse(r.out);
   const auto& node = j["scenes"][0]["nodes"][0];
@@ -59,7 +59,7 @@ TEST(Cli, PlanShowsProductsAndState) {
   EXPECT_TRUE(skybake::test::list_files(out).empty());
 
   ASSERT_EQ(run_skybake({"bake", earth, "-o", out.string(), "-q"}).exit_code, 0);
-  j = nlohmann::json::parse(run_skybake({"plan", earth, "-o", out.string(), "--json"}).out);
+  j = nlohmann::json::parse(run_skybake({"plan", earth, "-d", out.string(), "--json"}).out);
   EXPECT_TRUE(j["scenes"][0]["nodes"][0]["up_to_date"].get<bool>());
 }
 
