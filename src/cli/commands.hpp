@@ -47,4 +47,12 @@ struct InfoArgs {
 };
 int run_info(const InfoArgs& args);
 
+struct CheckTilingArgs {
+  std::vector<std::string> files;
+  double tolerance = 0.1;  // a face passes when seam / interior jump <= 1 + tolerance
+  bool quiet = false;
+  bool json = false;
+};
+int run_check_tiling(const CheckTilingArgs& args);
+
 }  // namespace skybake::cli

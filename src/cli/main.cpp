@@ -39,6 +39,7 @@ Examples:
   skybake bake presets/*.json --threads 2 --json  farm mode: machine-readable summary on stdout
   skybake plan presets/earth.json                 show products, dependencies and what is stale
   skybake info out/earth/transmittance.dds        read a baked file back
+  skybake check-tiling out/clouds_hzd/noise_shape.dds   verify a noise volume tiles
 
 Exit codes: 0 ok, 1 check failed, 2 usage, 3 invalid preset, 4 file error, 5 internal error.
 Docs: README.md, docs/presets.md.)";
@@ -129,6 +130,24 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   info_cmd->add_flag("--json", info.json, "Print as JSON on stdout");
 
+  skybake::cli::CheckTilingArgs tiling;
+  CLI::App* tiling_cmd = app.add_subcommand(
+      "check-tiling", "Check that baked 2D/3D textures tile (DDS, EXR, VDB); exit 1 if not.");
+  tiling_cmd->add_option("files", tiling.files, "Texture files written by skybake")
+      ->required()
+      ->check(CLI::ExistingFile);
+  tiling_cmd->add_option("-t,--tolerance", tiling.tolerance,
+                         "A face passes when its seam jump <= (1 + T) x the largest interior "
+                         "jump along that axis")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1000.0));
+  tiling_cmd->add_flag("-q,--quiet", tiling.quiet, "One line per file");
+  tiling_cmd->add_flag("--json", tiling.json, "Print the ratios as JSON on stdout");
+  tiling_cmd->footer(
+      "\nFor each axis and channel: the largest jump between neighbours across the wrapped "
+      "face against the largest jump between interior neighbours (the ratio). A tileable "
+      "texture's seam is just another neighbour face (ratio near or below 1).");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -136,12 +155,13 @@ int main(int argc, char** argv) {
   }
 
   json_errors = (bake_cmd->parsed() && bake.json) || (plan_cmd->parsed() && plan.json) ||
-                (info_cmd->parsed() && info.json);
+                (info_cmd->parsed() && info.json) || (tiling_cmd->parsed() && tiling.json);
   try {
     if (bake_cmd->parsed()) return skybake::cli::run_bake(bake);
     if (validate_cmd->parsed()) return skybake::cli::run_validate(validate);
     if (plan_cmd->parsed()) return skybake::cli::run_plan(plan);
     if (info_cmd->parsed()) return skybake::cli::run_info(info);
+    if (tiling_cmd->parsed()) return skybake::cli::run_check_tiling(tiling);
   } catch (const skybake::Error& e) {
     std::fprintf(stderr, "skybake: error: %s\n", e.what());
     if (json_errors)

@@ -132,15 +132,20 @@ BakeSummary bake_scene(const Scene& scene, const BakeOptions& options) {
       }
       continue;
     }
-    if (!stale[i] && node.requested) {
+    // A dependency the scene writes and that is current on disk is read back
+    // (also under --only, where it is not requested in this run).
+    if (!stale[i] && scene.find_output(node.info->name) &&
+        check_freshness(node, before, summary.scene_dir).current) {
       textures[i] = load_current_output(before.entries.at(node.spec.name), summary.scene_dir);
       if (textures[i]) {
-        update_stamp(summary.scene_dir, node.spec.name, node.input_hash);
-        OutputRecord rec{node.info->name, "up to date", reasons[i],
-                         before.entries.at(node.spec.name)};
-        if (options.on_output) options.on_output(rec);
-        summary.outputs.push_back(std::move(rec));
         summary.loaded.push_back(node.info->name);
+        if (node.requested) {
+          update_stamp(summary.scene_dir, node.spec.name, node.input_hash);
+          OutputRecord rec{node.info->name, "up to date", reasons[i],
+                           before.entries.at(node.spec.name)};
+          if (options.on_output) options.on_output(rec);
+          summary.outputs.push_back(std::move(rec));
+        }
         continue;
       }
     }

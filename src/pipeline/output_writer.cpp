@@ -22,6 +22,8 @@ namespace {
 // (transmittance must stay float32, REFERENCE.md); half asks for 16-bit floats.
 DdsFormat choose_dds_format(const Texture& tex, const ProductInfo& info, const OutputSpec& spec) {
   std::string name = option_string(spec, "dds_format", info.default_dds_format);
+  if (name == "unorm8")
+    return tex.channel_count() == 1 ? DdsFormat::R8_UNORM : DdsFormat::R8G8B8A8_UNORM;
   if (!name.empty()) return dds_format_from_name(name);
   if (spec.precision == "half")
     return tex.channel_count() == 1 ? DdsFormat::R16_FLOAT : DdsFormat::R16G16B16A16_FLOAT;
@@ -47,14 +49,21 @@ std::vector<ManifestFile> write_outputs(const Texture& tex, const ProductInfo& i
       record.encoding = half ? "half" : "float";
     } else if (format == "dds") {
       const DdsFormat dds = choose_dds_format(tex, info, spec);
-      const bool mips = spec.options.value("mips", false);
+      const bool mips = spec.options.value("mips", info.default_mips);
       write_dds(tmp, mips ? build_mip_chain(tex, MipEdge::wrap) : std::vector<Texture>{tex}, dds);
       record.encoding = dxgi_format_name(dds);
     } else if (format == "vdb") {
       write_vdb(tmp, tex, 1.0 / tex.width);
       record.encoding = "float";
     } else if (format == "png") {
-      write_png_preview(tmp, tex, PreviewOptions{});
+      PreviewOptions preview;
+      preview.tile_2x2 = info.preview_tiled;
+      preview.split_channels = info.preview_split;
+      if (info.preview_split) {  // channels side by side, two slices stacked: stays readable
+        preview.max_slices = 2;
+        preview.max_columns = 1;
+      }
+      write_png_preview(tmp, tex, preview);
       record.encoding = "srgb8";
     } else {
       throw Error(fmt::format("unknown format '{}' passed validation", format));

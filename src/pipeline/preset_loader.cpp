@@ -316,7 +316,7 @@ void product_options(json& out, const ProductInfo& info, const Source& src) {
 
 OutputSpec output_from(json& out, size_t index, const std::string& file,
                        std::map<std::string, size_t>& products,
-                       std::map<std::string, size_t>& names) {
+                       std::map<std::string, size_t>& names, bool has_atmosphere) {
   OutputSpec spec;
   spec.pointer = "/outputs" + token(index);
   const Source src{file, spec.pointer};
@@ -329,6 +329,11 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
                                          ? "none registered"
                                          : fmt::format("{}", fmt::join(product_names(), ", "))));
   product_options(out, *info, src);
+  const auto& sections = info->scene_sections;
+  if (!has_atmosphere && std::find(sections.begin(), sections.end(), "atmosphere") != sections.end())
+    src.fail("/product", fmt::format("'{}' needs the scene's planet and atmosphere, and this scene "
+                                     "has neither",
+                                     info->name));
 
   if (!out.contains("name")) out["name"] = info->name;
   spec.name = out["name"].get<std::string>();
@@ -368,6 +373,10 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
       std::find(spec.formats.begin(), spec.formats.end(), "dds") == spec.formats.end())
     src.fail("/dds_format", "is only used with \"dds\" in formats");
   spec.options = out;
+  // Product-specific rules the schema cannot say (e.g. a noise octave finer
+  // than two voxels), checked before anything is allocated.
+  if (info->check)
+    for (const ProductProblem& problem : info->check(spec)) src.fail(problem.pointer, problem.rule);
   return spec;
 }
 
@@ -419,13 +428,22 @@ Scene load_scene(const fs::path& file) {
   validate(doc, "scene.schema.json", scene_src);
 
   std::vector<fs::path> sources = {file};
+  // Planet and atmosphere come together or not at all (a scene of cloud
+  // noise needs neither); products that need them say so below.
+  const bool has_planet = doc.contains("planet"), has_atmosphere = doc.contains("atmosphere");
+  if (has_planet != has_atmosphere)
+    scene_src.fail("", has_planet ? "missing required key 'atmosphere' (a planet needs its "
+                                    "atmosphere; an empty one is {\"top_radius_km\": ...})"
+                                  : "missing required key 'planet' (an atmosphere needs its planet)");
   for (const char* key : {"planet", "atmosphere"})
-    if (doc[key].is_string())
+    if (doc.contains(key) && doc[key].is_string())
       sources.push_back((file.parent_path() / doc[key].get<std::string>()).lexically_normal());
 
   Source planet_src, atmosphere_src;
-  inline_section(doc, "planet", file, display, planet_src);
-  inline_section(doc, "atmosphere", file, display, atmosphere_src);
+  if (has_planet) {
+    inline_section(doc, "planet", file, display, planet_src);
+    inline_section(doc, "atmosphere", file, display, atmosphere_src);
+  }
   strip_non_semantic(doc);
   apply_schema_defaults(doc, "scene.schema.json");
 
@@ -433,12 +451,16 @@ Scene load_scene(const fs::path& file) {
   scene.file = file;
   scene.sources = std::move(sources);
   scene.name = doc["name"].get<std::string>();
-  scene.atmosphere = atmosphere_from(doc["planet"], planet_src, doc["atmosphere"], atmosphere_src);
+  scene.has_atmosphere = has_planet;
+  if (has_planet)
+    scene.atmosphere =
+        atmosphere_from(doc["planet"], planet_src, doc["atmosphere"], atmosphere_src);
 
   std::map<std::string, size_t> products, names;
   json& outputs = doc["outputs"];
   for (size_t i = 0; i < outputs.size(); ++i)
-    scene.outputs.push_back(output_from(outputs[i], i, display, products, names));
+    scene.outputs.push_back(
+        output_from(outputs[i], i, display, products, names, scene.has_atmosphere));
   scene.resolved = std::move(doc);
   return scene;
 }

@@ -18,6 +18,14 @@ namespace skybake {
 // Baked textures of the products a baker depends on, by product name.
 using ProductInputs = std::map<std::string, const Texture*>;
 
+// A product-specific rule broken by an output: pointer relative to the output
+// object ("/size", "/worley/2/period"), and the rule with what was found.
+struct ProductProblem {
+  std::string pointer;
+  std::string rule;
+};
+using CheckFn = std::function<std::vector<ProductProblem>(const OutputSpec&)>;
+
 using BakeFn = std::function<Texture(const Scene&, const OutputSpec&, const ProductInputs&,
                                      const BakeContext&)>;
 
@@ -31,11 +39,18 @@ struct ProductInfo {
   std::vector<std::string> allowed_formats;  // subset of exr, dds, vdb, png
   std::vector<std::string> dependencies;     // products whose textures bake() reads
   std::vector<std::string> scene_sections;   // top-level preset keys the result depends on
-  std::string default_dds_format;            // empty: from precision and channel count
+  // DXGI name, "unorm8" (R8_UNORM for one channel, else R8G8B8A8_UNORM), or
+  // empty (float32 RGBA, or half with precision "half").
+  std::string default_dds_format;
   BakeFn bake;
   // Rough cost for farm scheduling: single-thread nanoseconds per output
   // texel at default settings (measured with bench/, see the issue notes).
   double ns_per_texel = 1000.0;
+  // Semantic checks at load time beyond the schema; empty = none.
+  CheckFn check;
+  bool default_mips = false;     // DDS mip chain unless the output says "mips"
+  bool preview_tiled = false;    // PNG preview repeats each panel 2x2 (tileable textures)
+  bool preview_split = false;    // PNG preview shows each channel as its own grey panel
 };
 
 // All products, in a stable order (dependencies before dependents).

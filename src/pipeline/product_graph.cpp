@@ -47,7 +47,7 @@ namespace {
 // Keys of an output object that shape files but not texture values.
 bool is_file_key(const std::string& key) {
   return key == "name" || key == "formats" || key == "precision" || key == "dds_format" ||
-         key == "preview";
+         key == "preview" || key == "mips";
 }
 
 void compute_hashes(const Scene& scene, GraphNode& node, const std::vector<GraphNode>& nodes) {

@@ -1,38 +1,18 @@
-// The product table. Adding a product = a baker in its layer, an entry here,
+// The product table, assembled from the family tables (product_tables.hpp).
+// Adding a product = a baker in its layer, an entry in its family's table,
 // and schemas/products/<name>.schema.json for its options.
 #include "pipeline/product.hpp"
 
-#include "atmosphere/transmittance_lut.hpp"
-#include "pipeline/product_graph.hpp"
+#include "pipeline/product_tables.hpp"
 
 namespace skybake {
 
 namespace {
 
-const std::vector<std::string> kAtmosphereSections = {"planet", "atmosphere"};
-
-Texture bake_transmittance(const Scene& scene, const OutputSpec& spec, const ProductInputs&,
-                           const BakeContext& ctx) {
-  TransmittanceLutSpec lut;
-  lut.width = spec.size.at(0);
-  lut.height = spec.size.at(1);
-  lut.steps = option_int(spec, "steps", lut.steps);
-  return bake_transmittance_lut(scene.atmosphere, lut, ctx);
-}
-
 std::vector<ProductInfo> make_registry() {
   std::vector<ProductInfo> r;
-  r.push_back({"transmittance",
-               "transmittance to the top of the atmosphere, (mu, r) Bruneton/Hillaire 2020 5.2",
-               {"mu", "r"},
-               {256, 64},
-               {4096, 4096},
-               {"exr", "dds"},
-               {"exr", "dds", "png"},
-               {},
-               kAtmosphereSections,
-               "",
-               bake_transmittance});
+  add_atmosphere_products(r);
+  add_noise_products(r);
   return r;
 }
 

@@ -28,7 +28,8 @@ struct Scene {
   std::string name;             // output folder name under the output directory
   std::filesystem::path file;   // the preset file as given on the command line
   std::vector<std::filesystem::path> sources;  // file and the preset files it references
-  Atmosphere atmosphere;        // SI units
+  bool has_atmosphere = false;  // planet + atmosphere given (cloud-only scenes have neither)
+  Atmosphere atmosphere;        // SI units; defaults when !has_atmosphere
   nlohmann::json resolved;      // the preset with references inlined (hash input)
   std::vector<OutputSpec> outputs;
 

@@ -30,8 +30,10 @@ TEST(BakeCommand, EarthWritesTransmittanceAndManifest) {
 
   const auto manifest = nlohmann::json::parse(read_file(out / "earth/manifest.json"));
   EXPECT_EQ(manifest["scene"], "earth");
-  ASSERT_EQ(manifest["outputs"].size(), 1u);
-  const auto& t = manifest["outputs"][0];
+  ASSERT_EQ(manifest["outputs"].size(), 5u) << "earth.json asks for five outputs";
+  nlohmann::json t;
+  for (const auto& o : manifest["outputs"])
+    if (o["product"] == "transmittance") t = o;
   EXPECT_EQ(t["product"], "transmittance");
   EXPECT_EQ(t["dimensions"], nlohmann::json::array({256, 64}));
   EXPECT_EQ(t["channels"], nlohmann::json::array({"R", "G", "B"}));
@@ -103,6 +105,52 @@ TEST(BakeCommand, JsonSummaryListsFilesAndShape) {
   EXPECT_EQ(o["product"], "transmittance");
   EXPECT_EQ(o["files"].size(), 2u);
   for (const auto& f : o["files"]) EXPECT_TRUE(fs::exists(f["path"].get<std::string>()));
+}
+
+}  // namespace
+
+namespace {
+
+TEST(BakeCommand, DependenciesAreComputedButWrittenOnlyWhenRequested) {
+  const fs::path out = fresh_dir("bake_only_skyview");
+  const auto r = run_skybake({"bake", kEarth, "-o", out.string(), "--only", "skyview", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out)["scenes"][0];
+  EXPECT_EQ(j["computed"], nlohmann::json::array({"transmittance", "multiscattering", "skyview"}));
+  EXPECT_TRUE(fs::exists(out / "earth/skyview.exr"));
+  EXPECT_FALSE(fs::exists(out / "earth/transmittance.exr"));
+  EXPECT_FALSE(fs::exists(out / "earth/multiscattering.exr"));
+  const auto manifest = nlohmann::json::parse(read_file(out / "earth/manifest.json"));
+  ASSERT_EQ(manifest["outputs"].size(), 1u);
+  EXPECT_EQ(manifest["outputs"][0]["product"], "skyview");
+  EXPECT_EQ(manifest["outputs"][0]["layers"], 8);
+}
+
+TEST(BakeCommand, CurrentDependenciesAreReadFromDiskAndGiveIdenticalFiles) {
+  const fs::path out = fresh_dir("bake_deps_from_disk");
+  ASSERT_EQ(run_skybake({"bake", kEarth, "-o", out.string(), "-q", "--only",
+                         "transmittance,multiscattering,skyview"})
+                .exit_code,
+            0);
+  const std::string before = read_file(out / "earth/skyview.dds");
+  const auto r = run_skybake(
+      {"bake", kEarth, "-o", out.string(), "--only", "skyview", "--force", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out)["scenes"][0];
+  EXPECT_EQ(j["computed"], nlohmann::json::array({"skyview"}));
+  EXPECT_EQ(j["loaded"], nlohmann::json::array({"transmittance", "multiscattering"}));
+  EXPECT_TRUE(read_file(out / "earth/skyview.dds") == before)
+      << "dependents must not depend on whether their inputs were baked or read back";
+}
+
+TEST(BakeCommand, EveryShippedPresetBakesFiniteFiles) {
+  const fs::path out = fresh_dir("bake_shipped");
+  for (const std::string p : {"presets/mars.json", "presets/tiny_planet.json"}) {
+    const auto r = run_skybake({"bake", source_path(p).string(), "-o", out.string(), "--json"});
+    ASSERT_EQ(r.exit_code, 0) << p << ": " << r.err;
+    for (const auto& o : nlohmann::json::parse(r.out)["scenes"][0]["outputs"])
+      for (const auto& f : o["files"]) EXPECT_TRUE(fs::exists(f["path"].get<std::string>()));
+  }
 }
 
 }  // namespace

@@ -1,0 +1,215 @@
+#include "atmosphere/sky_integrator.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "atmosphere/geometry.hpp"
+#include "atmosphere/multiscattering_lut.hpp"
+#include "atmosphere/phase.hpp"
+#include "atmosphere/transmittance_lut.hpp"
+#include "core/math.hpp"
+
+namespace skybake {
+namespace {
+
+// One medium component as the march needs it: its profile, its coefficients
+// and sigma_s * phase for this ray's scattering cosine (constant along a
+// straight ray under a directional sun).
+struct RayComponent {
+  const DensityProfile* density;
+  glm::dvec3 scattering;
+  glm::dvec3 extinction;
+  glm::dvec3 scattering_phase;
+};
+
+struct MarchState {
+  glm::dvec3 luminance{0.0};
+  glm::dvec3 transmittance{1.0};
+};
+
+class RayMarcher {
+ public:
+  RayMarcher(const Atmosphere& atm, const Texture& transmittance_lut,
+             const Texture* multiscattering_lut, glm::dvec3 origin, glm::dvec3 dir,
+             glm::dvec3 sun_dir)
+      : atm_(atm),
+        tlut_(transmittance_lut),
+        mslut_(multiscattering_lut),
+        origin_(origin),
+        dir_(dir),
+        sun_(sun_dir) {
+    const double nu = clamp_cosine(glm::dot(dir, sun_dir));
+    components_.reserve(atm.components.size());
+    for (const MediumComponent& c : atm.components) {
+      const glm::dvec3 ext = c.scattering_per_m + c.absorption_per_m;
+      if (ext == glm::dvec3(0.0) || c.density.layers.empty()) continue;  // absent: costs nothing
+      components_.push_back({&c.density, c.scattering_per_m, ext,
+                             c.scattering_per_m * phase_function(c.phase, c.g, nu)});
+    }
+  }
+
+  bool empty() const { return components_.empty(); }
+
+  // Integrates the segment [a, b] (distances from the origin) with the medium
+  // sampled at its midpoint.
+  void segment(double a, double b, MarchState& st) const {
+    const double dt = b - a;
+    if (!(dt > 0.0)) return;
+    const glm::dvec3 p = origin_ + (0.5 * (a + b)) * dir_;
+    const double r = std::max(glm::length(p), atm_.bottom_radius_m);
+    const double h = r - atm_.bottom_radius_m;
+    glm::dvec3 sigma_s(0.0), sigma_t(0.0), sigma_s_phase(0.0);
+    for (const RayComponent& c : components_) {
+      const double d = density_at(*c.density, h);
+      if (d == 0.0) continue;
+      sigma_s += d * c.scattering;
+      sigma_t += d * c.extinction;
+      sigma_s_phase += d * c.scattering_phase;
+    }
+    if (sigma_t == glm::dvec3(0.0)) return;  // empty here: no source, no attenuation
+    const double mu_s = clamp_cosine(glm::dot(p, sun_) / r);
+    glm::dvec3 source = lookup_sun_transmittance(tlut_, atm_, r, mu_s) * sigma_s_phase;
+    if (mslut_) source += lookup_multiscattering(*mslut_, atm_, r, mu_s) * sigma_s;  // eq. 11
+    const SegmentWeights w = segment_weights(sigma_t, dt);
+    st.luminance += st.transmittance * atm_.sun_illuminance * source * w.weight;
+    st.transmittance *= w.transmittance;
+  }
+
+  // n segments over [t0, t1] placed by `dist`.
+  void march(double t0, double t1, int n, StepDistribution dist, MarchState& st) const {
+    if (empty() || !(t1 > t0)) return;
+    n = std::max(n, 1);
+    double a = t0;
+    for (int i = 1; i <= n; ++i) {
+      double x = double(i) / n;
+      if (dist == StepDistribution::quadratic) x *= x;
+      const double b = i == n ? t1 : t0 + (t1 - t0) * x;
+      segment(a, b, st);
+      a = b;
+    }
+  }
+
+  // The ground's diffuse response at distance t (eq. 1 L_o), seen through st.
+  void lit_ground(double t, MarchState& st) const {
+    const glm::dvec3 up = glm::normalize(origin_ + t * dir_);
+    const double mu_s = clamp_cosine(glm::dot(up, sun_));
+    if (mu_s <= 0.0) return;
+    const glm::dvec3 t_sun = lookup_sun_transmittance(tlut_, atm_, atm_.bottom_radius_m, mu_s);
+    st.luminance +=
+        st.transmittance * atm_.sun_illuminance * t_sun * mu_s * atm_.ground_albedo / kPi;
+  }
+
+ private:
+  const Atmosphere& atm_;
+  const Texture& tlut_;
+  const Texture* mslut_;
+  glm::dvec3 origin_, dir_, sun_;
+  std::vector<RayComponent> components_;
+};
+
+}  // namespace
+
+AtmosphereSpan clip_ray_to_atmosphere(const Atmosphere& atm, glm::dvec3 position_m,
+                                      glm::dvec3 dir) {
+  const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+  const double len = glm::length(position_m);
+  const double r = std::max(len, rb);
+  const double mu = len > 0.0 ? clamp_cosine(glm::dot(position_m, dir) / len) : 1.0;
+  AtmosphereSpan span;
+  double r_in = r, mu_in = mu;
+  if (r > rt) {
+    // Above the top: enter where the ray first meets the top sphere, if it does.
+    const double discriminant = r * r * (mu * mu - 1.0) + rt * rt;
+    if (mu >= 0.0 || discriminant < 0.0) return span;
+    span.t_enter = std::max(0.0, -r * mu - std::sqrt(discriminant));
+    r_in = rt;
+    mu_in = clamp_cosine((r * mu + span.t_enter) / rt);
+  }
+  span.hits_atmosphere = true;
+  span.exits_on_ground = ray_intersects_ground(rb, r_in, mu_in);
+  span.t_exit =
+      span.t_enter + distance_to_nearest_boundary(rb, rt, r_in, mu_in, span.exits_on_ground);
+  return span;
+}
+
+ScatteringResult integrate_scattered_luminance(const Atmosphere& atm,
+                                               const Texture& transmittance_lut,
+                                               const Texture* multiscattering_lut,
+                                               glm::dvec3 position_m, glm::dvec3 view_dir,
+                                               glm::dvec3 sun_dir, double max_distance_m, int steps,
+                                               const IntegrationOptions& options) {
+  const AtmosphereSpan span = clip_ray_to_atmosphere(atm, position_m, view_dir);
+  if (!span.hits_atmosphere) return {};
+  const double t_end = std::min(span.t_exit, std::max(max_distance_m, 0.0));
+  const RayMarcher marcher(atm, transmittance_lut, multiscattering_lut, position_m, view_dir,
+                           sun_dir);
+  MarchState st;
+  marcher.march(span.t_enter, t_end, steps, options.distribution, st);
+  if (options.lit_ground && span.exits_on_ground && t_end >= span.t_exit)
+    marcher.lit_ground(span.t_exit, st);
+  return {st.luminance, st.transmittance};
+}
+
+std::vector<ScatteringResult> integrate_scattered_luminance_profile(
+    const Atmosphere& atm, const Texture& transmittance_lut, const Texture* multiscattering_lut,
+    glm::dvec3 position_m, glm::dvec3 view_dir, glm::dvec3 sun_dir,
+    const std::vector<double>& distances_m, int steps_per_interval) {
+  std::vector<ScatteringResult> out(distances_m.size());
+  const AtmosphereSpan span = clip_ray_to_atmosphere(atm, position_m, view_dir);
+  if (!span.hits_atmosphere) return out;
+  const RayMarcher marcher(atm, transmittance_lut, multiscattering_lut, position_m, view_dir,
+                           sun_dir);
+  MarchState st;
+  double cursor = span.t_enter;
+  for (size_t k = 0; k < distances_m.size(); ++k) {
+    const double target = std::min(distances_m[k], span.t_exit);
+    if (target > cursor) {
+      marcher.march(cursor, target, steps_per_interval, StepDistribution::uniform, st);
+      cursor = target;
+    }
+    out[k] = {st.luminance, st.transmittance};
+  }
+  return out;
+}
+
+glm::dvec3 lookup_sun_transmittance(const Texture& transmittance_lut, const Atmosphere& atm,
+                                    double r, double mu_s) {
+  r = std::clamp(r, atm.bottom_radius_m, atm.top_radius_m);
+  mu_s = clamp_cosine(mu_s);
+  if (ray_intersects_ground(atm.bottom_radius_m, r, mu_s)) return glm::dvec3(0.0);  // Vis = 0
+  return lookup_transmittance_to_top(transmittance_lut, atm, r, mu_s);
+}
+
+glm::dvec4 sample_bilinear(const Texture& tex, double u, double v, int z, int layer, bool wrap_u) {
+  const auto axis = [](double coord, int n, bool wrap, int& i0, int& i1, double& f) {
+    double x = coord * n - 0.5;
+    if (!wrap) x = std::clamp(x, 0.0, double(n - 1));
+    const double x0 = std::floor(x);
+    f = x - x0;
+    if (wrap) {
+      i0 = wrap_index(int(x0), n);
+      i1 = wrap_index(int(x0) + 1, n);
+    } else {
+      i0 = int(x0);
+      i1 = std::min(i0 + 1, n - 1);
+    }
+  };
+  int x0, x1, y0, y1;
+  double fx, fy;
+  axis(u, tex.width, wrap_u, x0, x1, fx);
+  axis(v, tex.height, false, y0, y1, fy);
+  const int nc = std::min(tex.channel_count(), 4);
+  glm::dvec4 out(0.0);
+  const float* t00 = tex.texel(x0, y0, z, layer);
+  const float* t10 = tex.texel(x1, y0, z, layer);
+  const float* t01 = tex.texel(x0, y1, z, layer);
+  const float* t11 = tex.texel(x1, y1, z, layer);
+  for (int c = 0; c < nc; ++c) {
+    const double a = t00[c] + fx * (double(t10[c]) - t00[c]);
+    const double b = t01[c] + fx * (double(t11[c]) - t01[c]);
+    out[c] = a + fy * (b - a);
+  }
+  return out;
+}
+
+}  // namespace skybake

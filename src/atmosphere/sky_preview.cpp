@@ -1,0 +1,102 @@
+#include "atmosphere/sky_preview.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "atmosphere/aerial_perspective_lut.hpp"
+#include "atmosphere/sky_render.hpp"
+#include "atmosphere/skyview_lut.hpp"
+#include "core/math.hpp"
+
+namespace skybake {
+
+namespace {
+
+constexpr double kDeg = kPi / 180.0;
+constexpr double kWhite = 4.0;  // extended Reinhard white point (exposed units)
+
+double luminance(const float* rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
+
+// Exposure that maps the panel's 90th-percentile luminance to 0.8: robust to
+// the sun disk, which covers far fewer than 10 % of the pixels.
+double auto_exposure(const Texture& image) {
+  std::vector<double> y(image.texel_count());
+  for (size_t i = 0; i < y.size(); ++i) y[i] = luminance(&image.data[i * 3]);
+  const size_t k = size_t(0.9 * double(y.size() - 1));
+  std::nth_element(y.begin(), y.begin() + k, y.end());
+  return y[k] > 0.0 ? 0.8 / y[k] : 1.0;
+}
+
+float tonemap(double x) {
+  const double c = x * (1.0 + x / (kWhite * kWhite)) / (1.0 + x);
+  return float(std::clamp(c, 0.0, 1.0));
+}
+
+Texture render_panel(const Atmosphere& atm, const Texture& transmittance,
+                     const Texture& multiscattering, const SkyPreviewSpec& spec,
+                     const SkyPreviewPanel& panel) {
+  const double sun_zenith = (90.0 - panel.sun_elevation_deg) * kDeg;
+  SkyImageSpec image;
+  image.width = spec.width;
+  image.height = spec.height;
+  image.camera.aspect = double(spec.width) / spec.height;
+  image.camera.vertical_fov_rad = spec.vertical_fov_deg * kDeg;
+  image.sun_zenith_rad = sun_zenith;
+  image.sun_azimuth_rad = 0.0;
+  SkyLuts luts;
+  luts.transmittance = &transmittance;
+  luts.multiscattering = &multiscattering;
+  const BakeContext quiet;
+  if (panel.from_space) {
+    // Far enough that the whole planet and its atmosphere fit the frame.
+    const double fov = spec.vertical_fov_deg * kDeg;
+    image.camera.altitude_m = atm.top_radius_m / std::sin(0.45 * fov) - atm.bottom_radius_m;
+    image.camera.pitch_rad = -kPi / 2;
+    return render_sky_image(atm, luts, image, quiet);
+  }
+  image.camera.altitude_m = std::min(spec.camera_altitude_m,
+                                     0.5 * (atm.top_radius_m - atm.bottom_radius_m));
+  image.camera.pitch_rad = spec.camera_pitch_deg * kDeg;
+  image.camera.yaw_rad = 0.0;  // toward the sun
+
+  SkyviewLutSpec sky;
+  sky.views = {{image.camera.altitude_m, sun_zenith}};
+  const Texture skyview = bake_skyview_lut(atm, transmittance, multiscattering, sky, quiet);
+  AerialPerspectiveSpec ap;
+  ap.camera = image.camera;
+  ap.sun_zenith_rad = sun_zenith;
+  ap.depth_range_m = std::min(32e3, 2.0 * (atm.top_radius_m - atm.bottom_radius_m));
+  const Texture aerial = bake_aerial_perspective_lut(atm, transmittance, multiscattering, ap, quiet);
+  luts.skyview = &skyview;
+  luts.skyview_layer = 0;
+  luts.aerial_perspective = &aerial;
+  luts.aerial_perspective_range_m = ap.depth_range_m;
+  return render_sky_image(atm, luts, image, quiet);
+}
+
+}  // namespace
+
+Texture bake_sky_preview(const Atmosphere& atm, const Texture& transmittance,
+                         const Texture& multiscattering, const SkyPreviewSpec& spec,
+                         const BakeContext& ctx) {
+  const int n = int(spec.panels.size());
+  Texture out(spec.width, spec.height, 1, n, {"R", "G", "B"});
+  const size_t panel_values = size_t(spec.width) * spec.height * 3;
+  for (int p = 0; p < n; ++p) {
+    const Texture hdr = render_panel(atm, transmittance, multiscattering, spec, spec.panels[p]);
+    const double exposure = auto_exposure(hdr);
+    float* dst = out.data.data() + size_t(p) * panel_values;
+    for (size_t i = 0; i < panel_values; ++i) dst[i] = tonemap(exposure * hdr.data[i]);
+    set_meta(out.metadata, fmt::format("panel_{}", p), spec.panels[p].label);
+    set_meta(out.metadata, fmt::format("exposure_{}", p), exposure);
+    ctx.report(size_t(p + 1), size_t(n));
+  }
+  set_meta(out.metadata, "quantity",
+           "display-referred sky preview in [0, 1]: luminance * exposure_<panel>, tone mapped "
+           "x (1 + x / 16) / (1 + x)");
+  return out;
+}
+
+}  // namespace skybake

@@ -1,0 +1,151 @@
+#include "atmosphere/skyview_lut.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include "core/error.hpp"
+#include "core/math.hpp"
+
+namespace skybake {
+namespace {
+
+constexpr double kTwoPi = 2.0 * kPi;
+
+// beta: angle between the nadir and the horizon as seen from radius r (the
+// angular radius of the ground disk), cos(beta) = sqrt(r^2 - Rb^2) / r;
+// written with atan2 to stay accurate at the ground where beta -> pi / 2.
+// zenith_horizon = pi - beta: zenith angle of the horizon.
+struct HorizonAngles {
+  double beta;
+  double zenith_horizon;
+};
+
+HorizonAngles horizon_angles(const Atmosphere& atm, double r) {
+  const double rb = atm.bottom_radius_m;
+  r = std::max(r, rb);
+  // Far from the planet beta -> 0; keep a floor so the ground half stays invertible.
+  const double beta = std::max(std::atan2(rb, safe_sqrt(r * r - rb * rb)), 1e-9);
+  return {beta, kPi - beta};
+}
+
+double wrap_azimuth(double phi) {
+  phi = std::fmod(phi, kTwoPi);
+  if (phi < 0.0) phi += kTwoPi;
+  return phi < kTwoPi ? phi : 0.0;  // -tiny + 2 pi rounds to 2 pi
+}
+
+std::string join(const std::vector<SkyviewView>& views, double SkyviewView::*field) {
+  std::string s;
+  for (const SkyviewView& v : views) s += (s.empty() ? "" : ",") + fmt::format("{:.17g}", v.*field);
+  return s;
+}
+
+}  // namespace
+
+glm::dvec2 skyview_uv_from_view(const Atmosphere& atm, double r, SkyviewDirection view, int width,
+                                int height) {
+  const HorizonAngles a = horizon_angles(atm, r);
+  const double theta = std::acos(clamp_cosine(view.mu));
+  const double l = a.zenith_horizon - theta;  // latitude above the horizon
+  const double x = l >= 0.0 ? 0.5 - 0.5 * std::sqrt(l / a.zenith_horizon)
+                            : 0.5 + 0.5 * std::sqrt(std::min(-l / a.beta, 1.0));
+  return {wrap_azimuth(view.azimuth_rad) / kTwoPi,
+          texel_coord_from_unit(std::clamp(x, 0.0, 1.0), height)};
+}
+
+SkyviewDirection view_from_skyview_uv(const Atmosphere& atm, double r, glm::dvec2 uv, int width,
+                                      int height) {
+  const HorizonAngles a = horizon_angles(atm, r);
+  const double x = std::clamp(unit_from_texel_coord(uv.y, height), 0.0, 1.0);
+  const double theta = x < 0.5 ? a.zenith_horizon * (1.0 - (1.0 - 2.0 * x) * (1.0 - 2.0 * x))
+                               : a.zenith_horizon + a.beta * (2.0 * x - 1.0) * (2.0 * x - 1.0);
+  return {std::cos(theta), wrap_azimuth(kTwoPi * uv.x)};
+}
+
+glm::dvec3 skyview_vector_from_direction(SkyviewDirection view) {
+  const double sin_theta = safe_sqrt(1.0 - view.mu * view.mu);
+  return {sin_theta * std::cos(view.azimuth_rad), sin_theta * std::sin(view.azimuth_rad),
+          clamp_cosine(view.mu)};
+}
+
+SkyviewDirection skyview_direction_from_vectors(glm::dvec3 up, glm::dvec3 view_dir,
+                                                glm::dvec3 sun_dir) {
+  const double mu = clamp_cosine(glm::dot(view_dir, up));
+  const glm::dvec3 view_h = view_dir - mu * up;
+  glm::dvec3 sun_h = sun_dir - glm::dot(sun_dir, up) * up;
+  if (glm::dot(sun_h, sun_h) < 1e-24) {
+    // Sun at the zenith or nadir: every azimuth is alike; pick any reference.
+    sun_h = glm::cross(up, std::abs(up.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0));
+  }
+  const glm::dvec3 forward = glm::normalize(sun_h);
+  const glm::dvec3 side = glm::cross(up, forward);
+  if (glm::dot(view_h, view_h) < 1e-30) return {mu, 0.0};
+  return {mu, wrap_azimuth(std::atan2(glm::dot(view_h, side), glm::dot(view_h, forward)))};
+}
+
+Texture bake_skyview_lut(const Atmosphere& atm, const Texture& transmittance_lut,
+                         const Texture& multiscattering_lut, const SkyviewLutSpec& spec,
+                         const BakeContext& ctx) {
+  if (spec.width < 1 || spec.height < 2 || spec.views.empty())
+    throw Error(
+        fmt::format("skyview: expected a size of at least 1x2 and one view, got {}x{} "
+                    "and {} views",
+                    spec.width, spec.height, spec.views.size()));
+  const int layers = int(spec.views.size());
+  Texture tex(spec.width, spec.height, 1, layers, {"R", "G", "B"});
+  const IntegrationOptions options{spec.distribution, false};
+  ProgressCounter progress(ctx, size_t(layers) * spec.height);
+  tbb::parallel_for(0, layers * spec.height, [&](int row) {
+    const int layer = row / spec.height, y = row % spec.height;
+    const SkyviewView& view = spec.views[layer];
+    const double r = atm.bottom_radius_m + std::max(view.altitude_m, 0.0);
+    const glm::dvec3 sun_dir(std::sin(view.sun_zenith_rad), 0.0, std::cos(view.sun_zenith_rad));
+    // The sky is symmetric about the sun's vertical plane (the medium varies
+    // with altitude only): texel width - 1 - x sees the mirror image of
+    // texel x, so half the row is marched and mirrored.
+    for (int x = 0; x < (spec.width + 1) / 2; ++x) {
+      const SkyviewDirection d =
+          view_from_skyview_uv(atm, r, {texel_center(x, spec.width), texel_center(y, spec.height)},
+                               spec.width, spec.height);
+      const ScatteringResult s = integrate_scattered_luminance(
+          atm, transmittance_lut, &multiscattering_lut, {0.0, 0.0, r},
+          skyview_vector_from_direction(d), sun_dir, INFINITY, spec.steps, options);
+      float* t = tex.texel(x, y, 0, layer);
+      float* mirror = tex.texel(spec.width - 1 - x, y, 0, layer);
+      for (int c = 0; c < 3; ++c) t[c] = mirror[c] = float(s.luminance[c]);
+    }
+    progress.tick();
+  });
+  Metadata& m = tex.metadata;
+  set_meta(m, "parameterization", std::string("hillaire2020_skyview"));
+  set_meta(m, "u",
+           std::string("azimuth_from_sun_plane_rad / (2 pi), texel i at 2 pi (i + 0.5) / "
+                       "width, wraps"));
+  set_meta(m, "v",
+           std::string("texel_coord_from_unit(x, height); l = pi - beta - view_zenith; "
+                       "x = 0.5 - 0.5 sqrt(l / (pi - beta)) if l >= 0 else "
+                       "0.5 + 0.5 sqrt(-l / beta); beta = atan2(Rb, sqrt(r^2 - Rb^2))"));
+  set_meta(m, "texel_coord_from_unit", std::string("0.5 / n + x * (1 - 1 / n)"));
+  set_meta(m, "orientation", std::string("row 0 = zenith, last row = nadir; sun at azimuth 0"));
+  set_meta(m, "bottom_radius_m", atm.bottom_radius_m);
+  set_meta(m, "top_radius_m", atm.top_radius_m);
+  set_meta(m, "units", std::string("luminance, units of sun_illuminance; no sun disk"));
+  set_meta(m, "steps", spec.steps);
+  set_meta(m, "step_distribution",
+           std::string(spec.distribution == StepDistribution::quadratic ? "quadratic" : "uniform"));
+  set_meta(m, "layer_altitude_m", join(spec.views, &SkyviewView::altitude_m));
+  set_meta(m, "layer_sun_zenith_rad", join(spec.views, &SkyviewView::sun_zenith_rad));
+  return tex;
+}
+
+glm::dvec3 lookup_skyview(const Texture& lut, int layer, const Atmosphere& atm, double r,
+                          SkyviewDirection view) {
+  const glm::dvec2 uv = skyview_uv_from_view(atm, r, view, lut.width, lut.height);
+  return glm::dvec3(sample_bilinear(lut, uv.x, uv.y, 0, layer, true));
+}
+
+}  // namespace skybake

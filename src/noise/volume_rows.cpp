@@ -1,0 +1,197 @@
+#include "noise/volume_rows.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include "core/math.hpp"
+#include "noise/perlin.hpp"
+#include "noise/worley.hpp"
+
+namespace skybake {
+namespace {
+
+// value[l] = 1 - sqrt(min(1, min_k (f[l] - (shift_k + ox[k]))^2 + q[k])) for 4
+// voxels of one cell at cell-local positions f, where the candidates k of
+// the columns c - 1, c, c + 1 are [start[0], start[1]), [start[1], start[2]),
+// [start[2], start[3]) with shift_k = -1, 0, +1.
+// Explicit SSE where available: GCC vectorizes neither the 4 lanes nor (errno)
+// the square root by itself. Two accumulators halve the chain of dependent
+// minima; a minimum is exact, so the split changes no bit. Every lane
+// operation is an IEEE single-precision operation like the scalar fallback's
+// and worley3_f1's, so all give the same bits.
+void nearest4(const float* f, const float* ox, const float* q, const int* start, float* value) {
+#if defined(__SSE2__)
+  const __m128 fs = _mm_loadu_ps(f);
+  __m128 b0 = _mm_set1_ps(1.0f), b1 = b0;  // the clamp bound (worley.hpp)
+  auto d2 = [&](int k, float shift) {
+    const __m128 dx = _mm_sub_ps(fs, _mm_set1_ps(shift + ox[k]));
+    return _mm_add_ps(_mm_mul_ps(dx, dx), _mm_set1_ps(q[k]));
+  };
+  for (int j = 0; j < 3; ++j) {
+    const float shift = float(j - 1);
+    int k = start[j];
+    for (; k + 1 < start[j + 1]; k += 2) {
+      b0 = _mm_min_ps(d2(k, shift), b0);
+      b1 = _mm_min_ps(d2(k + 1, shift), b1);
+    }
+    if (k < start[j + 1]) b0 = _mm_min_ps(d2(k, shift), b0);
+  }
+  _mm_storeu_ps(value, _mm_sub_ps(_mm_set1_ps(1.0f), _mm_sqrt_ps(_mm_min_ps(b0, b1))));
+#else
+  float best[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+  for (int j = 0; j < 3; ++j)
+    for (int k = start[j]; k < start[j + 1]; ++k)
+      for (int l = 0; l < 4; ++l) {
+        const float dx = f[l] - (float(j - 1) + ox[k]);
+        const float d2 = dx * dx + q[k];
+        best[l] = d2 < best[l] ? d2 : best[l];
+      }
+  for (int l = 0; l < 4; ++l) value[l] = 1.0f - std::sqrt(best[l]);
+#endif
+}
+
+}  // namespace
+
+WorleyRows::WorleyRows(int size, int period, uint32_t seed)
+    : size_(size), period_(period), frac_(size + 3), cell_(size), cell_begin_(period + 1) {
+  assert(size > 0 && period > 0);
+  const size_t cells = size_t(period) * period * period;
+  for (auto* a : {&offset_x_, &offset_y_, &offset_z_}) a->resize(cells);
+  for (int z = 0; z < period; ++z)
+    for (int y = 0; y < period; ++y)
+      for (int x = 0; x < period; ++x) {
+        const size_t i = (size_t(z) * period + y) * period + x;
+        const glm::vec3 o = worley3_feature_offset(x, y, z, seed);
+        offset_x_[i] = o.x;
+        offset_y_[i] = o.y;
+        offset_z_[i] = o.z;
+      }
+  // cell_begin_[c] = first voxel whose centre lies in cell c (coordinates increase).
+  int c = 0;
+  for (int i = 0; i < size + 3; ++i) {
+    const float u = cell_coord_from_texel(i, size, period), fl = std::floor(u);
+    frac_[i] = u - fl;  // exact
+    if (i >= size) continue;
+    cell_[i] = int(fl);
+    while (c <= cell_[i]) cell_begin_[c++] = i;
+  }
+  while (c <= period) cell_begin_[c++] = size;
+}
+
+void WorleyRows::eval_row(int y, int z, RowScratch& s, float* out) const {
+  const int p = period_;
+  const float fy = frac_[y], fz = frac_[z];
+  const int cy = cell_[y], cz = cell_[z];
+  // Candidates of x column cx (cx = -1 .. p, unwrapped) are ox/q[start[cx + 1],
+  // start[cx + 2]): x offset in the cell and squared y-z distance. ox/q are
+  // sized for every candidate plus one: the compaction below always writes.
+  const size_t max_candidates = size_t(p + 2) * 9 + 1;
+  if (s.a.size() < max_candidates) s.a.resize(max_candidates), s.b.resize(max_candidates);
+  if (s.c.size() < size_t(p) * 9) s.c.resize(size_t(p) * 9);
+  if (s.start.size() < size_t(p + 3)) s.start.resize(p + 3);
+  float* ox = s.a.data();
+  float* q = s.b.data();
+  float* qj = s.c.data();  // [j][wx]: q of the 9 y-z neighbours j of every column
+  // First the y-z distances, neighbour by neighbour along contiguous table
+  // rows (vectorized), with the expressions of worley3_f1 (cell-local), so
+  // the values are bit-identical.
+  size_t rows[9];
+  for (int j = 0; j < 9; ++j) {
+    const int oy = j % 3 - 1, oz = j / 3 - 1;
+    rows[j] = (size_t(wrap_index(cz + oz, p)) * p + wrap_index(cy + oy, p)) * p;
+    const float* oy_row = &offset_y_[rows[j]];
+    const float* oz_row = &offset_z_[rows[j]];
+    const float sy = float(oy), sz = float(oz);
+    float* qrow = qj + size_t(j) * p;
+    for (int x = 0; x < p; ++x) {
+      const float dy = fy - (sy + oy_row[x]);
+      const float dz = fz - (sz + oz_row[x]);
+      qrow[x] = dy * dy + dz * dz;
+    }
+  }
+  // Then the compaction, column by column, of the points with q < 1.
+  int count = 0;
+  for (int col = 0; col < p + 2; ++col) {
+    const int cx = col - 1, wx = cx < 0 ? cx + p : (cx >= p ? cx - p : cx);
+    s.start[col] = count;
+    for (int j = 0; j < 9; ++j) {
+      const float qyz = qj[size_t(j) * p + wx];
+      // Branch-free: the test is close to a coin flip.
+      ox[count] = offset_x_[rows[j] + wx];
+      q[count] = qyz;
+      count += qyz < 1.0f;
+    }
+  }
+  s.start[p + 2] = count;
+  // Voxels of one cell share their candidates: 4 voxels at a time (lanes past
+  // the cell are computed and dropped). Columns c - 1, c, c + 1 are shifted by
+  // -1, 0, +1 cell relative to the voxels' cell.
+  for (int c = 0; c < p; ++c) {
+    for (int x0 = cell_begin_[c], x_end = cell_begin_[c + 1]; x0 < x_end; x0 += 4) {
+      float value[4];
+      nearest4(&frac_[x0], ox, q, &s.start[c], value);
+      for (int l = 0, lanes = std::min(4, x_end - x0); l < lanes; ++l) out[x0 + l] = value[l];
+    }
+  }
+}
+
+PerlinRows::PerlinRows(int size, int period, uint32_t seed)
+    : size_(size), period_(period), frac_(size), fade_(size), cell_(size) {
+  assert(size > 0 && period > 0);
+  gradients_.resize(size_t(period) * period * period);
+  for (int z = 0; z < period; ++z)
+    for (int y = 0; y < period; ++y)
+      for (int x = 0; x < period; ++x)
+        gradients_[(size_t(z) * period + y) * period + x] = perlin3_lattice_gradient(x, y, z, seed);
+  for (int i = 0; i < size; ++i) {
+    const float u = cell_coord_from_texel(i, size, period);
+    const float fl = std::floor(u);
+    cell_[i] = wrap_index(int(fl), period);
+    frac_[i] = u - fl;
+    fade_[i] = perlin_fade(frac_[i]);
+  }
+}
+
+void PerlinRows::accumulate_row(int y, int z, float amplitude, RowScratch& s, float* out) const {
+  const int p = period_;
+  // Column c of the lattice contributes (x - c) * gx[c] + rest[c] at voxel x,
+  // where gx and rest are the y-z bilinear blends of its 4 corners' gradient
+  // terms; column p is column 0 again (wrapped).
+  if (s.a.size() < size_t(p + 1)) s.a.resize(p + 1), s.b.resize(p + 1);
+  float* gx = s.a.data();
+  float* rest = s.b.data();
+  const int y0 = cell_[y], y1 = y0 + 1 == p ? 0 : y0 + 1;
+  const int z0 = cell_[z], z1 = z0 + 1 == p ? 0 : z0 + 1;
+  const float fy = frac_[y], fz = frac_[z], sy = fade_[y], sz = fade_[z];
+  const int ys[2] = {y0, y1}, zs[2] = {z0, z1};
+  const float wy[2] = {1.0f - sy, sy}, wz[2] = {1.0f - sz, sz};
+  const float dy[2] = {fy, fy - 1.0f}, dz[2] = {fz, fz - 1.0f};
+  for (int c = 0; c < p; ++c) {
+    float g = 0.0f, r = 0.0f;
+    for (int j = 0; j < 4; ++j) {
+      const int a = j & 1, b = j >> 1;
+      const glm::vec3& grad = gradients_[(size_t(zs[b]) * p + ys[a]) * p + c];
+      const float w = wy[a] * wz[b];
+      g += w * grad.x;
+      r += w * (grad.y * dy[a] + grad.z * dz[b]);
+    }
+    gx[c] = g;
+    rest[c] = r;
+  }
+  gx[p] = gx[0];
+  rest[p] = rest[0];
+  for (int x = 0; x < size_; ++x) {
+    const int c = cell_[x];
+    const float f = frac_[x], sx = fade_[x];
+    const float n0 = f * gx[c] + rest[c];
+    const float n1 = (f - 1.0f) * gx[c + 1] + rest[c + 1];
+    out[x] += amplitude * (n0 + sx * (n1 - n0));
+  }
+}
+
+}  // namespace skybake

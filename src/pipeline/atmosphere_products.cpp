@@ -1,0 +1,170 @@
+// Atmosphere products: presets in km and degrees become the bakers' SI specs
+// here, once.
+#include <cmath>
+
+#include "atmosphere/aerial_perspective_lut.hpp"
+#include "atmosphere/multiscattering_lut.hpp"
+#include "atmosphere/sky_preview.hpp"
+#include "atmosphere/skyview_lut.hpp"
+#include "atmosphere/transmittance_lut.hpp"
+#include "core/math.hpp"
+#include "pipeline/product_graph.hpp"
+#include "pipeline/product_tables.hpp"
+
+namespace skybake {
+
+namespace {
+
+constexpr double kDeg = kPi / 180.0;
+const std::vector<std::string> kAtmosphereSections = {"planet", "atmosphere"};
+
+double json_number(const nlohmann::json& obj, const char* key, double fallback) {
+  auto it = obj.find(key);
+  return it != obj.end() && it->is_number() ? it->get<double>() : fallback;
+}
+
+Texture bake_transmittance(const Scene& scene, const OutputSpec& spec, const ProductInputs&,
+                           const BakeContext& ctx) {
+  TransmittanceLutSpec lut;
+  lut.width = spec.size.at(0);
+  lut.height = spec.size.at(1);
+  lut.steps = option_int(spec, "steps", lut.steps);
+  return bake_transmittance_lut(scene.atmosphere, lut, ctx);
+}
+
+Texture bake_multiscattering(const Scene& scene, const OutputSpec& spec,
+                             const ProductInputs& in, const BakeContext& ctx) {
+  MultiscatteringLutSpec lut;
+  lut.width = spec.size.at(0);
+  lut.height = spec.size.at(1);
+  lut.directions = option_int(spec, "directions", lut.directions);
+  lut.steps = option_int(spec, "steps", lut.steps);
+  return bake_multiscattering_lut(scene.atmosphere, *in.at("transmittance"), lut, ctx);
+}
+
+// Default layers: a viewer near the ground under 8 sun positions from the
+// zenith to 10 degrees below the horizon.
+std::vector<SkyviewView> default_skyview_views() {
+  std::vector<SkyviewView> views;
+  for (double zenith_deg : {0.0, 30.0, 60.0, 75.0, 85.0, 90.0, 95.0, 100.0})
+    views.push_back({200.0, zenith_deg * kDeg});
+  return views;
+}
+
+Texture bake_skyview(const Scene& scene, const OutputSpec& spec, const ProductInputs& in,
+                     const BakeContext& ctx) {
+  SkyviewLutSpec lut;
+  lut.width = spec.size.at(0);
+  lut.height = spec.size.at(1);
+  lut.steps = option_int(spec, "steps", lut.steps);
+  lut.views.clear();
+  if (auto it = spec.options.find("views"); it != spec.options.end() && it->is_array()) {
+    for (const auto& v : *it)
+      lut.views.push_back({json_number(v, "altitude_km", 0.0) * 1e3,
+                           json_number(v, "sun_zenith_deg", 0.0) * kDeg});
+  } else {
+    lut.views = default_skyview_views();
+  }
+  return bake_skyview_lut(scene.atmosphere, *in.at("transmittance"), *in.at("multiscattering"),
+                          lut, ctx);
+}
+
+Texture bake_aerial_perspective(const Scene& scene, const OutputSpec& spec,
+                                const ProductInputs& in, const BakeContext& ctx) {
+  AerialPerspectiveSpec lut;
+  lut.width = spec.size.at(0);
+  lut.height = spec.size.at(1);
+  lut.depth = spec.size.at(2);
+  lut.depth_range_m = option_double(spec, "depth_range_km", lut.depth_range_m * 1e-3) * 1e3;
+  lut.steps_per_slice = option_int(spec, "steps_per_slice", lut.steps_per_slice);
+  const nlohmann::json camera = spec.options.value("camera", nlohmann::json::object());
+  lut.camera.altitude_m = json_number(camera, "altitude_km", lut.camera.altitude_m * 1e-3) * 1e3;
+  lut.camera.yaw_rad = json_number(camera, "yaw_deg", 0.0) * kDeg;
+  lut.camera.pitch_rad = json_number(camera, "pitch_deg", 0.0) * kDeg;
+  lut.camera.vertical_fov_rad = json_number(camera, "vertical_fov_deg", 60.0) * kDeg;
+  lut.camera.aspect = json_number(camera, "aspect", lut.camera.aspect);
+  const nlohmann::json sun = spec.options.value("sun", nlohmann::json::object());
+  lut.sun_zenith_rad = json_number(sun, "zenith_deg", 45.0) * kDeg;
+  lut.sun_azimuth_rad = json_number(sun, "azimuth_deg", 0.0) * kDeg;
+  return bake_aerial_perspective_lut(scene.atmosphere, *in.at("transmittance"),
+                                     *in.at("multiscattering"), lut, ctx);
+}
+
+Texture bake_preview(const Scene& scene, const OutputSpec& spec, const ProductInputs& in,
+                     const BakeContext& ctx) {
+  SkyPreviewSpec preview;
+  preview.width = spec.size.at(0);
+  preview.height = spec.size.at(1);
+  preview.camera_altitude_m =
+      option_double(spec, "camera_altitude_km", preview.camera_altitude_m * 1e-3) * 1e3;
+  return bake_sky_preview(scene.atmosphere, *in.at("transmittance"), *in.at("multiscattering"),
+                          preview, ctx);
+}
+
+}  // namespace
+
+void add_atmosphere_products(std::vector<ProductInfo>& r) {
+  r.push_back({"transmittance",
+               "transmittance to the top of the atmosphere, (mu, r), Hillaire 2020 5.2",
+               {"mu", "r"},
+               {256, 64},
+               {4096, 4096},
+               {"exr", "dds"},
+               {"exr", "dds", "png"},
+               {},
+               kAtmosphereSections,
+               "",
+               bake_transmittance,
+               400.0});
+  r.push_back({"multiscattering",
+               "multiple-scattering transfer Psi_ms, (sun zenith, altitude), Hillaire 2020 5.5",
+               {"mu_s", "h"},
+               {32, 32},
+               {1024, 1024},
+               {"exr", "dds"},
+               {"exr", "dds", "png"},
+               {"transmittance"},
+               kAtmosphereSections,
+               "",
+               bake_multiscattering,
+               130000.0});
+  r.push_back({"skyview",
+               "sky-view lat/long LUT, one layer per (altitude, sun zenith), Hillaire 2020 5.3",
+               {"azimuth", "latitude"},
+               {192, 108},
+               {4096, 4096},
+               {"exr", "dds"},
+               {"exr", "dds", "png"},
+               {"transmittance", "multiscattering"},
+               kAtmosphereSections,
+               "",
+               bake_skyview,
+               1400.0 * 8});
+  r.push_back({"aerial_perspective",
+               "camera froxels: RGB in-scattering, A mean transmittance, Hillaire 2020 5.4",
+               {"x", "y", "slice"},
+               {32, 32, 32},
+               {512, 512, 512},
+               {"exr", "dds"},
+               {"exr", "dds", "vdb", "png"},
+               {"transmittance", "multiscattering"},
+               kAtmosphereSections,
+               "",
+               bake_aerial_perspective,
+               150.0});
+  r.push_back({"sky_preview",
+               "PNG previews of the sky rendered from the LUTs (sun high to below the horizon, "
+               "space)",
+               {"width", "height"},
+               {320, 180},
+               {2048, 2048},
+               {"png"},
+               {"png", "exr"},
+               {"transmittance", "multiscattering"},
+               kAtmosphereSections,
+               "",
+               bake_preview,
+               30000.0});
+}
+
+}  // namespace skybake

@@ -1,0 +1,154 @@
+// Cloud noise products (issue 5): the Perlin-Worley shape volume, the Worley
+// detail volume and curl noise, with their parameters in the output object
+// (schemas/products/noise_*.schema.json, curl.schema.json). Their spec
+// validation (noise/noise_volume.hpp spec_problems) runs at preset load.
+#include <fmt/format.h>
+
+#include "noise/curl_texture.hpp"
+#include "noise/noise_volume.hpp"
+#include "noise/perlin_worley.hpp"
+#include "pipeline/product_graph.hpp"
+#include "pipeline/product_tables.hpp"
+
+namespace skybake {
+
+namespace {
+
+// "worley[2].octaves" -> "/worley/2/octaves" (relative to the output object).
+std::string pointer_from_field(const std::string& field) {
+  std::string p = "/";
+  for (char c : field) {
+    if (c == '[' || c == '.') {
+      p += '/';
+    } else if (c != ']') {
+      p += c;
+    }
+  }
+  return p;
+}
+
+template <typename Spec>
+std::vector<ProductProblem> problems_of(const Spec& spec) {
+  std::vector<ProductProblem> out;
+  for (const SpecProblem& p : spec_problems(spec))
+    out.push_back({p.field == "size" ? "/size" : pointer_from_field(p.field), p.message});
+  return out;
+}
+
+WorleyFbmSpec worley_from(const nlohmann::json& j, WorleyFbmSpec fallback) {
+  if (!j.is_object()) return fallback;
+  return {j.value("period", fallback.period), j.value("octaves", fallback.octaves)};
+}
+
+std::vector<ProductProblem> cube_problems(const OutputSpec& spec) {
+  for (size_t i = 1; i < spec.size.size(); ++i)
+    if (spec.size[i] != spec.size[0])
+      return {{"/size", fmt::format("the texture is a cube (square) and tiles on every axis: "
+                                    "expected equal sizes, got {}",
+                                    nlohmann::json(spec.size).dump())}};
+  return {};
+}
+
+NoiseShapeSpec shape_spec(const OutputSpec& spec) {
+  NoiseShapeSpec s;
+  s.size = spec.size.at(0);
+  s.seed = uint32_t(spec.options.value("seed", 0u));
+  const nlohmann::json perlin = spec.options.value("perlin", nlohmann::json::object());
+  s.perlin_period = perlin.value("period", s.perlin_period);
+  s.perlin_octaves = perlin.value("octaves", s.perlin_octaves);
+  s.perlin_gain = perlin.value("gain", s.perlin_gain);
+  s.perlin_worley = worley_from(spec.options.value("perlin_worley", nlohmann::json()),
+                                s.perlin_worley);
+  if (auto r = remap_from_name(option_string(spec, "remap", remap_name(s.remap)))) s.remap = *r;
+  const nlohmann::json worley = spec.options.value("worley", nlohmann::json::array());
+  for (size_t i = 0; i < s.worley.size() && i < worley.size(); ++i)
+    s.worley[i] = worley_from(worley[i], s.worley[i]);
+  return s;
+}
+
+NoiseDetailSpec detail_spec(const OutputSpec& spec) {
+  NoiseDetailSpec s;
+  s.size = spec.size.at(0);
+  s.seed = uint32_t(spec.options.value("seed", 0u));
+  const nlohmann::json worley = spec.options.value("worley", nlohmann::json::array());
+  for (size_t i = 0; i < s.worley.size() && i < worley.size(); ++i)
+    s.worley[i] = worley_from(worley[i], s.worley[i]);
+  return s;
+}
+
+CurlSpec curl_spec(const OutputSpec& spec) {
+  CurlSpec s;
+  s.size = spec.size.at(0);
+  s.seed = uint32_t(spec.options.value("seed", 0u));
+  s.period = spec.options.value("period", s.period);
+  s.octaves = spec.options.value("octaves", s.octaves);
+  s.gain = spec.options.value("gain", s.gain);
+  return s;
+}
+
+bool packed(const OutputSpec& spec) { return option_string(spec, "pack", "none") != "none"; }
+
+Texture bake_shape(const Scene&, const OutputSpec& spec, const ProductInputs&,
+                   const BakeContext& ctx) {
+  Texture tex = bake_noise_shape(shape_spec(spec), ctx);
+  return packed(spec) ? pack_single_channel(tex, shape_pack_weights()) : tex;
+}
+
+Texture bake_detail(const Scene&, const OutputSpec& spec, const ProductInputs&,
+                    const BakeContext& ctx) {
+  Texture tex = bake_noise_detail(detail_spec(spec), ctx);
+  return packed(spec) ? pack_single_channel(tex, detail_pack_weights()) : tex;
+}
+
+Texture bake_curl_noise(const Scene&, const OutputSpec& spec, const ProductInputs&,
+                        const BakeContext& ctx) {
+  return bake_curl(curl_spec(spec), ctx);
+}
+
+template <typename Spec, Spec (*make)(const OutputSpec&)>
+std::vector<ProductProblem> check(const OutputSpec& spec) {
+  std::vector<ProductProblem> problems = cube_problems(spec);
+  if (problems.empty()) problems = problems_of(make(spec));
+  return problems;
+}
+
+ProductInfo noise_product(std::string name, std::string summary, std::vector<std::string> axes,
+                          std::vector<int> size, std::vector<int> max_size, BakeFn bake,
+                          double ns_per_texel, CheckFn check_fn) {
+  ProductInfo p;
+  p.name = std::move(name);
+  p.summary = std::move(summary);
+  p.axes = std::move(axes);
+  p.default_size = std::move(size);
+  p.max_size = std::move(max_size);
+  p.default_formats = {"dds", "png"};
+  p.allowed_formats = {"dds", "exr", "vdb", "png"};
+  p.default_dds_format = "unorm8";
+  p.bake = std::move(bake);
+  p.ns_per_texel = ns_per_texel;
+  p.check = std::move(check_fn);
+  p.default_mips = true;
+  p.preview_tiled = true;
+  p.preview_split = true;
+  return p;
+}
+
+}  // namespace
+
+void add_noise_products(std::vector<ProductInfo>& r) {
+  r.push_back(noise_product("noise_shape",
+                            "tileable cloud shape volume: R Perlin-Worley, GBA Worley fBm "
+                            "(Schneider 2015)",
+                            {"x", "y", "z"}, {128, 128, 128}, {1024, 1024, 1024}, bake_shape, 50.0,
+                            check<NoiseShapeSpec, shape_spec>));
+  r.push_back(noise_product("noise_detail",
+                            "tileable cloud detail volume: RGB Worley fBm at rising frequencies",
+                            {"x", "y", "z"}, {32, 32, 32}, {1024, 1024, 1024}, bake_detail, 40.0,
+                            check<NoiseDetailSpec, detail_spec>));
+  r.push_back(noise_product("curl",
+                            "tileable 2D curl noise (divergence free) to distort detail lookups",
+                            {"x", "y"}, {128, 128}, {8192, 8192}, bake_curl_noise, 600.0,
+                            check<CurlSpec, curl_spec>));
+}
+
+}  // namespace skybake

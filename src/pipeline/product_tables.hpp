@@ -1,0 +1,15 @@
+// The registry is assembled from one table per family of products, each in
+// its own file (atmosphere_products.cpp, noise_products.cpp, ...), so adding a
+// product touches one table and one schema file.
+#pragma once
+
+#include <vector>
+
+#include "pipeline/product.hpp"
+
+namespace skybake {
+
+void add_atmosphere_products(std::vector<ProductInfo>& registry);
+void add_noise_products(std::vector<ProductInfo>& registry);
+
+}  // namespace skybake

@@ -1,0 +1,249 @@
+// Tests of the sky ray march (atmosphere/sky_integrator.hpp): the segment
+// integral's closed form, clipping rays to the shell, an empty atmosphere,
+// single scattering in a uniform slab against its closed form, the planet's
+// shadow, the lit ground, viewers in space, the cumulative profile and stiff
+// media.
+#include "atmosphere/sky_integrator.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "atmosphere/multiscattering_lut.hpp"
+#include "atmosphere/phase.hpp"
+#include "atmosphere/test_atmospheres.hpp"
+#include "atmosphere/transmittance_lut.hpp"
+
+namespace skybake {
+namespace {
+
+using fixtures::earth_atmosphere;
+using fixtures::empty_atmosphere;
+using fixtures::uniform_slab_atmosphere;
+
+const glm::dvec3 kUp(0.0, 0.0, 1.0);
+
+bool all_finite(glm::dvec3 v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+Texture small_transmittance(const Atmosphere& atm) {
+  return bake_transmittance_lut(atm, {128, 64, 40}, {});
+}
+
+TEST(IntegrateSegment, MatchesClosedFormAndLimits) {
+  // integral_0^d S exp(-s t) dt = S (1 - exp(-s d)) / s.
+  const glm::dvec3 s(2e-5, 1e-3, 0.0);
+  const glm::dvec3 out = integrate_segment(glm::dvec3(3.0), s, 1500.0);
+  EXPECT_NEAR(out.x, 3.0 * (1.0 - std::exp(-0.03)) / 2e-5, 1e-9);
+  EXPECT_NEAR(out.y, 3.0 * (1.0 - std::exp(-1.5)) / 1e-3, 1e-9);
+  EXPECT_DOUBLE_EQ(out.z, 3.0 * 1500.0);  // no extinction: S d
+  // Optically thick: never more than S / sigma_t, however long the segment.
+  const glm::dvec3 thick = integrate_segment(glm::dvec3(1.0), glm::dvec3(1.0), 1e9);
+  EXPECT_DOUBLE_EQ(thick.x, 1.0);
+  // Tiny optical depth keeps full precision (expm1): S d (1 - s d / 2).
+  const glm::dvec3 thin = integrate_segment(glm::dvec3(1.0), glm::dvec3(1e-15), 1.0);
+  EXPECT_NEAR(thin.x, 1.0, 1e-15);
+}
+
+TEST(ClipRay, GroundViewerZenithAndNadir) {
+  const Atmosphere atm = earth_atmosphere();
+  const glm::dvec3 p(0.0, 0.0, atm.bottom_radius_m);
+  const AtmosphereSpan up = clip_ray_to_atmosphere(atm, p, kUp);
+  EXPECT_TRUE(up.hits_atmosphere);
+  EXPECT_FALSE(up.exits_on_ground);
+  EXPECT_DOUBLE_EQ(up.t_enter, 0.0);
+  EXPECT_NEAR(up.t_exit, atm.top_radius_m - atm.bottom_radius_m, 1e-6);
+  const AtmosphereSpan down = clip_ray_to_atmosphere(atm, p, -kUp);
+  EXPECT_TRUE(down.exits_on_ground);
+  EXPECT_DOUBLE_EQ(down.t_exit, 0.0);
+}
+
+TEST(ClipRay, SpaceViewerEntersAtTheTopOrMisses) {
+  const Atmosphere atm = earth_atmosphere();
+  const double r = 2.0 * atm.top_radius_m;
+  const glm::dvec3 p(0.0, 0.0, r);
+  const AtmosphereSpan down = clip_ray_to_atmosphere(atm, p, -kUp);
+  EXPECT_TRUE(down.hits_atmosphere);
+  EXPECT_NEAR(down.t_enter, r - atm.top_radius_m, 1e-6);
+  EXPECT_NEAR(down.t_exit, r - atm.bottom_radius_m, 1e-6);
+  EXPECT_TRUE(down.exits_on_ground);
+  EXPECT_FALSE(clip_ray_to_atmosphere(atm, p, kUp).hits_atmosphere);
+  EXPECT_FALSE(clip_ray_to_atmosphere(atm, p, {1.0, 0.0, 0.0}).hits_atmosphere);
+  // A grazing ray past the planet through the shell: enters and leaves at the top.
+  const glm::dvec3 side(-1.0, 0.0, 0.0);
+  const glm::dvec3 q(atm.top_radius_m, 0.0, 0.5 * (atm.top_radius_m + atm.bottom_radius_m));
+  const AtmosphereSpan graze = clip_ray_to_atmosphere(atm, q, side);
+  EXPECT_TRUE(graze.hits_atmosphere);
+  EXPECT_FALSE(graze.exits_on_ground);
+  EXPECT_GT(graze.t_exit, graze.t_enter);
+}
+
+TEST(Integrator, EmptyAtmosphereIsBlackAndClear) {
+  const Atmosphere atm = empty_atmosphere();
+  const Texture t = small_transmittance(atm);
+  const glm::dvec3 p(0.0, 0.0, atm.bottom_radius_m + 100.0);
+  for (const glm::dvec3 dir : {kUp, glm::dvec3(1, 0, 0), glm::normalize(glm::dvec3(1, 0, -1))}) {
+    const ScatteringResult s =
+        integrate_scattered_luminance(atm, t, nullptr, p, dir, kUp, INFINITY, 30);
+    EXPECT_EQ(s.luminance, glm::dvec3(0.0));
+    EXPECT_EQ(s.transmittance, glm::dvec3(1.0));
+  }
+}
+
+TEST(Integrator, UniformSlabZenithMatchesSingleScatteringClosedForm) {
+  // Sun and view at the zenith, constant sigma_s (no absorption) over height
+  // H: T(viewer, x) T_sun(x) = exp(-sigma t) exp(-sigma (H - t)) = exp(-sigma H)
+  // for every x, so L = E p(1) sigma H exp(-sigma H) and T = exp(-sigma H).
+  const glm::dvec3 sigma(2e-6, 1e-5, 3e-5);
+  const Atmosphere atm = uniform_slab_atmosphere(sigma, glm::dvec3(0.0));
+  const double height = atm.top_radius_m - atm.bottom_radius_m;
+  const Texture t = small_transmittance(atm);
+  const glm::dvec3 p(0.0, 0.0, atm.bottom_radius_m);
+  const ScatteringResult s =
+      integrate_scattered_luminance(atm, t, nullptr, p, kUp, kUp, INFINITY, 64);
+  for (int c = 0; c < 3; ++c) {
+    const double expected = rayleigh_phase(1.0) * sigma[c] * height * std::exp(-sigma[c] * height);
+    EXPECT_NEAR(s.luminance[c], expected, 2e-3 * expected) << c;
+    // Constant extinction: the segment products are exact.
+    EXPECT_NEAR(s.transmittance[c], std::exp(-sigma[c] * height), 1e-12) << c;
+  }
+}
+
+TEST(Integrator, SunAtNadirLeavesTheZenithRayInTheShadow) {
+  // Every point of the zenith ray sees the sun through the planet: Vis = 0.
+  // The multiple-scattering LUT is black there too (everything it integrates
+  // is in the shadow and the ground is unlit), so the result is exactly 0.
+  const Atmosphere atm = earth_atmosphere();
+  const Texture t = small_transmittance(atm);
+  const Texture ms = bake_multiscattering_lut(atm, t, {8, 8, 16, 10}, {});
+  const glm::dvec3 p(0.0, 0.0, atm.bottom_radius_m);
+  const ScatteringResult s = integrate_scattered_luminance(atm, t, &ms, p, kUp, -kUp, INFINITY, 30);
+  EXPECT_EQ(s.luminance, glm::dvec3(0.0));
+  EXPECT_LT(s.transmittance.z, 1.0);
+}
+
+TEST(Integrator, LitGroundSeenThroughEmptyAtmosphereIsLambertian) {
+  // No medium: looking straight down from 1 km sees albedo / pi * E * mu_s.
+  Atmosphere atm = empty_atmosphere();
+  atm.ground_albedo = glm::dvec3(0.2, 0.3, 0.4);
+  atm.sun_illuminance = glm::dvec3(2.0);
+  const Texture t = small_transmittance(atm);
+  const glm::dvec3 p(0.0, 0.0, atm.bottom_radius_m + 1e3);
+  const double mu_s = 0.6;
+  const glm::dvec3 sun(std::sqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
+  const ScatteringResult s = integrate_scattered_luminance(atm, t, nullptr, p, -kUp, sun, INFINITY,
+                                                           8, {StepDistribution::uniform, true});
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(s.luminance[c], atm.ground_albedo[c] / kPi * 2.0 * mu_s, 1e-12) << c;
+  // Without the option the ground is not added.
+  const ScatteringResult off =
+      integrate_scattered_luminance(atm, t, nullptr, p, -kUp, sun, INFINITY, 8);
+  EXPECT_EQ(off.luminance, glm::dvec3(0.0));
+}
+
+TEST(Integrator, SpaceViewerEqualsViewerMovedToTheTop) {
+  const Atmosphere atm = earth_atmosphere();
+  const Texture t = small_transmittance(atm);
+  const glm::dvec3 dir = glm::normalize(glm::dvec3(0.3, 0.0, -1.0));
+  const glm::dvec3 sun = glm::normalize(glm::dvec3(1.0, 0.0, 1.0));
+  const glm::dvec3 far = glm::dvec3(0.0, 0.0, 3.0 * atm.top_radius_m);
+  const AtmosphereSpan span = clip_ray_to_atmosphere(atm, far, dir);
+  ASSERT_TRUE(span.hits_atmosphere);
+  const glm::dvec3 entry = far + span.t_enter * dir;
+  const ScatteringResult a =
+      integrate_scattered_luminance(atm, t, nullptr, far, dir, sun, INFINITY, 40);
+  const ScatteringResult b =
+      integrate_scattered_luminance(atm, t, nullptr, entry, dir, sun, INFINITY, 40);
+  ASSERT_GT(b.luminance.z, 0.0);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(a.luminance[c], b.luminance[c], 1e-6 * b.luminance[c]) << c;
+    EXPECT_NEAR(a.transmittance[c], b.transmittance[c], 1e-9) << c;
+  }
+  // A ray that misses the shell: nothing.
+  const ScatteringResult miss =
+      integrate_scattered_luminance(atm, t, nullptr, far, kUp, sun, INFINITY, 40);
+  EXPECT_EQ(miss.luminance, glm::dvec3(0.0));
+  EXPECT_EQ(miss.transmittance, glm::dvec3(1.0));
+}
+
+TEST(Integrator, ProfileIsMonotonicAndEndsOnTheDirectMarch) {
+  const Atmosphere atm = earth_atmosphere();
+  const Texture t = small_transmittance(atm);
+  const glm::dvec3 p(0.0, 0.0, atm.bottom_radius_m + 200.0);
+  const glm::dvec3 dir = glm::normalize(glm::dvec3(1.0, 0.0, 0.05));
+  const glm::dvec3 sun = glm::normalize(glm::dvec3(1.0, 0.5, 0.4));
+  std::vector<double> d;
+  for (int k = 0; k < 16; ++k) d.push_back((k + 0.5) * 2e3);
+  const std::vector<ScatteringResult> prof =
+      integrate_scattered_luminance_profile(atm, t, nullptr, p, dir, sun, d, 3);
+  for (size_t k = 1; k < prof.size(); ++k) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_GT(prof[k].luminance[c], prof[k - 1].luminance[c]) << k;
+      EXPECT_LT(prof[k].transmittance[c], prof[k - 1].transmittance[c]) << k;
+    }
+  }
+  // Zero distance: nothing scattered, nothing absorbed.
+  const ScatteringResult zero = integrate_scattered_luminance(atm, t, nullptr, p, dir, sun, 0.0, 7);
+  EXPECT_EQ(zero.luminance, glm::dvec3(0.0));
+  EXPECT_EQ(zero.transmittance, glm::dvec3(1.0));
+  // One interval of n segments is the plain uniform march of n segments.
+  const std::vector<ScatteringResult> one =
+      integrate_scattered_luminance_profile(atm, t, nullptr, p, dir, sun, {5e3}, 7);
+  const ScatteringResult direct =
+      integrate_scattered_luminance(atm, t, nullptr, p, dir, sun, 5e3, 7);
+  EXPECT_EQ(one[0].luminance, direct.luminance);
+  EXPECT_EQ(one[0].transmittance, direct.transmittance);
+}
+
+TEST(Integrator, ProfileStopsAtTheGround) {
+  const Atmosphere atm = earth_atmosphere();
+  const Texture t = small_transmittance(atm);
+  const glm::dvec3 p(0.0, 0.0, atm.bottom_radius_m + 100.0);
+  const glm::dvec3 down = glm::normalize(glm::dvec3(1.0, 0.0, -1.0));  // ground at ~141 m
+  const std::vector<ScatteringResult> prof =
+      integrate_scattered_luminance_profile(atm, t, nullptr, p, down, kUp, {50.0, 1e3, 5e3}, 2);
+  EXPECT_GT(prof[1].luminance.z, prof[0].luminance.z);
+  EXPECT_EQ(prof[1].luminance, prof[2].luminance);
+  EXPECT_EQ(prof[1].transmittance, prof[2].transmittance);
+}
+
+// Stiff media of DESIGN.md: finite, non-negative, transmittance in [0, 1].
+void expect_sane_everywhere(const Atmosphere& atm) {
+  const Texture t = small_transmittance(atm);
+  const Texture ms = bake_multiscattering_lut(atm, t, {8, 8, 16, 10}, {});
+  const double top = atm.top_radius_m, bottom = atm.bottom_radius_m;
+  for (double r : {bottom, bottom + 0.01 * (top - bottom), top, 1.5 * top}) {
+    for (double mu_v : {1.0, 0.3, 0.0, -1e-9, -0.2, -1.0}) {
+      for (double mu_s : {1.0, 0.05, 0.0, -0.1, -1.0}) {
+        const glm::dvec3 dir(std::sqrt(1.0 - mu_v * mu_v), 0.0, mu_v);
+        const glm::dvec3 sun(std::sqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
+        const ScatteringResult s =
+            integrate_scattered_luminance(atm, t, &ms, {0.0, 0.0, r}, dir, sun, INFINITY, 30,
+                                          {StepDistribution::quadratic, true});
+        ASSERT_TRUE(all_finite(s.luminance)) << r << " " << mu_v << " " << mu_s;
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_GE(s.luminance[c], 0.0);
+          EXPECT_GE(s.transmittance[c], 0.0);
+          EXPECT_LE(s.transmittance[c], 1.0);
+        }
+      }
+    }
+  }
+}
+
+TEST(Integrator, StiffMediaStayFinite) {
+  Atmosphere dense = earth_atmosphere();
+  dense.components[0].scattering_per_m *= 100.0;
+  expect_sane_everywhere(dense);
+  Atmosphere sharp = earth_atmosphere();
+  sharp.components[1].g = 0.999;
+  expect_sane_everywhere(sharp);
+  Atmosphere tiny = earth_atmosphere();  // a 1 km planet under a 100 km atmosphere
+  tiny.bottom_radius_m = 1e3;
+  tiny.top_radius_m = 101e3;
+  expect_sane_everywhere(tiny);
+}
+
+}  // namespace
+}  // namespace skybake
