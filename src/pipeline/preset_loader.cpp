@@ -316,7 +316,8 @@ void product_options(json& out, const ProductInfo& info, const Source& src) {
 
 OutputSpec output_from(json& out, size_t index, const std::string& file,
                        std::map<std::string, size_t>& products,
-                       std::map<std::string, size_t>& names, bool has_atmosphere) {
+                       std::map<std::string, size_t>& names, bool has_atmosphere,
+                       bool has_clouds) {
   OutputSpec spec;
   spec.pointer = "/outputs" + token(index);
   const Source src{file, spec.pointer};
@@ -330,6 +331,10 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
                                          : fmt::format("{}", fmt::join(product_names(), ", "))));
   product_options(out, *info, src);
   const auto& sections = info->scene_sections;
+  if (!has_clouds && std::find(sections.begin(), sections.end(), "clouds") != sections.end())
+    src.fail("/product", fmt::format("'{}' needs the scene's clouds section (inline or a file of "
+                                     "presets/clouds/), and this scene has none",
+                                     info->name));
   if (!has_atmosphere && std::find(sections.begin(), sections.end(), "atmosphere") != sections.end())
     src.fail("/product", fmt::format("'{}' needs the scene's planet and atmosphere, and this scene "
                                      "has neither",
@@ -435,7 +440,7 @@ Scene load_scene(const fs::path& file) {
     scene_src.fail("", has_planet ? "missing required key 'atmosphere' (a planet needs its "
                                     "atmosphere; an empty one is {\"top_radius_km\": ...})"
                                   : "missing required key 'planet' (an atmosphere needs its planet)");
-  for (const char* key : {"planet", "atmosphere"})
+  for (const char* key : {"planet", "atmosphere", "clouds"})
     if (doc.contains(key) && doc[key].is_string())
       sources.push_back((file.parent_path() / doc[key].get<std::string>()).lexically_normal());
 
@@ -444,6 +449,8 @@ Scene load_scene(const fs::path& file) {
     inline_section(doc, "planet", file, display, planet_src);
     inline_section(doc, "atmosphere", file, display, atmosphere_src);
   }
+  Source clouds_src;
+  if (doc.contains("clouds")) inline_section(doc, "clouds", file, display, clouds_src);
   strip_non_semantic(doc);
   apply_schema_defaults(doc, "scene.schema.json");
 
@@ -460,7 +467,8 @@ Scene load_scene(const fs::path& file) {
   json& outputs = doc["outputs"];
   for (size_t i = 0; i < outputs.size(); ++i)
     scene.outputs.push_back(
-        output_from(outputs[i], i, display, products, names, scene.has_atmosphere));
+        output_from(outputs[i], i, display, products, names, scene.has_atmosphere,
+                    doc.contains("clouds")));
   scene.resolved = std::move(doc);
   return scene;
 }

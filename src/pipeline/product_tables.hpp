@@ -11,5 +11,6 @@ namespace skybake {
 
 void add_atmosphere_products(std::vector<ProductInfo>& registry);
 void add_noise_products(std::vector<ProductInfo>& registry);
+void add_cloud_products(std::vector<ProductInfo>& registry);
 
 }  // namespace skybake
