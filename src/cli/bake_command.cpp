@@ -40,7 +40,8 @@ nlohmann::json record_json(const OutputRecord& r, const std::string& scene_dir) 
           {"status", r.status},         {"reason", r.reason},
           {"files", files},             {"dimensions", r.entry.dimensions},
           {"layers", r.entry.layers},   {"channels", r.entry.channels},
-          {"input_hash", r.entry.input_hash}, {"bake_seconds", r.entry.bake_seconds}};
+          {"input_hash", r.entry.input_hash}, {"bake_seconds", r.entry.bake_seconds},
+          {"estimated_error", r.entry.estimated_error}};
 }
 
 }  // namespace

@@ -14,7 +14,7 @@ nlohmann::json to_json(const ManifestEntry& e) {
           {"files", files},             {"dimensions", e.dimensions},
           {"layers", e.layers},         {"channels", e.channels},
           {"metadata", e.metadata},     {"input_hash", e.input_hash},
-          {"bake_seconds", e.bake_seconds}};
+          {"bake_seconds", e.bake_seconds},     {"estimated_error", e.estimated_error}};
 }
 
 ManifestEntry manifest_entry_from_json(const nlohmann::json& j) {
@@ -29,6 +29,7 @@ ManifestEntry manifest_entry_from_json(const nlohmann::json& j) {
   e.metadata = j.value("metadata", nlohmann::json::object());
   e.input_hash = j.value("input_hash", "");
   e.bake_seconds = j.value("bake_seconds", 0.0);
+  e.estimated_error = j.value("estimated_error", nlohmann::json());
   return e;
 }
 

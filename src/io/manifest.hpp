@@ -30,6 +30,7 @@ struct ManifestEntry {
   nlohmann::json metadata = nlohmann::json::object();  // parameterization name and constants...
   std::string input_hash;
   double bake_seconds = 0.0;
+  nlohmann::json estimated_error;  // null when exact; see pipeline/error_estimates.hpp
 };
 
 struct Manifest {

@@ -2,11 +2,9 @@
 // here, once.
 #include <cmath>
 
-#include "atmosphere/aerial_perspective_lut.hpp"
-#include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/sky_preview.hpp"
-#include "atmosphere/skyview_lut.hpp"
-#include "atmosphere/transmittance_lut.hpp"
+#include "pipeline/atmosphere_specs.hpp"
+#include "pipeline/error_estimates.hpp"
 #include "core/math.hpp"
 #include "pipeline/product_graph.hpp"
 #include "pipeline/product_tables.hpp"
@@ -25,21 +23,13 @@ double json_number(const nlohmann::json& obj, const char* key, double fallback) 
 
 Texture bake_transmittance(const Scene& scene, const OutputSpec& spec, const ProductInputs&,
                            const BakeContext& ctx) {
-  TransmittanceLutSpec lut;
-  lut.width = spec.size.at(0);
-  lut.height = spec.size.at(1);
-  lut.steps = option_int(spec, "steps", lut.steps);
-  return bake_transmittance_lut(scene.atmosphere, lut, ctx);
+  return bake_transmittance_lut(scene.atmosphere, transmittance_spec(spec), ctx);
 }
 
 Texture bake_multiscattering(const Scene& scene, const OutputSpec& spec,
                              const ProductInputs& in, const BakeContext& ctx) {
-  MultiscatteringLutSpec lut;
-  lut.width = spec.size.at(0);
-  lut.height = spec.size.at(1);
-  lut.directions = option_int(spec, "directions", lut.directions);
-  lut.steps = option_int(spec, "steps", lut.steps);
-  return bake_multiscattering_lut(scene.atmosphere, *in.at("transmittance"), lut, ctx);
+  return bake_multiscattering_lut(scene.atmosphere, *in.at("transmittance"),
+                                  multiscattering_spec(spec), ctx);
 }
 
 // Default layers: a viewer near the ground under 8 sun positions from the
@@ -51,8 +41,26 @@ std::vector<SkyviewView> default_skyview_views() {
   return views;
 }
 
-Texture bake_skyview(const Scene& scene, const OutputSpec& spec, const ProductInputs& in,
-                     const BakeContext& ctx) {
+}  // namespace
+
+TransmittanceLutSpec transmittance_spec(const OutputSpec& spec) {
+  TransmittanceLutSpec lut;
+  lut.width = spec.size.at(0);
+  lut.height = spec.size.at(1);
+  lut.steps = option_int(spec, "steps", lut.steps);
+  return lut;
+}
+
+MultiscatteringLutSpec multiscattering_spec(const OutputSpec& spec) {
+  MultiscatteringLutSpec lut;
+  lut.width = spec.size.at(0);
+  lut.height = spec.size.at(1);
+  lut.directions = option_int(spec, "directions", lut.directions);
+  lut.steps = option_int(spec, "steps", lut.steps);
+  return lut;
+}
+
+SkyviewLutSpec skyview_spec(const OutputSpec& spec) {
   SkyviewLutSpec lut;
   lut.width = spec.size.at(0);
   lut.height = spec.size.at(1);
@@ -65,12 +73,10 @@ Texture bake_skyview(const Scene& scene, const OutputSpec& spec, const ProductIn
   } else {
     lut.views = default_skyview_views();
   }
-  return bake_skyview_lut(scene.atmosphere, *in.at("transmittance"), *in.at("multiscattering"),
-                          lut, ctx);
+  return lut;
 }
 
-Texture bake_aerial_perspective(const Scene& scene, const OutputSpec& spec,
-                                const ProductInputs& in, const BakeContext& ctx) {
+AerialPerspectiveSpec aerial_perspective_spec(const OutputSpec& spec) {
   AerialPerspectiveSpec lut;
   lut.width = spec.size.at(0);
   lut.height = spec.size.at(1);
@@ -86,8 +92,21 @@ Texture bake_aerial_perspective(const Scene& scene, const OutputSpec& spec,
   const nlohmann::json sun = spec.options.value("sun", nlohmann::json::object());
   lut.sun_zenith_rad = json_number(sun, "zenith_deg", 45.0) * kDeg;
   lut.sun_azimuth_rad = json_number(sun, "azimuth_deg", 0.0) * kDeg;
+  return lut;
+}
+
+namespace {
+
+Texture bake_skyview(const Scene& scene, const OutputSpec& spec, const ProductInputs& in,
+                     const BakeContext& ctx) {
+  return bake_skyview_lut(scene.atmosphere, *in.at("transmittance"), *in.at("multiscattering"),
+                          skyview_spec(spec), ctx);
+}
+
+Texture bake_aerial_perspective(const Scene& scene, const OutputSpec& spec,
+                                const ProductInputs& in, const BakeContext& ctx) {
   return bake_aerial_perspective_lut(scene.atmosphere, *in.at("transmittance"),
-                                     *in.at("multiscattering"), lut, ctx);
+                                     *in.at("multiscattering"), aerial_perspective_spec(spec), ctx);
 }
 
 Texture bake_preview(const Scene& scene, const OutputSpec& spec, const ProductInputs& in,
@@ -103,68 +122,59 @@ Texture bake_preview(const Scene& scene, const OutputSpec& spec, const ProductIn
 
 }  // namespace
 
+namespace {
+
+ProductInfo atmosphere_product(std::string name, std::string summary,
+                               std::vector<std::string> axes, std::vector<int> size,
+                               std::vector<int> max_size, std::vector<std::string> dependencies,
+                               BakeFn bake, double ns_per_texel, EstimateFn estimate) {
+  ProductInfo p;
+  p.name = std::move(name);
+  p.summary = std::move(summary);
+  p.axes = std::move(axes);
+  p.default_size = std::move(size);
+  p.max_size = std::move(max_size);
+  p.default_formats = {"exr", "dds"};
+  p.allowed_formats = {"exr", "dds", "png"};
+  p.dependencies = std::move(dependencies);
+  p.scene_sections = kAtmosphereSections;
+  p.bake = std::move(bake);
+  p.ns_per_texel = ns_per_texel;
+  p.estimate_error = std::move(estimate);
+  return p;
+}
+
+}  // namespace
+
 void add_atmosphere_products(std::vector<ProductInfo>& r) {
-  r.push_back({"transmittance",
-               "transmittance to the top of the atmosphere, (mu, r), Hillaire 2020 5.2",
-               {"mu", "r"},
-               {256, 64},
-               {4096, 4096},
-               {"exr", "dds"},
-               {"exr", "dds", "png"},
-               {},
-               kAtmosphereSections,
-               "",
-               bake_transmittance,
-               400.0});
-  r.push_back({"multiscattering",
-               "multiple-scattering transfer Psi_ms, (sun zenith, altitude), Hillaire 2020 5.5",
-               {"mu_s", "h"},
-               {32, 32},
-               {1024, 1024},
-               {"exr", "dds"},
-               {"exr", "dds", "png"},
-               {"transmittance"},
-               kAtmosphereSections,
-               "",
-               bake_multiscattering,
-               130000.0});
-  r.push_back({"skyview",
-               "sky-view lat/long LUT, one layer per (altitude, sun zenith), Hillaire 2020 5.3",
-               {"azimuth", "latitude"},
-               {192, 108},
-               {4096, 4096},
-               {"exr", "dds"},
-               {"exr", "dds", "png"},
-               {"transmittance", "multiscattering"},
-               kAtmosphereSections,
-               "",
-               bake_skyview,
-               1400.0 * 8});
-  r.push_back({"aerial_perspective",
-               "camera froxels: RGB in-scattering, A mean transmittance, Hillaire 2020 5.4",
-               {"x", "y", "slice"},
-               {32, 32, 32},
-               {512, 512, 512},
-               {"exr", "dds"},
-               {"exr", "dds", "vdb", "png"},
-               {"transmittance", "multiscattering"},
-               kAtmosphereSections,
-               "",
-               bake_aerial_perspective,
-               150.0});
-  r.push_back({"sky_preview",
-               "PNG previews of the sky rendered from the LUTs (sun high to below the horizon, "
-               "space)",
-               {"width", "height"},
-               {320, 180},
-               {2048, 2048},
-               {"png"},
-               {"png", "exr"},
-               {"transmittance", "multiscattering"},
-               kAtmosphereSections,
-               "",
-               bake_preview,
-               30000.0});
+  r.push_back(atmosphere_product(
+      "transmittance", "transmittance to the top of the atmosphere, (mu, r), Hillaire 2020 5.2",
+      {"mu", "r"}, {256, 64}, {4096, 4096}, {}, bake_transmittance, 400.0,
+      estimate_transmittance_error));
+  r.push_back(atmosphere_product(
+      "multiscattering",
+      "multiple-scattering transfer Psi_ms, (sun zenith, altitude), Hillaire 2020 5.5",
+      {"mu_s", "h"}, {32, 32}, {1024, 1024}, {"transmittance"}, bake_multiscattering, 130000.0,
+      estimate_multiscattering_error));
+  r.push_back(atmosphere_product(
+      "skyview", "sky-view lat/long LUT, one layer per (altitude, sun zenith), Hillaire 2020 5.3",
+      {"azimuth", "latitude"}, {192, 108}, {4096, 4096}, {"transmittance", "multiscattering"},
+      bake_skyview, 1400.0 * 8, estimate_skyview_error));
+  ProductInfo ap = atmosphere_product(
+      "aerial_perspective",
+      "camera froxels: RGB in-scattering, A mean transmittance, Hillaire 2020 5.4",
+      {"x", "y", "slice"}, {32, 32, 32}, {512, 512, 512}, {"transmittance", "multiscattering"},
+      bake_aerial_perspective, 150.0, estimate_aerial_perspective_error);
+  ap.allowed_formats.push_back("vdb");
+  r.push_back(std::move(ap));
+  ProductInfo preview = atmosphere_product(
+      "sky_preview",
+      "PNG previews of the sky rendered from the LUTs (sun high to below the horizon, space)",
+      {"width", "height"}, {320, 180}, {2048, 2048}, {"transmittance", "multiscattering"},
+      bake_preview, 30000.0, nullptr);
+  preview.default_formats = {"png"};
+  preview.allowed_formats = {"png", "exr"};
+  r.push_back(std::move(preview));
 }
 
 }  // namespace skybake

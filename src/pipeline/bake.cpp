@@ -165,9 +165,15 @@ BakeSummary bake_scene(const Scene& scene, const BakeOptions& options) {
     set_meta(tex.metadata, "preset", scene.file.filename().string());
     summary.computed.push_back(node.info->name);
     if (!node.requested) continue;
+    const double bake_seconds = seconds_since(t_bake);
     std::vector<ManifestFile> files = write_outputs(tex, *node.info, node.spec, summary.scene_dir);
     OutputRecord rec{node.info->name, "baked", reasons[i],
-                     make_entry(node, tex, std::move(files), seconds_since(t_bake))};
+                     make_entry(node, tex, std::move(files), bake_seconds)};
+    if (node.info->estimate_error) {
+      const auto t_estimate = std::chrono::steady_clock::now();
+      rec.entry.estimated_error = node.info->estimate_error(scene, node.spec, inputs, tex);
+      rec.entry.estimated_error["seconds"] = seconds_since(t_estimate);
+    }
     written.push_back(rec.entry);
     update_stamp(summary.scene_dir, node.spec.name, node.input_hash);
     if (options.on_output) options.on_output(rec);

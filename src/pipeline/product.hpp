@@ -26,6 +26,11 @@ struct ProductProblem {
 };
 using CheckFn = std::function<std::vector<ProductProblem>(const OutputSpec&)>;
 
+// Estimated error of a baked texture against a finer computation of the same
+// quantity (pipeline/error_estimates.hpp); null when the product is exact.
+using EstimateFn = std::function<nlohmann::json(const Scene&, const OutputSpec&,
+                                                const ProductInputs&, const Texture&)>;
+
 using BakeFn = std::function<Texture(const Scene&, const OutputSpec&, const ProductInputs&,
                                      const BakeContext&)>;
 
@@ -51,6 +56,7 @@ struct ProductInfo {
   bool default_mips = false;     // DDS mip chain unless the output says "mips"
   bool preview_tiled = false;    // PNG preview repeats each panel 2x2 (tileable textures)
   bool preview_split = false;    // PNG preview shows each channel as its own grey panel
+  EstimateFn estimate_error;     // empty: exact (no discretisation to estimate)
 };
 
 // All products, in a stable order (dependencies before dependents).

@@ -3,6 +3,8 @@
 // counts and the --json summary.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <nlohmann/json.hpp>
 
 #include "support/run.hpp"
@@ -41,6 +43,31 @@ TEST(BakeCommand, EarthWritesTransmittanceAndManifest) {
   EXPECT_EQ(t["input_hash"].get<std::string>().size(), 16u);
   EXPECT_TRUE(t["metadata"].contains("parameterization"));
   EXPECT_GE(t["bake_seconds"].get<double>(), 0.0);
+}
+
+TEST(BakeCommand, ManifestRecordsEstimatedErrorAndTimeOfEveryLut) {
+  const fs::path out = fresh_dir("bake_error_estimates");
+  ASSERT_EQ(run_skybake({"bake", kEarth, "-o", out.string(), "-q"}).exit_code, 0);
+  const auto manifest = nlohmann::json::parse(read_file(out / "earth/manifest.json"));
+  // Discretisation error bounds of the default settings against 8-16x finer
+  // integrations of the same quantity (documented in the product headers).
+  const std::map<std::string, double> bound = {{"transmittance", 1e-4},
+                                               {"multiscattering", 0.05},
+                                               {"skyview", 0.05},
+                                               {"aerial_perspective", 0.01}};
+  size_t checked = 0;
+  for (const auto& o : manifest["outputs"]) {
+    const std::string product = o["product"];
+    EXPECT_GT(o["bake_seconds"].get<double>(), 0.0) << product;
+    if (!bound.count(product)) continue;
+    const auto& e = o["estimated_error"];
+    ASSERT_TRUE(e.is_object()) << product;
+    EXPECT_GT(e["samples"].get<int>(), 0) << product;
+    EXPECT_LT(e["max_rel"].get<double>(), bound.at(product)) << product;
+    EXPECT_LE(e["rms_rel"].get<double>(), e["max_rel"].get<double>()) << product;
+    ++checked;
+  }
+  EXPECT_EQ(checked, bound.size());
 }
 
 TEST(BakeCommand, SecondRunDoesNoWorkUnlessForced) {

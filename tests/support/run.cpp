@@ -1,6 +1,7 @@
 #include "support/run.hpp"
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -27,7 +28,8 @@ std::string read_file(const fs::path& path) {
 }
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::path(SKYBAKE_TEST_TMP) / name;
+  // ctest runs test cases as parallel processes: one folder per process.
+  const fs::path dir = fs::path(SKYBAKE_TEST_TMP) / (name + "." + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

@@ -17,7 +17,8 @@ struct RunResult {
 // Runs SKYBAKE_EXE with the arguments (shell-quoted here), in `cwd` if given.
 RunResult run_skybake(const std::vector<std::string>& args, const std::filesystem::path& cwd = {});
 
-// An empty folder under SKYBAKE_TEST_TMP named after the test.
+// An empty folder under SKYBAKE_TEST_TMP named after the test (and this
+// process, since ctest runs cases in parallel processes).
 std::filesystem::path fresh_dir(const std::string& name);
 
 std::string read_file(const std::filesystem::path& path);

@@ -1,0 +1,18 @@
+// Preset output objects (km, degrees) -> the atmosphere bakers' SI specs,
+// converted here once; shared by the product table and the error estimates.
+#pragma once
+
+#include "atmosphere/aerial_perspective_lut.hpp"
+#include "atmosphere/multiscattering_lut.hpp"
+#include "atmosphere/skyview_lut.hpp"
+#include "atmosphere/transmittance_lut.hpp"
+#include "pipeline/scene.hpp"
+
+namespace skybake {
+
+TransmittanceLutSpec transmittance_spec(const OutputSpec& spec);
+MultiscatteringLutSpec multiscattering_spec(const OutputSpec& spec);
+SkyviewLutSpec skyview_spec(const OutputSpec& spec);
+AerialPerspectiveSpec aerial_perspective_spec(const OutputSpec& spec);
+
+}  // namespace skybake
