@@ -6,4 +6,4 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
 ./scripts/build.sh
-./build/skybake bake presets/*.json -o out "$@"
+./build/skybake bake presets/*.json presets/clouds/ -o out "$@"

@@ -13,6 +13,7 @@
 #include "cli/progress.hpp"
 #include "core/error.hpp"
 #include "pipeline/bake.hpp"
+#include "pipeline/catalog.hpp"
 #include "pipeline/preset_loader.hpp"
 
 namespace skybake::cli {
@@ -48,7 +49,7 @@ nlohmann::json record_json(const OutputRecord& r, const std::string& scene_dir) 
 
 int run_bake(const BakeArgs& args) {
   std::vector<Scene> scenes;
-  for (const std::string& preset : args.presets) scenes.push_back(load_scene(preset));
+  for (const auto& preset : expand_catalog(args.presets)) scenes.push_back(load_scene(preset));
 
   const size_t threads =
       args.threads > 0 ? size_t(args.threads) : size_t(tbb::info::default_concurrency());

@@ -60,7 +60,9 @@ int main(int argc, char** argv) {
   skybake::cli::BakeArgs bake;
   CLI::App* bake_cmd = app.add_subcommand(
       "bake", "Bake the outputs each scene preset asks for (only what is stale).");
-  bake_cmd->add_option("presets", bake.presets, "Scene preset files (JSON)")->required();
+  bake_cmd->add_option("presets", bake.presets,
+                       "Scene presets: files, folders (their scene presets, recursively) or globs")
+      ->required();
   bake_cmd->add_option("-o,--out", bake.out_dir, "Output folder; files go to DIR/<scene>/")
       ->capture_default_str();
   bake_cmd->add_option("--only", bake.only,

@@ -4,6 +4,8 @@
 // file is reported against that file, not the scene that references it.
 #include "pipeline/preset_loader.hpp"
 
+#include "pipeline/product_tables.hpp"
+
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -79,7 +81,7 @@ void check_kind(const json& doc, const std::string& display, const std::string& 
   auto it = doc.find("$schema");
   if (it == doc.end() || !it->is_string()) return;
   const std::string schema = it->get<std::string>();
-  for (const char* other : {"scene", "planet", "atmosphere"}) {
+  for (const char* other : {"scene", "planet", "atmosphere", "clouds"}) {
     const std::string suffix = std::string(other) + ".schema.json";
     const bool names_other =
         schema.size() >= suffix.size() &&
@@ -453,6 +455,11 @@ Scene load_scene(const fs::path& file) {
   if (doc.contains("clouds")) inline_section(doc, "clouds", file, display, clouds_src);
   strip_non_semantic(doc);
   apply_schema_defaults(doc, "scene.schema.json");
+  // Rules of the clouds section a schema cannot say (ramp order, the rain
+  // rule's headroom), named in the file the section came from.
+  if (doc.contains("clouds"))
+    for (const ProductProblem& p : clouds_section_problems(doc["clouds"]))
+      clouds_src.fail(p.pointer, p.rule);
 
   Scene scene;
   scene.file = file;

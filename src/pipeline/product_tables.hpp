@@ -13,4 +13,8 @@ void add_atmosphere_products(std::vector<ProductInfo>& registry);
 void add_noise_products(std::vector<ProductInfo>& registry);
 void add_cloud_products(std::vector<ProductInfo>& registry);
 
+// Semantic rules of a scene's resolved "clouds" section (pointers relative to
+// the section), checked at preset load.
+std::vector<ProductProblem> clouds_section_problems(const nlohmann::json& clouds);
+
 }  // namespace skybake
