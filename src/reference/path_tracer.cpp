@@ -1,0 +1,334 @@
+// The sky path tracer; see the header for the estimator and its conventions.
+#include "reference/path_tracer.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "atmosphere/geometry.hpp"
+#include "atmosphere/phase.hpp"
+#include "core/math.hpp"
+#include "reference/atmosphere_quadrature.hpp"
+#include "reference/counter_rng.hpp"
+#include "reference/phase_sampling.hpp"
+
+namespace skybake {
+
+namespace {
+
+constexpr int kChunkSamples = 64;  // samples per parallel work item
+// Below this collision probability the view ray's first flight is not
+// forced (rejection would need more than 1e4 tries per collision).
+constexpr double kMinForcedCollision = 1e-4;
+
+// An exponential free path of rate m: -ln(1 - u) / m, u in [0, 1).
+double exponential_step(double m, double u) {
+  return -std::log1p(-u) / m;
+}
+
+}  // namespace
+
+// ---- RadianceAccumulator ----------------------------------------------------
+
+void RadianceAccumulator::add(glm::dvec3 x) {
+  ++n_;
+  const glm::dvec3 delta = x - mean_;
+  mean_ += delta / double(n_);
+  m2_ += delta * (x - mean_);
+}
+
+void RadianceAccumulator::merge(const RadianceAccumulator& other) {
+  if (other.n_ == 0) return;
+  if (n_ == 0) {
+    *this = other;
+    return;
+  }
+  const double n = double(n_ + other.n_);
+  const glm::dvec3 delta = other.mean_ - mean_;
+  mean_ += delta * (double(other.n_) / n);
+  m2_ += other.m2_ + delta * delta * (double(n_) * double(other.n_) / n);
+  n_ += other.n_;
+}
+
+RadianceEstimate RadianceAccumulator::estimate() const {
+  RadianceEstimate e;
+  e.mean = mean_;
+  e.samples = int(n_);
+  if (n_ < 2) {
+    e.ci95 = glm::dvec3(std::numeric_limits<double>::infinity());
+    return e;
+  }
+  const glm::dvec3 variance = glm::max(m2_, 0.0) / double(n_ - 1);
+  e.ci95 = 1.96 * glm::sqrt(variance / double(n_));
+  return e;
+}
+
+// ---- SkyPathTracer ----------------------------------------------------------
+
+SkyPathTracer::SkyPathTracer(const Atmosphere& atm)
+    : atm_(atm), flight_bounds_(atm, 16), transmittance_bounds_(atm, AdaptiveBinning{}) {
+  for (const MediumComponent& c : atm.components) {
+    const glm::dvec3 extinction = c.scattering_per_m + c.absorption_per_m;
+    if (extinction == glm::dvec3(0.0) || c.density.layers.empty()) continue;
+    // A component without a phase cannot scatter: its sigma_s is lost, as in
+    // reference_single_scattering.
+    const glm::dvec3 scattering = c.phase == PhaseKind::none ? glm::dvec3(0.0) : c.scattering_per_m;
+    components_.push_back({c.density, scattering, extinction, c.phase, c.g});
+  }
+}
+
+double SkyPathTracer::extinction(double altitude_m, int channel) const {
+  double sigma_t = 0.0;
+  for (const Component& c : components_)
+    sigma_t += density_at(c.density, altitude_m) * c.extinction[channel];
+  return sigma_t;
+}
+
+bool SkyPathTracer::enter_atmosphere(glm::dvec3 position_m, glm::dvec3 view_dir,
+                                     glm::dvec3& start) const {
+  const double rb = atm_.bottom_radius_m, rt = atm_.top_radius_m;
+  const double r = glm::length(position_m);
+  assert(r > 0.0);
+  if (r <= rt) {
+    start = r < rb ? position_m * (rb / r) : position_m;
+    return true;
+  }
+  const double mu = glm::dot(position_m, view_dir) / r;
+  const double discriminant = r * r * (mu * mu - 1.0) + rt * rt;
+  if (mu >= 0.0 || discriminant < 0.0) return false;
+  const glm::dvec3 entry = position_m + (-r * mu - std::sqrt(discriminant)) * view_dir;
+  start = entry * (rt / glm::length(entry));
+  return true;
+}
+
+// Delta tracking from origin (inside the shell) along dir (unit) to the
+// first real collision, the ground or space. The free path is drawn in
+// optical units of the majorant and spent across the bins' segments.
+template <typename Rng>
+SkyPathTracer::Flight SkyPathTracer::fly(glm::dvec3 origin, glm::dvec3 dir, int channel,
+                                         Rng& rng) const {
+  const double rb = atm_.bottom_radius_m, rt = atm_.top_radius_m;
+  const double r = glm::length(origin);
+  const double mu = clamp_cosine(glm::dot(origin, dir) / r);
+  const bool hits_ground = ray_intersects_ground(rb, r, mu);
+  const double t_end = distance_to_nearest_boundary(rb, rt, r, mu, hits_ground);
+  AltitudeBinWalker walker(flight_bounds_, r, mu, t_end);
+  double t0, t1;
+  int bin;
+  double optical = exponential_step(1.0, rng());  // to the next tentative collision
+  while (walker.next(t0, t1, bin)) {
+    const double m = flight_bounds_.upper(bin)[channel];
+    if (!(m > 0.0)) continue;
+    double t = t0;
+    while (t + optical / m < t1) {
+      t += optical / m;
+      const glm::dvec3 x = origin + t * dir;
+      const double h = std::max(0.0, glm::length(x) - rb);
+      if (rng() * m < extinction(h, channel)) return {Event::medium, x};
+      optical = exponential_step(1.0, rng());
+    }
+    optical = std::max(0.0, optical - (t1 - t) * m);
+  }
+  if (!hits_ground) return {Event::escaped, glm::dvec3(0.0)};
+  const glm::dvec3 g = origin + t_end * dir;
+  return {Event::ground, g * (rb / glm::length(g))};
+}
+
+// Residual ratio tracking of the transmittance from origin toward the sun,
+// 0 in the planet's shadow: per bin segment of length L, the control
+// exp(-lower L) exactly, times prod (1 - (sigma_t - lower) / (upper - lower))
+// over Poisson points of rate upper - lower (Novak et al. 2014, eq. 12 with
+// a piecewise-constant control), the points drawn as one Poisson process in
+// units of the local rate across the segments. No Russian roulette: it would turn a deep
+// transmittance into a rare large value.
+template <typename Rng>
+double SkyPathTracer::sun_transmittance(glm::dvec3 origin, glm::dvec3 sun_dir, int channel,
+                                        Rng& rng) const {
+  const double rb = atm_.bottom_radius_m, rt = atm_.top_radius_m;
+  const double r = glm::length(origin);
+  const double mu = clamp_cosine(glm::dot(origin, sun_dir) / r);
+  if (ray_intersects_ground(rb, r, mu)) return 0.0;
+  AltitudeBinWalker walker(transmittance_bounds_, r, mu, distance_to_top_boundary(rt, r, mu));
+  double control_depth = 0.0, residual = 1.0, t0, t1;
+  int bin;
+  double optical = exponential_step(1.0, rng());  // to the next point, in units of m
+  while (walker.next(t0, t1, bin)) {
+    const double lower = transmittance_bounds_.lower(bin)[channel];
+    const double m = transmittance_bounds_.upper(bin)[channel] - lower;
+    control_depth += lower * (t1 - t0);
+    if (!(m > 0.0)) continue;
+    double t = t0;
+    while (t + optical / m < t1) {
+      t += optical / m;
+      const double h = std::max(0.0, glm::length(origin + t * sun_dir) - rb);
+      residual *= std::clamp(1.0 - (extinction(h, channel) - lower) / m, 0.0, 1.0);
+      if (residual == 0.0) return 0.0;
+      optical = exponential_step(1.0, rng());
+    }
+    optical = std::max(0.0, optical - (t1 - t) * m);
+  }
+  return std::exp(-control_depth) * residual;
+}
+
+// The path from its first vertex on: at each vertex the sun by next-event
+// estimation, then the next direction, Russian roulette and the next flight.
+template <typename Rng>
+double SkyPathTracer::continue_path(Flight flight, glm::dvec3 w, glm::dvec3 sun_dir,
+                                    const PathTracerSpec& spec, int channel, Rng& rng) const {
+  const double rb = atm_.bottom_radius_m;
+  const double sun = atm_.sun_illuminance[channel];
+  double radiance = 0.0, throughput = 1.0;
+  for (int vertex = 1;; ++vertex) {
+    const glm::dvec3 x = flight.position;
+    if (flight.event == Event::medium) {
+      const double h = std::max(0.0, glm::length(x) - rb);
+      const double nu = clamp_cosine(glm::dot(w, sun_dir));
+      double sigma_s = 0.0, sigma_t = 0.0, sigma_s_phase = 0.0;
+      for (const Component& c : components_) {
+        const double d = density_at(c.density, h);
+        sigma_s += d * c.scattering[channel];
+        sigma_t += d * c.extinction[channel];
+        sigma_s_phase += d * c.scattering[channel] * phase_function(c.phase, c.g, nu);
+      }
+      throughput *= sigma_t > 0.0 ? sigma_s / sigma_t : 0.0;
+      if (!(throughput > 0.0)) break;
+      const double t_sun = sun_transmittance(x, sun_dir, channel, rng);
+      radiance += throughput * sun * (sigma_s_phase / sigma_s) * t_sun;
+      // The next direction: a component by its share of sigma_s, then its phase.
+      double pick = rng() * sigma_s;
+      const Component* chosen = nullptr;
+      for (const Component& c : components_) {
+        const double s = density_at(c.density, h) * c.scattering[channel];
+        if (s <= 0.0) continue;
+        chosen = &c;
+        if (pick < s) break;
+        pick -= s;
+      }
+      assert(chosen);
+      w = direction_from_cosine(w, sample_phase_cosine(chosen->phase, chosen->g, rng), rng());
+    } else {
+      if (!spec.ground_reflection) break;
+      const glm::dvec3 n = x / rb;
+      const double mu_s = glm::dot(n, sun_dir);
+      const double albedo = atm_.ground_albedo[channel];
+      if (mu_s > 0.0)
+        radiance +=
+            throughput * albedo / kPi * sun * mu_s * sun_transmittance(x, sun_dir, channel, rng);
+      throughput *= albedo;
+      if (!(throughput > 0.0)) break;
+      w = sample_cosine_hemisphere(n, rng);
+    }
+    if (vertex >= spec.max_bounces) break;
+    if (vertex >= spec.russian_roulette_after) {
+      // Survival = throughput (pbrt's rule): a path of full throughput in a
+      // medium that does not absorb is never cut short, since in a dense
+      // sky its light arrives after hundreds of bounces.
+      const double survive = std::min(throughput, 1.0);
+      if (rng() >= survive) break;
+      throughput /= survive;
+    }
+    flight = fly(x, w, channel, rng);
+    if (flight.event == Event::escaped) break;
+  }
+  return radiance;
+}
+
+// The first flight along the view ray, split (see the header): when a
+// collision is likely enough, one collision forced by rejection (delta
+// tracking repeated until it collides: exactly the conditional
+// distribution) weighted by 1 - T, plus the ground weighted by T.
+template <typename Rng>
+double SkyPathTracer::trace_channel(const ViewRay& view, glm::dvec3 sun_dir,
+                                    const PathTracerSpec& spec, int channel, Rng& rng) const {
+  if (spec.max_bounces < 1) return 0.0;
+  const double transmittance = view.transmittance[channel];
+  const double collision = 1.0 - transmittance;
+  if (!(collision >= kMinForcedCollision)) {
+    const Flight flight = fly(view.start, view.dir, channel, rng);
+    if (flight.event == Event::escaped) return 0.0;
+    return continue_path(flight, view.dir, sun_dir, spec, channel, rng);
+  }
+  Flight flight;
+  for (int attempt = 0; flight.event != Event::medium; ++attempt) {
+    // Expected attempts 1 / (1 - T) <= 1e4; failing 1e7 times has a
+    // probability below exp(-1000): only a broken invariant gets here.
+    if (attempt == 10000000) return 0.0;
+    flight = fly(view.start, view.dir, channel, rng);
+  }
+  double radiance = collision * continue_path(flight, view.dir, sun_dir, spec, channel, rng);
+  if (view.hits_ground && transmittance > 0.0)
+    radiance += transmittance *
+                continue_path({Event::ground, view.ground}, view.dir, sun_dir, spec, channel, rng);
+  return radiance;
+}
+
+bool SkyPathTracer::prepare_view(glm::dvec3 position_m, glm::dvec3 view_dir, ViewRay& view) const {
+  view.dir = glm::normalize(view_dir);
+  if (!enter_atmosphere(position_m, view.dir, view.start)) return false;
+  const double rb = atm_.bottom_radius_m, rt = atm_.top_radius_m;
+  const double r = glm::length(view.start);
+  const double mu = clamp_cosine(glm::dot(view.start, view.dir) / r);
+  view.hits_ground = ray_intersects_ground(rb, r, mu);
+  const double t_end = distance_to_nearest_boundary(rb, rt, r, mu, view.hits_ground);
+  const glm::dvec3 g = view.start + t_end * view.dir;
+  view.ground = view.hits_ground ? g * (rb / glm::length(g)) : glm::dvec3(0.0);
+  view.transmittance = glm::exp(-reference_optical_depth(atm_, r, mu, t_end, 1e-12).value);
+  return true;
+}
+
+glm::dvec3 SkyPathTracer::trace_sample(glm::dvec3 position_m, glm::dvec3 view_dir,
+                                       glm::dvec3 sun_dir, const PathTracerSpec& spec,
+                                       uint64_t sample_index) const {
+  ViewRay view;
+  if (!prepare_view(position_m, view_dir, view)) return glm::dvec3(0.0);
+  return trace_view_sample(view, glm::normalize(sun_dir), spec, sample_index);
+}
+
+glm::dvec3 SkyPathTracer::trace_view_sample(const ViewRay& view, glm::dvec3 sun_dir,
+                                            const PathTracerSpec& spec,
+                                            uint64_t sample_index) const {
+  glm::dvec3 value(0.0);
+  for (int c = 0; c < 3; ++c) {
+    CounterRng rng(spec.seed, sample_index, uint64_t(c));
+    value[c] = trace_channel(view, sun_dir, spec, c, rng);
+  }
+  return value;
+}
+
+RadianceEstimate SkyPathTracer::trace(glm::dvec3 position_m, glm::dvec3 view_dir,
+                                      glm::dvec3 sun_dir, const PathTracerSpec& spec) const {
+  const int samples = std::max(spec.samples, 1);
+  ViewRay view;
+  if (!prepare_view(position_m, view_dir, view)) {
+    RadianceEstimate black;
+    black.samples = samples;
+    return black;  // the ray misses the atmosphere: exactly 0
+  }
+  sun_dir = glm::normalize(sun_dir);
+  const int chunks = (samples + kChunkSamples - 1) / kChunkSamples;
+  std::vector<RadianceAccumulator> partial(static_cast<size_t>(chunks));
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, chunks, 1), [&](const tbb::blocked_range<int>& range) {
+        for (int chunk = range.begin(); chunk != range.end(); ++chunk) {
+          const int end = std::min(samples, (chunk + 1) * kChunkSamples);
+          for (int k = chunk * kChunkSamples; k < end; ++k)
+            partial[size_t(chunk)].add(trace_view_sample(view, sun_dir, spec, uint64_t(k)));
+        }
+      });
+  RadianceAccumulator total;
+  for (const RadianceAccumulator& p : partial) total.merge(p);
+  return total.estimate();
+}
+
+RadianceEstimate trace_sky_radiance(const Atmosphere& atm, glm::dvec3 position_m,
+                                    glm::dvec3 view_dir, glm::dvec3 sun_dir,
+                                    const PathTracerSpec& spec) {
+  return SkyPathTracer(atm).trace(position_m, view_dir, sun_dir, spec);
+}
+
+}  // namespace skybake
