@@ -149,7 +149,7 @@ ProductInfo atmosphere_product(std::string name, std::string summary,
 void add_atmosphere_products(std::vector<ProductInfo>& r) {
   r.push_back(atmosphere_product(
       "transmittance", "transmittance to the top of the atmosphere, (mu, r), Hillaire 2020 5.2",
-      {"mu", "r"}, {256, 64}, {4096, 4096}, {}, bake_transmittance, 400.0,
+      {"mu", "r"}, {256, 64}, {4096, 4096}, {}, bake_transmittance, 7000.0,
       estimate_transmittance_error));
   r.push_back(atmosphere_product(
       "multiscattering",

@@ -1,6 +1,7 @@
 #include "pipeline/bake.hpp"
 
 #include <chrono>
+#include <exception>
 #include <fstream>
 #include <optional>
 
@@ -120,7 +121,8 @@ BakeSummary bake_scene(const Scene& scene, const BakeOptions& options) {
 
   std::vector<std::optional<Texture>> textures(n);
   std::vector<ManifestEntry> written;
-  for (size_t i = 0; i < n; ++i) {
+  std::exception_ptr failure;  // a product that failed; what was written before stays recorded
+  for (size_t i = 0; i < n && !failure; ++i) try {
     const GraphNode& node = graph.nodes[i];
     if (!needed[i]) {
       if (node.requested) {
@@ -175,9 +177,10 @@ BakeSummary bake_scene(const Scene& scene, const BakeOptions& options) {
       rec.entry.estimated_error["seconds"] = seconds_since(t_estimate);
     }
     written.push_back(rec.entry);
-    update_stamp(summary.scene_dir, node.spec.name, node.input_hash);
     if (options.on_output) options.on_output(rec);
     summary.outputs.push_back(std::move(rec));
+  } catch (...) {
+    failure = std::current_exception();
   }
 
   if (!written.empty()) {
@@ -190,6 +193,11 @@ BakeSummary bake_scene(const Scene& scene, const BakeOptions& options) {
     for (const ManifestEntry& e : written) m.entries[e.name] = e;
     write_manifest(manifest_path, m);
   }
+  // Stamps after the manifest: a stamp never claims an output the manifest
+  // does not list (a process killed in between leaves the stamp old, so
+  // ninja runs the edge again and skybake finds the output current).
+  for (const ManifestEntry& e : written) update_stamp(summary.scene_dir, e.name, e.input_hash);
+  if (failure) std::rethrow_exception(failure);
   summary.seconds = seconds_since(t0);
   return summary;
 }

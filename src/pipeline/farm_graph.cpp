@@ -110,6 +110,16 @@ std::string ninja_path(const std::string& p) {
   return s;
 }
 
+// A ninja variable value: '$' starts a ninja variable, so a literal one is "$$".
+std::string ninja_value(const std::string& v) {
+  std::string s;
+  for (char c : v) {
+    if (c == '$') s += '$';
+    s += c;
+  }
+  return s;
+}
+
 std::string shell_quote(const std::string& s) {
   if (s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./=") ==
       std::string::npos)
@@ -132,9 +142,9 @@ std::string emit_ninja(const FarmGraph& graph, const EmitOptions& opt) {
   s += "# `skybake bake PRESET --only PRODUCT`, which rewrites the product's stamp\n";
   s += "# only when it bakes, so restat keeps ninja and skybake in agreement.\n";
   s += "ninja_required_version = 1.7\n\n";
-  s += fmt::format("skybake = {}\n", shell_quote(opt.skybake));
-  s += fmt::format("launcher = {}\n", opt.launcher);
-  s += fmt::format("out_dir = {}\n", shell_quote(out));
+  s += fmt::format("skybake = {}\n", ninja_value(shell_quote(opt.skybake)));
+  s += fmt::format("launcher = {}\n", ninja_value(opt.launcher));
+  s += fmt::format("out_dir = {}\n", ninja_value(shell_quote(out)));
   // ninja keeps its log beside the outputs, not in the current folder.
   s += fmt::format("builddir = {}\n\n", ninja_path(out));
   // Note: `deps` is reserved by ninja; the per-edge variables avoid it.
@@ -155,9 +165,15 @@ std::string emit_ninja(const FarmGraph& graph, const EmitOptions& opt) {
     for (size_t i = 1; i < n.sources.size(); ++i) implicit += " " + ninja_path(abs(n.sources[i]));
     for (const std::string& d : n.deps) implicit += " " + ninja_path(stamp_of[d]);
     implicit += " " + ninja_path(opt.skybake);
-    s += fmt::format("build {}: bake {} |{}\n", stamp, ninja_path(abs(n.preset)), implicit);
-    s += fmt::format("  preset = {}\n  product = {}\n  scene = {}\n\n", shell_quote(abs(n.preset)),
-                     n.product, n.scene);
+    // The product's files are implicit outputs: ninja re-runs an edge whose
+    // file was deleted (skybake then finds it missing and bakes it).
+    std::string files;
+    for (const std::string& f : n.files)
+      files += " " + ninja_path(abs((graph.out_dir / f).string()));
+    s += fmt::format("build {} |{}: bake {} |{}\n", stamp, files, ninja_path(abs(n.preset)),
+                     implicit);
+    s += fmt::format("  preset = {}\n  product = {}\n  scene = {}\n\n",
+                     ninja_value(shell_quote(abs(n.preset))), n.product, n.scene);
   }
   s += "build all: phony";
   for (const std::string& a : all) s += " " + a;
@@ -169,6 +185,8 @@ std::string emit_slurm(const FarmGraph& graph, const EmitOptions& opt) {
   std::vector<std::string> presets;
   for (const FarmNode& n : graph.nodes)
     if (presets.empty() || presets.back() != n.preset) presets.push_back(n.preset);
+  if (presets.empty())
+    throw UsageError("the catalog has no scene presets: no job array to submit");
   const int chunk = std::max(1, opt.chunk);
   const int tasks = std::max(1, int((presets.size() + chunk - 1) / chunk));
   std::string s = "#!/bin/bash\n";
