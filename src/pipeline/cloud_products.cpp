@@ -27,19 +27,6 @@ using nlohmann::json;
 
 const char* const kStandardTypes[4] = {"stratus", "stratocumulus", "cumulus", "cumulonimbus"};
 
-// "precipitation.edge" -> "/precipitation/edge", "period[1]" -> "/period/1".
-std::string pointer_from_field(const std::string& field) {
-  std::string p = "/";
-  for (char c : field) {
-    if (c == '[' || c == '.') {
-      p += '/';
-    } else if (c != ']') {
-      p += c;
-    }
-  }
-  return p;
-}
-
 json section(const json& clouds, const char* key) {
   return clouds.is_object() ? clouds.value(key, json::object()) : json::object();
 }

@@ -14,19 +14,6 @@ namespace skybake {
 
 namespace {
 
-// "worley[2].octaves" -> "/worley/2/octaves" (relative to the output object).
-std::string pointer_from_field(const std::string& field) {
-  std::string p = "/";
-  for (char c : field) {
-    if (c == '[' || c == '.') {
-      p += '/';
-    } else if (c != ']') {
-      p += c;
-    }
-  }
-  return p;
-}
-
 template <typename Spec>
 std::vector<ProductProblem> problems_of(const Spec& spec) {
   std::vector<ProductProblem> out;

@@ -42,6 +42,18 @@ std::string option_string(const OutputSpec& spec, const std::string& key,
   return it != spec.options.end() && it->is_string() ? it->get<std::string>() : fallback;
 }
 
+std::string pointer_from_field(const std::string& field) {
+  std::string p = "/";
+  for (char c : field) {
+    if (c == '[' || c == '.') {
+      p += '/';
+    } else if (c != ']') {
+      p += c;
+    }
+  }
+  return p;
+}
+
 namespace {
 
 // Keys of an output object that shape files but not texture values.

@@ -45,4 +45,8 @@ double option_double(const OutputSpec& spec, const std::string& key, double fall
 std::string option_string(const OutputSpec& spec, const std::string& key,
                           const std::string& fallback);
 
+// A baker spec's field name as a JSON pointer relative to the output or
+// section: "worley[2].octaves" -> "/worley/2/octaves".
+std::string pointer_from_field(const std::string& field);
+
 }  // namespace skybake
