@@ -12,6 +12,7 @@ namespace skybake {
 void add_atmosphere_products(std::vector<ProductInfo>& registry);
 void add_noise_products(std::vector<ProductInfo>& registry);
 void add_cloud_products(std::vector<ProductInfo>& registry);
+void add_bruneton_products(std::vector<ProductInfo>& registry);
 
 // Semantic rules of a scene's resolved "clouds" section (pointers relative to
 // the section), checked at preset load.

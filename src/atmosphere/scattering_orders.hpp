@@ -1,0 +1,159 @@
+// Multiple scattering in Bruneton's 4D table by iterating scattering orders
+// (Bruneton & Neyret 2008 sec. 4; Bruneton 2017 functions.glsl "Multiple
+// scattering" and model.cc Precompute), and the product entry point that
+// bakes the scattering and irradiance textures.
+//
+// Outputs of bake_bruneton (shapes of scattering_lut.hpp / irradiance_lut.hpp):
+//   scattering   width nu*mu_s x height mu x depth r (default 256 x 128 x 32),
+//                float32, channels R G B (+ A with combined_mie_alpha):
+//                RGB = S_R + sum_{k >= 2} DeltaS_k / p_R(nu), A = S_M.r
+//                (Bodare & Sandberg eq. 19, Bruneton's combined texture);
+//   single_mie   same shape, R G B = S_M (phase-free single Mie);
+//   irradiance   64 x 16, R G B = indirect ground irradiance of the sky
+//                orders 1..N (+ direct with irradiance_includes_direct);
+//   direct_irradiance 64 x 16, R G B = E_0.
+// Runtime radiance toward (r, mu): p_R(nu) RGB + p_M(nu) mie (lookup_scattering).
+//
+// One order k >= 2 from order k - 1:
+//   J_k(x, omega) = sum_c sigma_s,c(x) int p_c(omega . omega') L_{k-1}(x, omega') d omega'
+//                   (scattering density, Bruneton ComputeScatteringDensity), where
+//                   the incident radiance is the sky of order k - 1 plus, along
+//                   rays that meet the ground, T(x, g) albedo / pi E_{k-2}(g)
+//                   (E_0 direct sunlight, E_j the indirect irradiance of order j);
+//   DeltaS_k(x, omega) = int_0^d T(x, y) J_k(y, omega) ds  (ComputeMultipleScattering).
+//
+// How it is made fast (the issue's 10 s budget; Bruneton evaluates 512
+// incident directions with a 4D lookup each, per texel): the incident
+// radiance at (r, mu_s) does not depend on the view direction once the
+// direction grid is fixed in the frame of the sun (azimuth measured from the
+// sun's vertical plane, not from the view's as in Bruneton), so it is read
+// once per (r, mu_s) pair (1024 at default sizes) and shared by its 1024
+// (mu, nu) texels. The Rayleigh phase is quadratic in the cosine, so its
+// part of J is exact from the field's moments (int L, int omega' omega'^T L);
+// only the Mie part loops over the directions per texel. Along view rays the
+// nodes, transmittances and (r, mu) interpolation taps are shared by the
+// 256 (mu_s, nu) texels of a row.
+//
+// Phase quadrature: each phase's weights over the direction grid are
+// normalized per view direction (divided by their sum), so an isotropic
+// incident radiance scatters exactly sigma_s L, whatever the grid does to the
+// forward Mie peak; this keeps every order energy conserving (tests).
+//
+// Orders: `orders` in total (1 = single scattering only), or with tolerance
+// > 0 until the residual of an order drops below it (at most max_orders).
+// Residual of order k: the largest relative change it makes to any texel's
+// radiance, max over texels and channels of
+//   DeltaS_k / max(L_{<=k}, 1e-6 max L_{<=k}),  L_{<=k} = p_R RGB + p_M mie,
+// the floor keeping texels darker than a millionth of the table's peak from
+// stalling on round-off. Unlike Bruneton, whose irradiance stops at order
+// N - 1 (it only feeds the next density), the irradiance texture includes
+// the sky of order N, so it matches the scattering texture.
+// Reads: the transmittance LUT.
+#pragma once
+
+#include <vector>
+
+#include "atmosphere/medium.hpp"
+#include "atmosphere/scattering_lut.hpp"
+#include "core/bake_context.hpp"
+#include "core/texture.hpp"
+
+namespace skybake {
+
+constexpr int kMaxScatteringOrders = 1000;
+
+struct BrunetonSpec {
+  int r_size = 32;                    // texels along r
+  int mu_size = 128;                  // texels along mu, even
+  int mu_s_size = 32;                 // texels along mu_s
+  int nu_size = 8;                    // slices along nu
+  double mu_s_min = kBrunetonMuSMin;  // lowest sun zenith cosine, e.g. cos(120 deg)
+  int orders = 4;              // scattering orders, single included, in [1, kMaxScatteringOrders]
+  double tolerance = 0.0;      // > 0: stop when an order's residual is below it (relative)
+  int max_orders = 100;        // cap when tolerance > 0, in [2, kMaxScatteringOrders]
+  int irradiance_width = 64;   // texels along mu_s
+  int irradiance_height = 16;  // texels along r
+  bool combined_mie_alpha = true;           // scattering RGBA with single Mie red in A
+  bool irradiance_includes_direct = false;  // irradiance = indirect + direct
+  int ray_nodes = 51;                       // quadrature nodes per view ray (ray_quadrature)
+  int density_directions = 16;     // zenith bands of the density's sphere grid (x 2 azimuths)
+  int irradiance_directions = 32;  // zenith bands x 2 of the hemisphere (Bruneton: 32)
+
+  ScatteringShape shape() const { return {r_size, mu_size, mu_s_size, nu_size, mu_s_min}; }
+};
+
+struct BrunetonTextures {
+  Texture scattering;         // RGBA (combined_mie_alpha) or RGB
+  Texture single_mie;         // RGB, always filled
+  Texture irradiance;         // RGB
+  Texture direct_irradiance;  // RGB
+  ScatteringShape shape;
+  int orders_used = 0;
+  double last_residual = 1.0;     // 1 when only single scattering was baked
+  std::vector<double> residuals;  // of orders 2..orders_used
+};
+
+// Throws Error ("expected ..., got ...") naming the first bad field.
+void check_bruneton_spec(const BrunetonSpec& spec);
+
+// The whole bake. Every stage runs tbb::parallel_for per texel row or
+// (r, mu_s) pair, each texel independently: same data for any thread count.
+// Progress over the stages (over max_orders in convergence mode).
+BrunetonTextures bake_bruneton(const Atmosphere& atm, const Texture& transmittance_lut,
+                               const BrunetonSpec& spec, const BakeContext& ctx);
+
+// ---- The steps of one order ---------------------------------------------------
+
+// Light reflected by the ground toward the sky: the irradiance of order k - 2
+// at the ground, direct sunlight (E_0, from the transmittance LUT) or a table
+// of irradiance_lut.hpp.
+struct GroundIrradiance {
+  const Texture* table = nullptr;  // nullptr: direct sunlight
+  glm::dvec3 at(const Atmosphere& atm, const Texture& transmittance_lut, double mu_s) const;
+};
+
+// Direction grid of the density: `bands` zenith bands x 2 bands azimuths,
+// azimuth measured from the sun's vertical plane, each cell's exact solid
+// angle (they sum to 4 pi).
+struct SphereGrid {
+  int bands = 0, azimuths = 0;
+  std::vector<glm::dvec3> directions;  // band-major
+  std::vector<double> solid_angle;
+};
+SphereGrid sphere_grid(int bands);
+
+// The incident radiance of order k - 1 at (r, mu_s) on the grid (sky plus
+// ground term, see the opening comment).
+std::vector<glm::dvec3> compute_incident_radiance(const Atmosphere& atm,
+                                                  const Texture& transmittance_lut,
+                                                  const ScatteringShape& shape,
+                                                  const ScatteringOrder& previous,
+                                                  const GroundIrradiance& ground, double r,
+                                                  double mu_s, const SphereGrid& grid);
+
+// J_k at (r, mu, mu_s, nu) by the direct quadrature over the grid: the
+// reference for bake_scattering_density, which must agree (tests).
+glm::dvec3 compute_scattering_density(const Atmosphere& atm, const Texture& transmittance_lut,
+                                      const ScatteringShape& shape, const ScatteringOrder& previous,
+                                      const GroundIrradiance& ground, double r, double mu,
+                                      double mu_s, double nu, int bands);
+
+// J_k at every texel (RGB, the scattering table's shape), fast path.
+Texture bake_scattering_density(const Atmosphere& atm, const Texture& transmittance_lut,
+                                const ScatteringShape& shape, const ScatteringOrder& previous,
+                                const GroundIrradiance& ground, int bands, const BakeContext& ctx);
+
+// DeltaS_k of one ray by the straightforward quadrature (ray_quadrature
+// nodes, lookup_transmittance, lookup_scattering_rgb on J): the reference
+// for bake_multiple_scattering.
+glm::dvec3 compute_multiple_scattering(const Atmosphere& atm, const Texture& transmittance_lut,
+                                       const ScatteringShape& shape, const Texture& density,
+                                       double r, double mu, double mu_s, double nu,
+                                       bool ray_hits_ground, int nodes);
+
+// DeltaS_k at every texel (RGB radiance), fast path.
+Texture bake_multiple_scattering(const Atmosphere& atm, const Texture& transmittance_lut,
+                                 const ScatteringShape& shape, const Texture& density, int nodes,
+                                 const BakeContext& ctx);
+
+}  // namespace skybake

@@ -1,0 +1,580 @@
+// Tests of the scattering orders of the 4D table (atmosphere/scattering_orders.hpp):
+// the fast density and multiple-scattering passes against their direct
+// quadratures, closed forms for isotropic and constant inputs, energy
+// (per-order contraction, flux balance), convergence in a 50x dense
+// atmosphere, the bake's outputs and determinism, and where half floats
+// lose against float32.
+#include "atmosphere/scattering_orders.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <mutex>
+#include <vector>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include "atmosphere/geometry.hpp"
+#include "atmosphere/irradiance_lut.hpp"
+#include "atmosphere/phase.hpp"
+#include "atmosphere/transmittance_lut.hpp"
+#include "core/error.hpp"
+#include "core/half.hpp"
+#include "core/math.hpp"
+#include "test_atmospheres.hpp"
+
+namespace skybake {
+namespace {
+
+const ScatteringShape kSmall{12, 48, 12, 4, kBrunetonMuSMin};
+
+Atmosphere scaled(Atmosphere atm, double factor) {
+  for (MediumComponent& c : atm.components) {
+    c.scattering_per_m *= factor;
+    c.absorption_per_m *= factor;
+  }
+  return atm;
+}
+
+float max_value(const Texture& t) {
+  return *std::max_element(t.data.begin(), t.data.end());
+}
+
+BrunetonSpec small_spec(int orders) {
+  BrunetonSpec spec;
+  spec.r_size = kSmall.r_size;
+  spec.mu_size = kSmall.mu_size;
+  spec.mu_s_size = kSmall.mu_s_size;
+  spec.nu_size = kSmall.nu_size;
+  spec.orders = orders;
+  spec.irradiance_width = 32;
+  spec.irradiance_height = 8;
+  spec.ray_nodes = 30;
+  spec.density_directions = 8;
+  spec.irradiance_directions = 16;
+  return spec;
+}
+
+// One order step by step, for tests that look inside the iteration.
+struct Orders {
+  Atmosphere atm;
+  Texture lut;
+  ScatteringPhases phases;
+  SingleScatteringTables single;
+  ScatteringOrder order1;
+
+  explicit Orders(const Atmosphere& a, int lut_width = 256, int lut_height = 64)
+      : atm(a),
+        lut(bake_transmittance_lut(a, {lut_width, lut_height, 40}, BakeContext{})),
+        phases(scattering_phases(a)),
+        single(bake_single_scattering(a, lut, kSmall, 30, BakeContext{})),
+        order1{&single.rayleigh, &single.mie, nullptr, &phases} {}
+};
+
+// ---- Direction grid -----------------------------------------------------------
+
+TEST(SphereGrid, CellsTileTheSphereSymmetricallyAboutTheSunPlane) {
+  for (int bands : {2, 8, 16}) {
+    const SphereGrid g = sphere_grid(bands);
+    ASSERT_EQ(g.directions.size(), size_t(2 * bands * bands));
+    double sum = 0.0;
+    for (size_t j = 0; j < g.directions.size(); ++j) {
+      sum += g.solid_angle[j];
+      ASSERT_NEAR(glm::length(g.directions[j]), 1.0, 1e-15);
+    }
+    EXPECT_NEAR(sum, 4 * kPi, 1e-12);
+    for (int l = 0; l < g.bands; ++l)
+      for (int m = 0; m < g.azimuths; ++m) {
+        const glm::dvec3 a = g.directions[size_t(l) * g.azimuths + m];
+        const glm::dvec3 b = g.directions[size_t(l) * g.azimuths + g.azimuths - 1 - m];
+        ASSERT_NEAR(a.x, b.x, 1e-15);
+        ASSERT_NEAR(a.y, -b.y, 1e-15);
+        ASSERT_EQ(a.z, b.z);
+      }
+  }
+}
+
+// ---- Density ------------------------------------------------------------------
+
+TEST(ScatteringDensity, IsotropicIncidentLightScattersSigmaSTimesIt) {
+  // L = L0 from every direction and a black ground: with phases that
+  // integrate to 1, J = sum_c sigma_s,c(r) L0. The normalized quadrature
+  // makes this exact on the grid (both the Rayleigh moments and the Mie loop).
+  Atmosphere atm = fixtures::earth_atmosphere();
+  atm.ground_albedo = glm::dvec3(0.0);
+  const Texture lut = bake_transmittance_lut(atm, {64, 16, 20}, BakeContext{});
+  Texture sky(kSmall.texture_width(), kSmall.mu_size, kSmall.r_size, 1, {"R", "G", "B"});
+  const glm::dvec3 L0(0.25, 0.5, 1.0);
+  for (size_t i = 0; i < sky.texel_count(); ++i)
+    for (int c = 0; c < 3; ++c) sky.data[3 * i + c] = float(L0[c]);
+  const ScatteringPhases phases = scattering_phases(atm);
+  const ScatteringOrder order{nullptr, nullptr, &sky, &phases};
+  const Texture J = bake_scattering_density(atm, lut, kSmall, order, {}, 8, BakeContext{});
+  for (int z = 0; z < kSmall.r_size; z += 3)
+    for (int y = 0; y < kSmall.mu_size; y += 5)
+      for (int x = 0; x < kSmall.texture_width(); x += 7) {
+        const ScatteringParams p = scattering_texel_params(atm, kSmall, x, y, z);
+        glm::dvec3 sigma_r, sigma_m;
+        scattering_by_group(atm, p.r - atm.bottom_radius_m, sigma_r, sigma_m);
+        for (int c = 0; c < 3; ++c) {
+          const double expected = (sigma_r[c] + sigma_m[c]) * L0[c];
+          ASSERT_NEAR(J.at(x, y, z, 0, c), expected, 2e-6 * expected) << x << " " << y << " " << z;
+        }
+      }
+}
+
+TEST(ScatteringDensity, FastPassEqualsTheDirectQuadrature) {
+  // bake_scattering_density shares the incident field of a (r, mu_s) pair
+  // between its texels, evaluates Rayleigh from moments and Mie in single
+  // precision; compute_scattering_density is the plain per-texel sum. Order
+  // 2 (from single scattering, ground lit by the sun) and order 3 (from a
+  // radiance table, ground lit by a table).
+  const Orders o(fixtures::earth_atmosphere());
+  const Texture J2 = bake_scattering_density(o.atm, o.lut, kSmall, o.order1, {}, 8, BakeContext{});
+  const Texture S2 = bake_multiple_scattering(o.atm, o.lut, kSmall, J2, 30, BakeContext{});
+  const Texture E1 = bake_indirect_irradiance(o.atm, kSmall, o.order1, 32, 8, 16, BakeContext{});
+  const ScatteringOrder order2{nullptr, nullptr, &S2, &o.phases};
+  const GroundIrradiance ground2{&E1};
+  const Texture J3 =
+      bake_scattering_density(o.atm, o.lut, kSmall, order2, ground2, 8, BakeContext{});
+  const float peak2 = max_value(J2), peak3 = max_value(J3);
+  for (int z = 0; z < kSmall.r_size; z += 2)
+    for (int y = 0; y < kSmall.mu_size; y += 3)
+      for (int x = 0; x < kSmall.texture_width(); x += 5) {
+        const ScatteringParams p = scattering_texel_params(o.atm, kSmall, x, y, z);
+        const glm::dvec3 ref2 = compute_scattering_density(o.atm, o.lut, kSmall, o.order1, {}, p.r,
+                                                           p.mu, p.mu_s, p.nu, 8);
+        const glm::dvec3 ref3 = compute_scattering_density(o.atm, o.lut, kSmall, order2, ground2,
+                                                           p.r, p.mu, p.mu_s, p.nu, 8);
+        for (int c = 0; c < 3; ++c) {
+          ASSERT_NEAR(J2.at(x, y, z, 0, c), ref2[c], 2e-6 * ref2[c] + 1e-9 * peak2);
+          ASSERT_NEAR(J3.at(x, y, z, 0, c), ref3[c], 2e-6 * ref3[c] + 1e-9 * peak3);
+        }
+      }
+}
+
+// ---- Multiple scattering ----------------------------------------------------------
+
+TEST(MultipleScattering, FastPassEqualsTheDirectQuadrature) {
+  const Orders o(fixtures::earth_atmosphere());
+  const Texture J = bake_scattering_density(o.atm, o.lut, kSmall, o.order1, {}, 8, BakeContext{});
+  const Texture S = bake_multiple_scattering(o.atm, o.lut, kSmall, J, 30, BakeContext{});
+  const float peak = max_value(S);
+  for (int z = 0; z < kSmall.r_size; z += 2)
+    for (int y = 0; y < kSmall.mu_size; y += 3)
+      for (int x = 0; x < kSmall.texture_width(); x += 5) {
+        const ScatteringParams p = scattering_texel_params(o.atm, kSmall, x, y, z);
+        const glm::dvec3 ref = compute_multiple_scattering(o.atm, o.lut, kSmall, J, p.r, p.mu,
+                                                           p.mu_s, p.nu, p.ray_hits_ground, 30);
+        for (int c = 0; c < 3; ++c)
+          ASSERT_NEAR(S.at(x, y, z, 0, c), ref[c], 1e-6 * ref[c] + 1e-9 * peak) << x << " " << y;
+      }
+}
+
+TEST(MultipleScattering, ConstantDensityInAUniformSlab) {
+  // J = J0 everywhere in a slab of constant sigma_t:
+  //   DeltaS = J0 int_0^d exp(-sigma_t s) ds = J0 (1 - exp(-sigma_t d)) / sigma_t,
+  // d to the ground or the top. The integral reads T(x, y) from the LUT (a
+  // ratio of two bilinear reads); its relative error eps_T against
+  // exp(-sigma_t s), sampled at 400 points of the same ray (1.5 eps_T allows
+  // for the maximum falling between samples), bounds the integral's.
+  const glm::dvec3 sigma(1e-6, 3e-6, 6e-6);
+  const Atmosphere atm = fixtures::uniform_slab_atmosphere(sigma, glm::dvec3(0.0));
+  const Texture lut = bake_transmittance_lut(atm, {512, 128, 40}, BakeContext{});
+  const float J0 = 1e-3f;
+  Texture J(kSmall.texture_width(), kSmall.mu_size, kSmall.r_size, 1, {"R", "G", "B"});
+  for (float& v : J.data) v = J0;
+  const Texture S = bake_multiple_scattering(atm, lut, kSmall, J, 30, BakeContext{});
+  const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+  for (int z = 0; z < kSmall.r_size; ++z)
+    for (int y = 0; y < kSmall.mu_size; ++y) {
+      const ScatteringParams p = scattering_texel_params(atm, kSmall, 0, y, z);
+      const double d = distance_to_nearest_boundary(rb, rt, p.r, p.mu, p.ray_hits_ground);
+      double eps_T = 0.0;
+      for (int i = 1; i <= 400; ++i) {
+        const double s = d * i / 400.0;
+        const glm::dvec3 T = lookup_transmittance(lut, atm, p.r, p.mu, s, p.ray_hits_ground);
+        for (int c = 0; c < 3; ++c)
+          eps_T = std::max(eps_T, std::abs(T[c] / std::exp(-sigma[c] * s) - 1));
+      }
+      ASSERT_LT(eps_T, 2e-2) << "the LUT itself";
+      for (int c = 0; c < 3; ++c) {
+        const double exact = J0 * (1.0 - std::exp(-sigma[c] * d)) / sigma[c];
+        ASSERT_NEAR(S.at(5, y, z, 0, c), exact, (1.5 * eps_T + 1e-5) * exact + 1e-12)
+            << "r " << p.r << " mu " << p.mu;
+      }
+    }
+}
+
+// ---- Energy -----------------------------------------------------------------------
+
+TEST(ScatteringOrdersEnergy, EachOrderIsSmallerThanTheLastByTheSlabsOpacity) {
+  // Albedo-1 medium (a Rayleigh slab, no absorption), black ground. Order
+  // k + 1 at (x, omega) is int_0^d T(x, y) sigma_s(y) <L_k>(y) ds, where <L_k>
+  // is L_k averaged with the phase as weight (normalized on the grid), so
+  //   max L_{k+1} <= max L_k * max over rays of int_0^d sigma_s T ds
+  //              = max L_k * (1 - exp(-sigma_s d_max)),
+  // d_max = 2 sqrt(Rt^2 - Rb^2), the longest chord of the shell. Lookups
+  // interpolate between texels, so they never exceed the table's maximum.
+  // For order 1 the radiance read is p_R(nu) S_R <= 3/(8 pi) max S_R.
+  // A slack of 1e-3 covers the quadrature and the LUT ratio for T.
+  const double sigma = 5e-7;  // vertical optical depth 0.05
+  Atmosphere atm = fixtures::uniform_slab_atmosphere(glm::dvec3(sigma), glm::dvec3(0.0));
+  atm.ground_albedo = glm::dvec3(0.0);
+  const Orders o(atm);
+  const double d_max = 2.0 * std::sqrt(atm.top_radius_m * atm.top_radius_m -
+                                       atm.bottom_radius_m * atm.bottom_radius_m);
+  const double bound = 1.0 - std::exp(-sigma * d_max);
+  double previous_max = 3.0 / (8.0 * kPi) * max_value(o.single.rayleigh);
+  ScatteringOrder previous = o.order1;
+  Texture S;
+  std::vector<double> ratios;
+  for (int k = 2; k <= 5; ++k) {
+    const Texture J = bake_scattering_density(atm, o.lut, kSmall, previous, {}, 8, BakeContext{});
+    S = bake_multiple_scattering(atm, o.lut, kSmall, J, 30, BakeContext{});
+    const double m = max_value(S);
+    ratios.push_back(m / previous_max);
+    EXPECT_LE(m, previous_max * bound * (1 + 1e-3)) << "order " << k;
+    previous_max = m;
+    previous = ScatteringOrder{nullptr, nullptr, &S, &o.phases};
+  }
+  RecordProperty("order_ratios", fmt::format("{:.3f}", fmt::join(ratios, " ")));
+  RecordProperty("ratio_bound", fmt::format("{:.3f}", bound));
+}
+
+TEST(ScatteringOrdersEnergy, FluxLeavingEqualsFluxEnteringAThinSlab) {
+  // Sun at the zenith over a thin albedo-1 slab with a black ground: the
+  // medium absorbs nothing, so what enters at the top (E_sun) leaves either
+  // up through the top or down into the ground:
+  //   F_up(top) + E_direct(ground) + E_indirect(ground) = E_sun,
+  // with orders truncated at N the missing part is O(tau^N) (tau = 0.02 here,
+  // N = 4: < 1e-6). Two things keep it from being exact: the spherical shell
+  // (the sun leans away from the zenith at the horizontal distances that
+  // grazing light travels) and the quadratures (directions, LUT
+  // interpolation); measured 3e-5 in total, asserted within 2e-3.
+  // F_up(top) = 2 pi int_{-1}^{0} L(Rt, mu) |mu| dmu with the sun at the
+  // zenith (nu = mu), by the midpoint rule on 4000 cosines.
+  Atmosphere atm = fixtures::uniform_slab_atmosphere(glm::dvec3(2e-7), glm::dvec3(0.0));
+  atm.ground_albedo = glm::dvec3(0.0);
+  const Texture lut = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{});
+  BrunetonSpec spec = small_spec(4);
+  spec.mu_size = 128;
+  spec.density_directions = 12;
+  spec.irradiance_height = 4;
+  const BrunetonTextures t = bake_bruneton(atm, lut, spec, BakeContext{});
+  const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+  const glm::dvec3 down = lookup_irradiance(t.direct_irradiance, atm, rb, 1.0) +
+                          lookup_irradiance(t.irradiance, atm, rb, 1.0);
+  double up = 0.0;
+  const int n = 4000;
+  for (int i = 0; i < n; ++i) {
+    const double mu = -(i + 0.5) / n;
+    const bool hits = ray_intersects_ground(rb, rt, mu);
+    up += 2 * kPi *
+          lookup_scattering(t.scattering, Texture{}, t.shape, atm, rt, mu, 1.0, mu, hits).g *
+          (-mu) / n;
+  }
+  const double total = up + down.g;
+  RecordProperty("flux_up", fmt::format("{:.6f}", up));
+  RecordProperty("flux_down", fmt::format("{:.6f}", down.g));
+  EXPECT_GT(up, 0.0);
+  EXPECT_NEAR(total, 1.0, 2e-3);
+}
+
+TEST(ScatteringOrdersEnergy, FiftyTimesDenserEarthConvergesWithManyOrders) {
+  const Atmosphere atm = scaled(fixtures::earth_atmosphere(), 50.0);
+  const Texture lut = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{});
+  BrunetonSpec spec = small_spec(4);
+  spec.r_size = 8;
+  spec.mu_size = 32;
+  spec.mu_s_size = 8;
+  spec.ray_nodes = 21;
+  spec.density_directions = 6;
+  spec.irradiance_width = 16;
+  spec.irradiance_height = 4;
+  spec.irradiance_directions = 8;
+  spec.tolerance = 5e-3;
+  spec.max_orders = 400;
+  const BrunetonTextures t = bake_bruneton(atm, lut, spec, BakeContext{});
+  RecordProperty("orders_used", t.orders_used);
+  RecordProperty("last_residual", fmt::format("{:.3g}", t.last_residual));
+  EXPECT_GT(t.orders_used, 10);
+  EXPECT_LT(t.orders_used, spec.max_orders);
+  EXPECT_LT(t.last_residual, spec.tolerance);
+  ASSERT_EQ(t.residuals.size(), size_t(t.orders_used - 1));
+  // Geometric tail: every one of the last ten orders changes the table less
+  // than the one before.
+  for (size_t k = t.residuals.size() - 10; k < t.residuals.size(); ++k)
+    EXPECT_LT(t.residuals[k], t.residuals[k - 1]) << k;
+  for (const Texture* tex : {&t.scattering, &t.single_mie, &t.irradiance, &t.direct_irradiance})
+    for (float v : tex->data) {
+      ASSERT_TRUE(std::isfinite(v));
+      ASSERT_GE(v, 0.0f);
+    }
+  EXPECT_EQ(t.scattering.metadata.at("orders"), std::to_string(t.orders_used));
+}
+
+TEST(ScatteringOrdersEnergy, ExtremeMediaStayFiniteAndNonNegative) {
+  // DESIGN.md extreme cases: a 1 km planet under a dense 200 m sky, and
+  // Earth with a Mie phase of g = 0.999 (forward peak 1e-3 rad wide, far
+  // below the direction grid).
+  Atmosphere sharp = fixtures::earth_atmosphere();
+  sharp.components[1].g = 0.999;
+  for (const Atmosphere& atm : {fixtures::tiny_planet_atmosphere(), sharp}) {
+    const Texture lut = bake_transmittance_lut(atm, {64, 16, 20}, BakeContext{});
+    const BrunetonTextures t = bake_bruneton(atm, lut, small_spec(3), BakeContext{});
+    for (const Texture* tex : {&t.scattering, &t.single_mie, &t.irradiance, &t.direct_irradiance})
+      for (float v : tex->data) {
+        ASSERT_TRUE(std::isfinite(v));
+        ASSERT_GE(v, 0.0f);
+      }
+    EXPECT_GT(max_value(t.scattering), 0.0f);
+  }
+}
+
+// ---- The bake ---------------------------------------------------------------------
+
+TEST(BakeBruneton, ShapesChannelsAndMetadata) {
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const Texture lut = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{});
+  BrunetonSpec spec = small_spec(3);
+  std::mutex mutex;
+  double last_progress = -1.0;
+  bool monotone = true;
+  BakeContext ctx;
+  ctx.on_progress = [&](double f) {
+    std::lock_guard<std::mutex> lock(mutex);
+    monotone = monotone && f >= 0.0 && f <= 1.0;
+    last_progress = std::max(last_progress, f);
+  };
+  const BrunetonTextures t = bake_bruneton(atm, lut, spec, ctx);
+  EXPECT_TRUE(monotone);
+  EXPECT_EQ(last_progress, 1.0);
+  EXPECT_EQ(t.scattering.width, spec.nu_size * spec.mu_s_size);
+  EXPECT_EQ(t.scattering.height, spec.mu_size);
+  EXPECT_EQ(t.scattering.depth, spec.r_size);
+  EXPECT_EQ(t.scattering.channels, (std::vector<std::string>{"R", "G", "B", "A"}));
+  EXPECT_EQ(t.single_mie.channels, (std::vector<std::string>{"R", "G", "B"}));
+  EXPECT_EQ(t.irradiance.width, 32);
+  EXPECT_EQ(t.irradiance.height, 8);
+  EXPECT_EQ(t.orders_used, 3);
+  EXPECT_EQ(t.residuals.size(), 2u);
+  EXPECT_EQ(t.last_residual, t.residuals.back());
+  for (size_t i = 0; i < t.single_mie.texel_count(); ++i)
+    ASSERT_EQ(t.scattering.data[4 * i + 3], t.single_mie.data[3 * i]);
+  const Metadata& m = t.scattering.metadata;
+  EXPECT_EQ(m.at("parameterization"), "bruneton_4d_scattering");
+  EXPECT_EQ(m.at("orders"), "3");
+  EXPECT_EQ(std::stod(m.at("last_residual")), t.last_residual);
+  EXPECT_EQ(std::stod(m.at("mu_s_min")), kBrunetonMuSMin);
+  EXPECT_EQ(m.at("mie_in_alpha"), "true");
+  EXPECT_EQ(scattering_shape_from_metadata(m).mu_s_size, spec.mu_s_size);
+  for (const char* key : {"quantity", "channel_layout", "mapping", "rayleigh_scattering_per_m",
+                          "mie_scattering_per_m", "mie_g", "units"})
+    EXPECT_FALSE(m.at(key).empty()) << key;
+  EXPECT_EQ(t.irradiance.metadata.at("includes_direct"), "false");
+  EXPECT_EQ(t.irradiance.metadata.at("orders"), "3");
+
+  // Separate Mie, irradiance with the direct part summed in.
+  spec.combined_mie_alpha = false;
+  spec.irradiance_includes_direct = true;
+  const BrunetonTextures u = bake_bruneton(atm, lut, spec, BakeContext{});
+  EXPECT_EQ(u.scattering.channels, (std::vector<std::string>{"R", "G", "B"}));
+  for (size_t i = 0; i < u.single_mie.texel_count(); ++i)
+    for (int c = 0; c < 3; ++c)
+      ASSERT_EQ(u.scattering.data[3 * i + c], t.scattering.data[4 * i + c]);
+  for (size_t i = 0; i < u.irradiance.data.size(); ++i)
+    ASSERT_NEAR(u.irradiance.data[i], t.irradiance.data[i] + t.direct_irradiance.data[i],
+                1e-6f * u.irradiance.data[i]);
+}
+
+TEST(BakeBruneton, OrdersAddLightAndTheSkyIsPhysical) {
+  // More orders only add light; Earth's sky is brighter toward the horizon
+  // than at the zenith for a high sun, and blue dominates the zenith.
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const Texture lut = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{});
+  const BrunetonTextures one = bake_bruneton(atm, lut, small_spec(1), BakeContext{});
+  const BrunetonTextures three = bake_bruneton(atm, lut, small_spec(3), BakeContext{});
+  EXPECT_EQ(one.orders_used, 1);
+  EXPECT_EQ(one.last_residual, 1.0);
+  for (size_t i = 0; i < one.scattering.data.size(); ++i)
+    ASSERT_GE(three.scattering.data[i], one.scattering.data[i]);
+  for (size_t i = 0; i < one.irradiance.data.size(); ++i)
+    ASSERT_GE(three.irradiance.data[i], one.irradiance.data[i]);
+  const double rb = atm.bottom_radius_m;
+  const glm::dvec3 zenith =
+      lookup_scattering(three.scattering, Texture{}, three.shape, atm, rb, 1.0, 0.8, 0.8, false);
+  const glm::dvec3 horizon =
+      lookup_scattering(three.scattering, Texture{}, three.shape, atm, rb, 0.05, 0.8, 0.05, false);
+  EXPECT_GT(zenith.b, zenith.g);
+  EXPECT_GT(zenith.g, zenith.r);
+  EXPECT_GT(horizon.g, zenith.g);
+}
+
+TEST(BakeBruneton, SameDataForOneAndTwoThreads) {
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const Texture lut = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{});
+  BrunetonTextures one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = bake_bruneton(atm, lut, small_spec(3), BakeContext{});
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = bake_bruneton(atm, lut, small_spec(3), BakeContext{});
+  }
+  EXPECT_TRUE(one.scattering.data == two.scattering.data);
+  EXPECT_TRUE(one.irradiance.data == two.irradiance.data);
+  EXPECT_EQ(one.last_residual, two.last_residual);
+}
+
+TEST(BakeBruneton, RejectsBadSpecs) {
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const Texture lut = bake_transmittance_lut(atm, {16, 4, 5}, BakeContext{});
+  auto message = [&](BrunetonSpec spec) {
+    try {
+      bake_bruneton(atm, lut, spec, BakeContext{});
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  BrunetonSpec spec = small_spec(0);
+  EXPECT_EQ(message(spec), "scattering: expected orders in [1, 1000], got 0");
+  spec = small_spec(4);
+  spec.tolerance = -1;
+  EXPECT_EQ(message(spec), "scattering: expected tolerance >= 0, got -1");
+  spec = small_spec(4);
+  spec.tolerance = 1e-3;
+  spec.max_orders = 1;
+  EXPECT_EQ(message(spec), "scattering: expected max_orders in [2, 1000], got 1");
+  spec = small_spec(4);
+  spec.mu_size = 31;
+  EXPECT_NE(message(spec).find("mu even >= 4"), std::string::npos);
+  spec = small_spec(4);
+  spec.mu_s_min = 0.5;
+  EXPECT_EQ(message(spec), "scattering table: expected mu_s_min in (-1, 0], got 0.5");
+}
+
+// ---- Half vs float ------------------------------------------------------------------
+
+float round_to_half(float v) {
+  return float_from_half(half_from_float(v));
+}
+
+TEST(ScatteringPrecision, WhereHalfFloatsLose) {
+  // Earth, 4 orders. Three measurements, reported as test properties and on
+  // stdout:
+  //  1. storage: relative error of rounding each texel to half (2^-11 in the
+  //     normal range, worse in the subnormal range below 2^-14 = 6.1e-5,
+  //     where the 4th order and night-side texels live);
+  //  2. the 4th order alone (engines that keep high orders apart);
+  //  3. aerial perspective: the light scattered between a viewer x and a
+  //     point y at distance l is S(x) - T(x, y) S(y) (Bruneton 2017
+  //     GetSkyRadianceToPoint); for short l the two terms nearly cancel and
+  //     the storage error is amplified by S / (S - T S). Computed in float
+  //     arithmetic from float texels and from half-rounded texels, against
+  //     double arithmetic on the float texels.
+  // Float32 must keep the aerial-perspective error below 1e-3 from l = 100 m
+  // (at 10 m the float rounding of the two reads themselves dominates, ~2e-3);
+  // half must be several times worse at every length (why float32 is the
+  // default). Half's error grows less than 1/l as l shrinks because both
+  // reads then share texels and so share their rounding.
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const Texture lut = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{});
+  BrunetonSpec spec = small_spec(4);
+  spec.nu_size = 8;
+  spec.combined_mie_alpha = false;
+  const BrunetonTextures t = bake_bruneton(atm, lut, spec, BakeContext{});
+  const BrunetonTextures three = bake_bruneton(
+      atm, lut,
+      [&] {
+        BrunetonSpec s = spec;
+        s.orders = 3;
+        return s;
+      }(),
+      BakeContext{});
+
+  auto storage_error = [](const std::vector<float>& values, double& normal, double& subnormal,
+                          double& subnormal_share) {
+    normal = subnormal = 0.0;
+    size_t count = 0, small = 0;
+    for (float v : values) {
+      if (!(v > 0.0f)) continue;
+      ++count;
+      const double e = std::abs(double(round_to_half(v)) - v) / v;
+      if (v < 6.103515625e-5f) {
+        ++small;
+        subnormal = std::max(subnormal, e);
+      } else {
+        normal = std::max(normal, e);
+      }
+    }
+    subnormal_share = count ? double(small) / count : 0.0;
+  };
+  double normal = 0, subnormal = 0, share = 0;
+  storage_error(t.scattering.data, normal, subnormal, share);
+  std::vector<float> fourth(t.scattering.data.size());
+  for (size_t i = 0; i < fourth.size(); ++i)
+    fourth[i] = std::max(0.0f, t.scattering.data[i] - three.scattering.data[i]);
+  double normal4 = 0, subnormal4 = 0, share4 = 0;
+  storage_error(fourth, normal4, subnormal4, share4);
+  EXPECT_LE(normal, std::ldexp(1.0, -11) * 1.0001);  // half's unit roundoff
+
+  // Aerial perspective.
+  Texture half_scattering = t.scattering, half_mie = t.single_mie;
+  for (float& v : half_scattering.data) v = round_to_half(v);
+  for (float& v : half_mie.data) v = round_to_half(v);
+  const double rb = atm.bottom_radius_m;
+  std::vector<double> lengths = {10.0, 100.0, 1e3, 10e3};
+  std::vector<double> float_error(lengths.size(), 0.0), half_error(lengths.size(), 0.0);
+  for (size_t li = 0; li < lengths.size(); ++li)
+    for (double h : {2.0, 500.0, 3e3})
+      for (double mu : {0.3, 0.05, 0.0, -0.02})
+        for (double mu_s : {0.9, 0.3, 0.05}) {
+          const double nu = mu * mu_s, r = rb + h, l = lengths[li];
+          const bool hits = ray_intersects_ground(rb, r, mu);
+          if (hits && l >= distance_to_bottom_boundary(rb, r, mu)) continue;
+          const double r_y = radius_after(r, mu, l), mu_y = mu_after(r, mu, l, r_y);
+          const double mu_s_y = (r * mu_s + l * nu) / r_y;
+          const glm::dvec3 T = lookup_transmittance(lut, atm, r, mu, l, hits);
+          auto read = [&](const Texture& s, const Texture& m, double rr, double mm, double ss) {
+            return lookup_scattering(s, m, t.shape, atm, rr, mm, ss, nu, hits);
+          };
+          const glm::dvec3 Sx = read(t.scattering, t.single_mie, r, mu, mu_s);
+          const glm::dvec3 Sy = read(t.scattering, t.single_mie, r_y, mu_y, mu_s_y);
+          const glm::dvec3 Hx = read(half_scattering, half_mie, r, mu, mu_s);
+          const glm::dvec3 Hy = read(half_scattering, half_mie, r_y, mu_y, mu_s_y);
+          for (int c = 0; c < 3; ++c) {
+            const double exact = Sx[c] - T[c] * Sy[c];
+            if (!(exact > 0.0)) continue;
+            const float f = float(Sx[c]) - float(T[c]) * float(Sy[c]);
+            const float hf = float(Hx[c]) - float(T[c]) * float(Hy[c]);
+            float_error[li] = std::max(float_error[li], std::abs(f - exact) / exact);
+            half_error[li] = std::max(half_error[li], std::abs(hf - exact) / exact);
+          }
+        }
+  std::string report = fmt::format(
+      "half storage: max rel error {:.2g} (normal range), {:.2g} on the {:.1f} % of texels below "
+      "6.1e-5; 4th order alone: {:.2g} normal, {:.2g} on its {:.1f} % subnormal texels.\n",
+      normal, subnormal, 100 * share, normal4, subnormal4, 100 * share4);
+  for (size_t li = 0; li < lengths.size(); ++li) {
+    report += fmt::format("aerial perspective over {:g} m: float32 {:.2g}, half {:.2g}\n",
+                          lengths[li], float_error[li], half_error[li]);
+    RecordProperty(fmt::format("ap_{}m_float", int(lengths[li])),
+                   fmt::format("{:.3g}", float_error[li]));
+    RecordProperty(fmt::format("ap_{}m_half", int(lengths[li])),
+                   fmt::format("{:.3g}", half_error[li]));
+    EXPECT_LT(float_error[li], lengths[li] < 100.0 ? 5e-3 : 1e-3) << lengths[li];
+    EXPECT_GT(half_error[li], 5 * float_error[li]) << lengths[li];
+  }
+  RecordProperty("half_storage_normal", fmt::format("{:.3g}", normal));
+  RecordProperty("half_storage_subnormal", fmt::format("{:.3g}", subnormal));
+  RecordProperty("half_4th_order_subnormal", fmt::format("{:.3g}", subnormal4));
+  std::cout << report;
+}
+
+}  // namespace
+}  // namespace skybake
