@@ -55,4 +55,16 @@ struct CheckTilingArgs {
 };
 int run_check_tiling(const CheckTilingArgs& args);
 
+struct ReportArgs {
+  std::vector<std::string> presets;
+  std::string out_dir = "out";
+  std::vector<std::string> products;  // empty: every product the scene requests
+  int threads = 0;                    // 0 = all cores
+  bool quick = false;                 // fewer ladder points, queries and paths
+  int paths = 0;                      // > 0: path tracer paths per view (every order)
+  bool quiet = false;
+  bool json = false;
+};
+int run_report(const ReportArgs& args);
+
 }  // namespace skybake::cli

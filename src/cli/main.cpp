@@ -40,6 +40,7 @@ Examples:
   skybake plan presets/earth.json                 show products, dependencies and what is stale
   skybake info out/earth/transmittance.dds        read a baked file back
   skybake check-tiling out/clouds_hzd/noise_shape.dds   verify a noise volume tiles
+  skybake report presets/earth.json --quick      error vs bake time -> out/earth/report/report.html
 
 Exit codes: 0 ok, 1 check failed, 2 usage, 3 invalid preset, 4 file error, 5 internal error.
 Docs: README.md, docs/presets.md.)";
@@ -104,7 +105,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"ninja", "slurm"}));
   plan_cmd->add_option("-o,--output", plan.output, "Write the plan or emitted file here");
   plan_cmd->add_option("--launcher", plan.launcher,
-                       "ninja: prefix of every edge, e.g. \"srun -n1 -c1 --exact --quiet\"");
+                       "ninja: prefix of every edge, e.g. \"srun -N1 -n1 -c1 --exact --quiet\"");
   plan_cmd->add_option("--task-threads", plan.threads, "--threads of each emitted task")
       ->capture_default_str()
       ->check(CLI::Range(1, 1024));
@@ -119,7 +120,7 @@ int main(int argc, char** argv) {
       "  skybake plan presets/earth.json                       graph and state of one scene\n"
       "  skybake plan presets/ --json                          farm graph of a catalog\n"
       "  skybake plan presets/ --emit ninja -o build.ninja && ninja -f build.ninja -j 8\n"
-      "  skybake plan presets/ --emit ninja --launcher \"srun -n1 -c1 --exact --quiet\" -o "
+      "  skybake plan presets/ --emit ninja --launcher \"srun -N1 -n1 -c1 --exact --quiet\" -o "
       "build.ninja\n"
       "  skybake plan 'catalog/*.json' --emit slurm --chunk 10 -o bake.sbatch && sbatch "
       "bake.sbatch");
@@ -150,6 +151,32 @@ int main(int argc, char** argv) {
       "face against the largest jump between interior neighbours (the ratio). A tileable "
       "texture's seam is just another neighbour face (ratio near or below 1).");
 
+  skybake::cli::ReportArgs report;
+  CLI::App* report_cmd = app.add_subcommand(
+      "report", "Measure each product's error against run time; write report.json and HTML.");
+  report_cmd->add_option("presets", report.presets, "Scene preset files (JSON)")->required();
+  report_cmd->add_option("-o,--out", report.out_dir, "Output folder; writes DIR/<scene>/report/")
+      ->capture_default_str();
+  report_cmd->add_option("--products", report.products,
+                         "Measure only these products (comma separated)")
+      ->delimiter(',');
+  report_cmd->add_option("-j,--threads", report.threads, "Worker threads; 0 = all cores")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1024));
+  report_cmd->add_flag("--quick", report.quick,
+                       "Few ladder points, queries and paths (seconds, for tests)");
+  report_cmd->add_option("--paths", report.paths,
+                         "Path tracer paths per view for the sky radiance (0 = the level's: "
+                         "65536, --quick 256)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1 << 24));
+  report_cmd->add_flag("-q,--quiet", report.quiet, "No progress lines on stderr");
+  report_cmd->add_flag("--json", report.json, "Print the summary as JSON on stdout");
+  report_cmd->footer(
+      "\nLadders of sample counts and sizes per table against independent references (adaptive "
+      "quadrature, finer integration), sky radiance against the path tracer, float32/half "
+      "findings, sky previews. Exit 0 whatever the accuracy; see docs/report.md.");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -157,13 +184,15 @@ int main(int argc, char** argv) {
   }
 
   json_errors = (bake_cmd->parsed() && bake.json) || (plan_cmd->parsed() && plan.json) ||
-                (info_cmd->parsed() && info.json) || (tiling_cmd->parsed() && tiling.json);
+                (info_cmd->parsed() && info.json) || (tiling_cmd->parsed() && tiling.json) ||
+                (report_cmd->parsed() && report.json);
   try {
     if (bake_cmd->parsed()) return skybake::cli::run_bake(bake);
     if (validate_cmd->parsed()) return skybake::cli::run_validate(validate);
     if (plan_cmd->parsed()) return skybake::cli::run_plan(plan);
     if (info_cmd->parsed()) return skybake::cli::run_info(info);
     if (tiling_cmd->parsed()) return skybake::cli::run_check_tiling(tiling);
+    if (report_cmd->parsed()) return skybake::cli::run_report(report);
   } catch (const skybake::Error& e) {
     std::fprintf(stderr, "skybake: error: %s\n", e.what());
     if (json_errors)

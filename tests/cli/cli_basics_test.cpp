@@ -20,7 +20,7 @@ TEST(Cli, VersionPrintsTheProjectVersion) {
 }
 
 TEST(Cli, EverySubcommandHasHelp) {
-  for (const std::string cmd : {"bake", "validate", "plan", "info"}) {
+  for (const std::string cmd : {"bake", "validate", "plan", "info", "check-tiling", "report"}) {
     const auto r = run_skybake({cmd, "--help"});
     EXPECT_EQ(r.exit_code, 0) << cmd;
     EXPECT_NE(r.out.find(cmd), std::string::npos) << cmd << ": " << r.out;
