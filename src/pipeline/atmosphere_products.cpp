@@ -3,9 +3,9 @@
 #include <cmath>
 
 #include "atmosphere/sky_preview.hpp"
+#include "core/math.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/error_estimates.hpp"
-#include "core/math.hpp"
 #include "pipeline/product_graph.hpp"
 #include "pipeline/product_tables.hpp"
 
@@ -26,8 +26,8 @@ Texture bake_transmittance(const Scene& scene, const OutputSpec& spec, const Pro
   return bake_transmittance_lut(scene.atmosphere, transmittance_spec(spec), ctx);
 }
 
-Texture bake_multiscattering(const Scene& scene, const OutputSpec& spec,
-                             const ProductInputs& in, const BakeContext& ctx) {
+Texture bake_multiscattering(const Scene& scene, const OutputSpec& spec, const ProductInputs& in,
+                             const BakeContext& ctx) {
   return bake_multiscattering_lut(scene.atmosphere, *in.at("transmittance"),
                                   multiscattering_spec(spec), ctx);
 }
@@ -68,8 +68,8 @@ SkyviewLutSpec skyview_spec(const OutputSpec& spec) {
   lut.views.clear();
   if (auto it = spec.options.find("views"); it != spec.options.end() && it->is_array()) {
     for (const auto& v : *it)
-      lut.views.push_back({json_number(v, "altitude_km", 0.0) * 1e3,
-                           json_number(v, "sun_zenith_deg", 0.0) * kDeg});
+      lut.views.push_back(
+          {json_number(v, "altitude_km", 0.0) * 1e3, json_number(v, "sun_zenith_deg", 0.0) * kDeg});
   } else {
     lut.views = default_skyview_views();
   }
@@ -103,8 +103,8 @@ Texture bake_skyview(const Scene& scene, const OutputSpec& spec, const ProductIn
                           skyview_spec(spec), ctx);
 }
 
-Texture bake_aerial_perspective(const Scene& scene, const OutputSpec& spec,
-                                const ProductInputs& in, const BakeContext& ctx) {
+Texture bake_aerial_perspective(const Scene& scene, const OutputSpec& spec, const ProductInputs& in,
+                                const BakeContext& ctx) {
   return bake_aerial_perspective_lut(scene.atmosphere, *in.at("transmittance"),
                                      *in.at("multiscattering"), aerial_perspective_spec(spec), ctx);
 }
@@ -122,12 +122,10 @@ Texture bake_preview(const Scene& scene, const OutputSpec& spec, const ProductIn
 
 }  // namespace
 
-namespace {
-
-ProductInfo atmosphere_product(std::string name, std::string summary,
-                               std::vector<std::string> axes, std::vector<int> size,
-                               std::vector<int> max_size, std::vector<std::string> dependencies,
-                               BakeFn bake, double ns_per_texel, EstimateFn estimate) {
+ProductInfo atmosphere_lut_product(std::string name, std::string summary,
+                                   std::vector<std::string> axes, std::vector<int> size,
+                                   std::vector<int> max_size, std::vector<std::string> dependencies,
+                                   BakeFn bake, double ns_per_texel) {
   ProductInfo p;
   p.name = std::move(name);
   p.summary = std::move(summary);
@@ -140,6 +138,18 @@ ProductInfo atmosphere_product(std::string name, std::string summary,
   p.scene_sections = kAtmosphereSections;
   p.bake = std::move(bake);
   p.ns_per_texel = ns_per_texel;
+  return p;
+}
+
+namespace {
+
+ProductInfo atmosphere_product(std::string name, std::string summary, std::vector<std::string> axes,
+                               std::vector<int> size, std::vector<int> max_size,
+                               std::vector<std::string> dependencies, BakeFn bake,
+                               double ns_per_texel, EstimateFn estimate) {
+  ProductInfo p = atmosphere_lut_product(std::move(name), std::move(summary), std::move(axes),
+                                         std::move(size), std::move(max_size),
+                                         std::move(dependencies), std::move(bake), ns_per_texel);
   p.estimate_error = std::move(estimate);
   return p;
 }

@@ -4,6 +4,8 @@
 
 #include "atmosphere/aerial_perspective_lut.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
+#include "atmosphere/scattering3d_lut.hpp"
+#include "atmosphere/scattering_orders.hpp"
 #include "atmosphere/skyview_lut.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "pipeline/scene.hpp"
@@ -14,5 +16,8 @@ TransmittanceLutSpec transmittance_spec(const OutputSpec& spec);
 MultiscatteringLutSpec multiscattering_spec(const OutputSpec& spec);
 SkyviewLutSpec skyview_spec(const OutputSpec& spec);
 AerialPerspectiveSpec aerial_perspective_spec(const OutputSpec& spec);
+// Defined in bruneton_products.cpp.
+BrunetonSpec bruneton_spec(const OutputSpec& spec);
+Scattering3dSpec scattering3d_spec(const OutputSpec& spec);
 
 }  // namespace skybake

@@ -14,20 +14,11 @@
 #include "core/error.hpp"
 #include "core/hash.hpp"
 #include "core/math.hpp"
+#include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/product_graph.hpp"
 #include "pipeline/product_tables.hpp"
 
 namespace skybake {
-
-namespace {
-
-const std::vector<std::string> kAtmosphereSections = {"planet", "atmosphere"};
-
-// The scene's own output of `product`, or that product's defaults.
-OutputSpec spec_of(const Scene& scene, const std::string& product) {
-  if (const OutputSpec* s = scene.find_output(product)) return *s;
-  return default_spec(*find_product(product));
-}
 
 BrunetonSpec bruneton_spec(const OutputSpec& spec) {
   BrunetonSpec b;
@@ -53,6 +44,16 @@ Scattering3dSpec scattering3d_spec(const OutputSpec& spec) {
   s.max_orders = option_int(spec, "max_orders", s.max_orders);
   s.combined_mie_alpha = option_string(spec, "mie", "alpha") == "alpha";
   return s;
+}
+
+namespace {
+
+const std::vector<std::string> kAtmosphereSections = {"planet", "atmosphere"};
+
+// The scene's own output of `product`, or that product's defaults.
+OutputSpec spec_of(const Scene& scene, const std::string& product) {
+  if (const OutputSpec* s = scene.find_output(product)) return *s;
+  return default_spec(*find_product(product));
 }
 
 // Cache of whole families by the inputs that determine them.
@@ -85,8 +86,7 @@ std::string family_key(const Scene& scene, const OutputSpec& spec) {
   return h.add(spec.options.dump()).hex();
 }
 
-std::shared_ptr<const BrunetonTextures> bruneton_family(const Scene& scene,
-                                                        const ProductInputs& in,
+std::shared_ptr<const BrunetonTextures> bruneton_family(const Scene& scene, const ProductInputs& in,
                                                         const BakeContext& ctx) {
   static FamilyCache<BrunetonTextures> cache;
   const OutputSpec spec = spec_of(scene, "scattering");
@@ -94,11 +94,10 @@ std::shared_ptr<const BrunetonTextures> bruneton_family(const Scene& scene,
   BrunetonSpec b = bruneton_spec(spec);
   b.irradiance_width = irradiance.size.at(0);
   b.irradiance_height = irradiance.size.at(1);
-  const std::string key = family_key(scene, spec) + "/" + std::to_string(b.irradiance_width) +
-                          "x" + std::to_string(b.irradiance_height);
-  return cache.get(key, [&] {
-    return bake_bruneton(scene.atmosphere, *in.at("transmittance"), b, ctx);
-  });
+  const std::string key = family_key(scene, spec) + "/" + std::to_string(b.irradiance_width) + "x" +
+                          std::to_string(b.irradiance_height);
+  return cache.get(
+      key, [&] { return bake_bruneton(scene.atmosphere, *in.at("transmittance"), b, ctx); });
 }
 
 std::shared_ptr<const Scattering3dTextures> scattering3d_family(const Scene& scene,
@@ -140,24 +139,6 @@ Texture bake_gathering_sum(const Scene& s, const OutputSpec&, const ProductInput
   return scattering3d_family(s, in, ctx)->gathering_sum;
 }
 
-ProductInfo family_product(std::string name, std::string summary, std::vector<std::string> axes,
-                           std::vector<int> size, std::vector<int> max_size,
-                           std::vector<std::string> deps, BakeFn bake, double ns_per_texel) {
-  ProductInfo p;
-  p.name = std::move(name);
-  p.summary = std::move(summary);
-  p.axes = std::move(axes);
-  p.default_size = std::move(size);
-  p.max_size = std::move(max_size);
-  p.default_formats = {"exr", "dds"};
-  p.allowed_formats = {"exr", "dds", "png"};
-  p.dependencies = std::move(deps);
-  p.scene_sections = kAtmosphereSections;
-  p.bake = std::move(bake);
-  p.ns_per_texel = ns_per_texel;
-  return p;
-}
-
 // single_mie and gathering_sum come out of their family's bake at the
 // family's size: a size of their own would be silently ignored, so refuse it.
 CheckFn size_follows(std::string family, std::vector<int> default_size) {
@@ -182,31 +163,31 @@ std::vector<ProductProblem> spec_rules(const OutputSpec& spec) {
 }
 
 void add_bruneton_products(std::vector<ProductInfo>& r) {
-  ProductInfo scattering = family_product(
+  ProductInfo scattering = atmosphere_lut_product(
       "scattering",
       "Bruneton 4D (r, mu, mu_s, nu) single + multiple scattering packed in 3D, Mie in alpha",
       {"r", "mu", "mu_s", "nu"}, {32, 128, 32, 8}, {128, 512, 128, 32}, {"transmittance"},
       bake_scattering, 6300.0);
   scattering.check = spec_rules<BrunetonSpec, bruneton_spec, check_bruneton_spec>;
   r.push_back(std::move(scattering));
-  ProductInfo single_mie = family_product(
+  ProductInfo single_mie = atmosphere_lut_product(
       "single_mie", "single Mie scattering of the 4D table (with \"mie\": \"separate\")",
       {"r", "mu", "mu_s", "nu"}, {32, 128, 32, 8}, {128, 512, 128, 32},
       {"transmittance", "scattering"}, bake_single_mie, 1.0);
   single_mie.check = size_follows("scattering", single_mie.default_size);
   r.push_back(std::move(single_mie));
-  r.push_back(family_product("irradiance",
-                             "ground irradiance (mu_s, r) of the 4D model: indirect, or + direct",
-                             {"mu_s", "r"}, {64, 16}, {1024, 1024},
-                             {"transmittance", "scattering"}, bake_irradiance, 1.0));
-  ProductInfo scattering3d = family_product(
+  r.push_back(atmosphere_lut_product(
+      "irradiance", "ground irradiance (mu_s, r) of the 4D model: indirect, or + direct",
+      {"mu_s", "r"}, {64, 16}, {1024, 1024}, {"transmittance", "scattering"}, bake_irradiance,
+      1.0));
+  ProductInfo scattering3d = atmosphere_lut_product(
       "scattering3d",
       "azimuth-free (height, view zenith, sun zenith) scattering with gathering (Elek/Frostbite)",
       {"height", "view", "sun"}, {32, 128, 32}, {128, 512, 128}, {"transmittance"},
       bake_scattering3d_product, 7800.0);
   scattering3d.check = spec_rules<Scattering3dSpec, scattering3d_spec, check_scattering3d_spec>;
   r.push_back(std::move(scattering3d));
-  ProductInfo gathering = family_product(
+  ProductInfo gathering = atmosphere_lut_product(
       "gathering_sum", "gathering LUT of the 3D model, sum over orders (height, sun zenith)",
       {"height", "sun"}, {32, 32}, {128, 128}, {"transmittance", "scattering3d"},
       bake_gathering_sum, 1.0);

@@ -14,6 +14,13 @@ void add_noise_products(std::vector<ProductInfo>& registry);
 void add_cloud_products(std::vector<ProductInfo>& registry);
 void add_bruneton_products(std::vector<ProductInfo>& registry);
 
+// An atmosphere LUT product reading the planet and atmosphere sections, EXR
+// and DDS by default (atmosphere_products.cpp).
+ProductInfo atmosphere_lut_product(std::string name, std::string summary,
+                                   std::vector<std::string> axes, std::vector<int> size,
+                                   std::vector<int> max_size, std::vector<std::string> dependencies,
+                                   BakeFn bake, double ns_per_texel);
+
 // Semantic rules of a scene's resolved "clouds" section (pointers relative to
 // the section), checked at preset load.
 std::vector<ProductProblem> clouds_section_problems(const nlohmann::json& clouds);

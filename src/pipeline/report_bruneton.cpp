@@ -1,5 +1,7 @@
 #include "pipeline/report_bruneton.hpp"
 
+#include "pipeline/atmosphere_specs.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -17,22 +19,6 @@ namespace skybake {
 namespace {
 
 constexpr double kDeg = kPi / 180.0;
-
-// The scene's scattering output as bruneton_products.cpp reads it (its
-// bruneton_spec is private to that file; the same keys and defaults).
-BrunetonSpec scene_bruneton_spec(const OutputSpec& spec) {
-  BrunetonSpec b;
-  b.r_size = spec.size.at(0);
-  b.mu_size = spec.size.at(1);
-  b.mu_s_size = spec.size.at(2);
-  b.nu_size = spec.size.at(3);
-  b.mu_s_min = std::cos(option_double(spec, "mu_s_min_deg", 102.0) * kDeg);
-  b.orders = option_int(spec, "orders", b.orders);
-  b.tolerance = option_double(spec, "tolerance", 0.0);
-  b.max_orders = option_int(spec, "max_orders", b.max_orders);
-  b.combined_mie_alpha = option_string(spec, "mie", "alpha") == "alpha";
-  return b;
-}
 
 BrunetonSpec level_bruneton_spec(const ReportLevel& level) {
   BrunetonSpec b;
@@ -58,7 +44,7 @@ nlohmann::json bruneton_comparison_report(const ReportInputs& in,
     return {{"status", "not run"}, {"reason", "the sky radiance section was not run"}};
   const Atmosphere& atm = in.scene.atmosphere;
   const OutputSpec* own = in.scene.find_output("scattering");
-  const BrunetonSpec spec = own ? scene_bruneton_spec(*own) : level_bruneton_spec(in.level);
+  const BrunetonSpec spec = own ? bruneton_spec(*own) : level_bruneton_spec(in.level);
   in.stage(fmt::format("Bruneton tables {}x{}x{}x{}, {}", spec.r_size, spec.mu_size, spec.mu_s_size,
                        spec.nu_size,
                        spec.tolerance > 0 ? fmt::format("orders to {:g}", spec.tolerance)
