@@ -34,6 +34,7 @@
 
 #include "atmosphere/medium.hpp"
 #include "core/texture.hpp"
+#include "core/texture_sampling.hpp"
 
 namespace skybake {
 
@@ -119,10 +120,5 @@ inline glm::dvec3 integrate_segment(glm::dvec3 source, glm::dvec3 sigma_t, doubl
 // planet's shadow Vis of eq. 4: 0 when that ray meets the ground.
 glm::dvec3 lookup_sun_transmittance(const Texture& transmittance_lut, const Atmosphere& atm,
                                     double r, double mu_s);
-
-// Bilinear filtering of slice z of `layer` at texture coordinates (u, v),
-// texel centres at (i + 0.5) / n, clamp to edge in v, wrap or clamp in u.
-// Returns the first min(4, channels) channels (the rest 0).
-glm::dvec4 sample_bilinear(const Texture& tex, double u, double v, int z, int layer, bool wrap_u);
 
 }  // namespace skybake

@@ -9,6 +9,8 @@
 // order: ~1e-4 at 20 steps, ~2e-6 at 40, ~4e-8 at 80 over the whole table.
 #include "atmosphere/transmittance_lut.hpp"
 
+#include "core/texture_sampling.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -168,25 +170,6 @@ glm::dvec3 transmittance_from_optical_depth(glm::dvec3 tau) {
   return glm::clamp(glm::exp(-glm::max(tau, glm::dvec3(0.0))), 0.0, 1.0);
 }
 
-// Bilinear read of channels 0..2 with clamp to edge; texel (x, y) has its
-// centre at ((x + 0.5) / W, (y + 0.5) / H).
-glm::dvec3 sample_bilinear_rgb(const Texture& tex, glm::dvec2 uv) {
-  const double x = uv.x * tex.width - 0.5, y = uv.y * tex.height - 0.5;
-  const double x_floor = std::floor(x), y_floor = std::floor(y);
-  const double ax = x - x_floor, ay = y - y_floor;
-  const int x0 = std::clamp(int(x_floor), 0, tex.width - 1);
-  const int x1 = std::clamp(int(x_floor) + 1, 0, tex.width - 1);
-  const int y0 = std::clamp(int(y_floor), 0, tex.height - 1);
-  const int y1 = std::clamp(int(y_floor) + 1, 0, tex.height - 1);
-  auto rgb = [&](int xi, int yi) {
-    const float* t = tex.texel(xi, yi);
-    return glm::dvec3(t[0], t[1], t[2]);
-  };
-  const glm::dvec3 bottom = glm::mix(rgb(x0, y0), rgb(x1, y0), ax);
-  const glm::dvec3 top = glm::mix(rgb(x0, y1), rgb(x1, y1), ax);
-  return glm::mix(bottom, top, ay);
-}
-
 void set_transmittance_metadata(Metadata& meta, const Atmosphere& atm,
                                 const TransmittanceLutSpec& spec) {
   set_meta(meta, "parameterization", std::string("bruneton_transmittance"));
@@ -301,7 +284,8 @@ Texture bake_transmittance_lut(const Atmosphere& atm, const TransmittanceLutSpec
 
 glm::dvec3 lookup_transmittance_to_top(const Texture& lut, const Atmosphere& atm, double r,
                                        double mu) {
-  return sample_bilinear_rgb(lut, transmittance_uv_from_r_mu(atm, r, mu, lut.width, lut.height));
+  const glm::dvec2 uv = transmittance_uv_from_r_mu(atm, r, mu, lut.width, lut.height);
+  return glm::dvec3(sample_bilinear(lut, uv.x, uv.y, 0, 0, false));
 }
 
 glm::dvec3 lookup_transmittance(const Texture& lut, const Atmosphere& atm, double r, double mu,

@@ -185,11 +185,7 @@ Texture bake_high_clouds(const Scene& scene, const OutputSpec& out, const Produc
 }
 
 std::vector<ProductProblem> square_problems(const OutputSpec& spec) {
-  if (spec.size.size() == 2 && spec.size[0] != spec.size[1])
-    return {{"/size", fmt::format("the weather map is square (world_size_km on both axes): "
-                                  "expected equal sizes, got {}",
-                                  json(spec.size).dump())}};
-  return {};
+  return equal_size_problems(spec, "the weather map is square (world_size_km on both axes)");
 }
 
 ProductInfo cloud_product(std::string name, std::string summary, std::vector<std::string> axes,

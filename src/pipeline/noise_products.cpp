@@ -27,15 +27,6 @@ WorleyFbmSpec worley_from(const nlohmann::json& j, WorleyFbmSpec fallback) {
   return {j.value("period", fallback.period), j.value("octaves", fallback.octaves)};
 }
 
-std::vector<ProductProblem> cube_problems(const OutputSpec& spec) {
-  for (size_t i = 1; i < spec.size.size(); ++i)
-    if (spec.size[i] != spec.size[0])
-      return {{"/size", fmt::format("the texture is a cube (square) and tiles on every axis: "
-                                    "expected equal sizes, got {}",
-                                    nlohmann::json(spec.size).dump())}};
-  return {};
-}
-
 NoiseShapeSpec shape_spec(const OutputSpec& spec) {
   NoiseShapeSpec s;
   s.size = spec.size.at(0);
@@ -44,8 +35,8 @@ NoiseShapeSpec shape_spec(const OutputSpec& spec) {
   s.perlin_period = perlin.value("period", s.perlin_period);
   s.perlin_octaves = perlin.value("octaves", s.perlin_octaves);
   s.perlin_gain = perlin.value("gain", s.perlin_gain);
-  s.perlin_worley = worley_from(spec.options.value("perlin_worley", nlohmann::json()),
-                                s.perlin_worley);
+  s.perlin_worley =
+      worley_from(spec.options.value("perlin_worley", nlohmann::json()), s.perlin_worley);
   if (auto r = remap_from_name(option_string(spec, "remap", remap_name(s.remap)))) s.remap = *r;
   const nlohmann::json worley = spec.options.value("worley", nlohmann::json::array());
   for (size_t i = 0; i < s.worley.size() && i < worley.size(); ++i)
@@ -73,7 +64,9 @@ CurlSpec curl_spec(const OutputSpec& spec) {
   return s;
 }
 
-bool packed(const OutputSpec& spec) { return option_string(spec, "pack", "none") != "none"; }
+bool packed(const OutputSpec& spec) {
+  return option_string(spec, "pack", "none") != "none";
+}
 
 Texture bake_shape(const Scene&, const OutputSpec& spec, const ProductInputs&,
                    const BakeContext& ctx) {
@@ -94,7 +87,8 @@ Texture bake_curl_noise(const Scene&, const OutputSpec& spec, const ProductInput
 
 template <typename Spec, Spec (*make)(const OutputSpec&)>
 std::vector<ProductProblem> check(const OutputSpec& spec) {
-  std::vector<ProductProblem> problems = cube_problems(spec);
+  std::vector<ProductProblem> problems =
+      equal_size_problems(spec, "the texture is a cube (square) and tiles on every axis");
   if (problems.empty()) problems = problems_of(make(spec));
   return problems;
 }
@@ -132,10 +126,9 @@ void add_noise_products(std::vector<ProductInfo>& r) {
                             "tileable cloud detail volume: RGB Worley fBm at rising frequencies",
                             {"x", "y", "z"}, {32, 32, 32}, {1024, 1024, 1024}, bake_detail, 40.0,
                             check<NoiseDetailSpec, detail_spec>));
-  r.push_back(noise_product("curl",
-                            "tileable 2D curl noise (divergence free) to distort detail lookups",
-                            {"x", "y"}, {128, 128}, {8192, 8192}, bake_curl_noise, 600.0,
-                            check<CurlSpec, curl_spec>));
+  r.push_back(noise_product(
+      "curl", "tileable 2D curl noise (divergence free) to distort detail lookups", {"x", "y"},
+      {128, 128}, {8192, 8192}, bake_curl_noise, 600.0, check<CurlSpec, curl_spec>));
 }
 
 }  // namespace skybake

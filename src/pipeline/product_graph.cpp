@@ -54,6 +54,14 @@ std::string pointer_from_field(const std::string& field) {
   return p;
 }
 
+std::vector<ProductProblem> equal_size_problems(const OutputSpec& spec, const std::string& what) {
+  for (size_t i = 1; i < spec.size.size(); ++i)
+    if (spec.size[i] != spec.size[0])
+      return {{"/size", fmt::format("{}: expected equal sizes, got {}", what,
+                                    nlohmann::json(spec.size).dump())}};
+  return {};
+}
+
 namespace {
 
 // Keys of an output object that shape files but not texture values.
@@ -88,14 +96,13 @@ void compute_hashes(const Scene& scene, GraphNode& node, const std::vector<Graph
 ProductGraph build_product_graph(const Scene& scene, const std::vector<std::string>& only) {
   for (const std::string& name : only) {
     if (!find_product(name))
-      throw UsageError(fmt::format("--only: unknown product '{}'{}", name,
-                                   did_you_mean(name, product_names())));
+      throw UsageError(
+          fmt::format("--only: unknown product '{}'{}", name, did_you_mean(name, product_names())));
     if (!scene.find_output(name)) {
       std::vector<std::string> asked;
       for (const OutputSpec& o : scene.outputs) asked.push_back(o.product);
       throw UsageError(fmt::format("--only: scene '{}' ({}) does not request '{}'; it requests: {}",
-                                   scene.name, scene.file.string(), name,
-                                   fmt::join(asked, ", ")));
+                                   scene.name, scene.file.string(), name, fmt::join(asked, ", ")));
     }
   }
   auto wanted = [&](const std::string& product) {

@@ -49,4 +49,8 @@ std::string option_string(const OutputSpec& spec, const std::string& key,
 // section: "worley[2].octaves" -> "/worley/2/octaves".
 std::string pointer_from_field(const std::string& field);
 
+// A square / cube product's rule: every size axis equal. `what` says why
+// ("the texture is a cube (square) and tiles on every axis").
+std::vector<ProductProblem> equal_size_problems(const OutputSpec& spec, const std::string& what);
+
 }  // namespace skybake

@@ -13,22 +13,15 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "support/run.hpp"
 
 namespace skybake {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string tmp_path(const std::string& test, const std::string& file) {
-  const fs::path dir = fs::path(SKYBAKE_TEST_TMP) / "io_exr" / test;
-  fs::create_directories(dir);
-  fs::remove(dir / file);
-  return (dir / file).string();
-}
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
+std::string tmp_path(const std::string& name, const std::string& file) {
+  return skybake::test::scratch_file("io_exr", name, file);
 }
 
 // Distinct, irregular values in about [-2, 2] so a swapped texel, channel or
@@ -227,9 +220,9 @@ TEST(Exr, SameTextureGivesIdenticalBytes) {
       const std::string b = tmp_path("determinism", std::to_string(n++) + "b.exr");
       write_exr(a, *tex, precision, ExrVolumeLayout::multipart);
       write_exr(b, *tex, precision, ExrVolumeLayout::multipart);
-      const std::string bytes = read_bytes(a);
+      const std::string bytes = skybake::test::read_file(a);
       EXPECT_GT(bytes.size(), 0u);
-      EXPECT_TRUE(bytes == read_bytes(b)) << a;
+      EXPECT_TRUE(bytes == skybake::test::read_file(b)) << a;
     }
 }
 

@@ -15,22 +15,15 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "support/run.hpp"
 
 namespace skybake {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string tmp_path(const std::string& test, const std::string& file) {
-  const fs::path dir = fs::path(SKYBAKE_TEST_TMP) / "io_png_preview" / test;
-  fs::create_directories(dir);
-  fs::remove(dir / file);
-  return (dir / file).string();
-}
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
+std::string tmp_path(const std::string& name, const std::string& file) {
+  return skybake::test::scratch_file("io_png_preview", name, file);
 }
 
 struct Rgb8 {
@@ -246,8 +239,8 @@ TEST(PngPreview, BytesAreDeterministicWithoutTimeStamps) {
   const std::string a = tmp_path("determinism", "a.png"), b = tmp_path("determinism", "b.png");
   write_png_preview(a, tex, {});
   write_png_preview(b, tex, {});
-  const std::string bytes = read_bytes(a);
-  EXPECT_TRUE(bytes == read_bytes(b));
+  const std::string bytes = skybake::test::read_file(a);
+  EXPECT_TRUE(bytes == skybake::test::read_file(b));
   const auto chunks = png_chunks(bytes);
   ASSERT_FALSE(chunks.empty());
   EXPECT_EQ(chunks.front().first, "IHDR");

@@ -13,22 +13,15 @@
 #include <openvdb/openvdb.h>
 
 #include "core/error.hpp"
+#include "support/run.hpp"
 
 namespace skybake {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string tmp_path(const std::string& test, const std::string& file) {
-  const fs::path dir = fs::path(SKYBAKE_TEST_TMP) / "io_vdb" / test;
-  fs::create_directories(dir);
-  fs::remove(dir / file);
-  return (dir / file).string();
-}
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
+std::string tmp_path(const std::string& name, const std::string& file) {
+  return skybake::test::scratch_file("io_vdb", name, file);
 }
 
 // Irregular values with a run of exact zeros (density-like empty space).
@@ -118,9 +111,9 @@ TEST(Vdb, SameTextureGivesIdenticalBytes) {
   const std::string a = tmp_path("determinism", "a.vdb"), b = tmp_path("determinism", "b.vdb");
   write_vdb(a, tex, 0.5);
   write_vdb(b, tex, 0.5);
-  const std::string bytes = read_bytes(a);
+  const std::string bytes = skybake::test::read_file(a);
   EXPECT_GT(bytes.size(), 100u);
-  EXPECT_TRUE(bytes == read_bytes(b));
+  EXPECT_TRUE(bytes == skybake::test::read_file(b));
   // Different content, different file identity.
   Texture other = tex;
   other.data[0] += 1.0f;

@@ -27,6 +27,14 @@ std::string read_file(const fs::path& path) {
   return ss.str();
 }
 
+std::string scratch_file(const std::string& group, const std::string& test,
+                         const std::string& file) {
+  const fs::path dir = fs::path(SKYBAKE_TEST_TMP) / group / test;
+  fs::create_directories(dir);
+  fs::remove(dir / file);
+  return (dir / file).string();
+}
+
 fs::path fresh_dir(const std::string& name) {
   // ctest runs test cases as parallel processes: one folder per process.
   const fs::path dir = fs::path(SKYBAKE_TEST_TMP) / (name + "." + std::to_string(::getpid()));
@@ -35,7 +43,9 @@ fs::path fresh_dir(const std::string& name) {
   return dir;
 }
 
-fs::path source_path(const std::string& relative) { return fs::path(SKYBAKE_SOURCE_DIR) / relative; }
+fs::path source_path(const std::string& relative) {
+  return fs::path(SKYBAKE_SOURCE_DIR) / relative;
+}
 
 RunResult run_skybake(const std::vector<std::string>& args, const fs::path& cwd) {
   static int counter = 0;

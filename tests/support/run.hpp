@@ -23,6 +23,11 @@ std::filesystem::path fresh_dir(const std::string& name);
 
 std::string read_file(const std::filesystem::path& path);
 
+// Path of `file` in SKYBAKE_TEST_TMP/<group>/<test>/, the folder created and
+// any old copy of the file removed.
+std::string scratch_file(const std::string& group, const std::string& test,
+                         const std::string& file);
+
 // Path inside the source tree.
 std::filesystem::path source_path(const std::string& relative);
 
