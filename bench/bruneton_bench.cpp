@@ -79,7 +79,7 @@ void BM_BrunetonStage(benchmark::State& state) {
         break;
       default:
         benchmark::DoNotOptimize(
-            bake_multiple_scattering(atm, lut, shape, density, 50, BakeContext{}));
+            bake_multiple_scattering(atm, shape, density, 50, BakeContext{}));
         break;
     }
   }

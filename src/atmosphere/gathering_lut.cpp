@@ -11,6 +11,8 @@
 
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/irradiance_lut.hpp"
+#include "atmosphere/ray_transfer.hpp"
+#include "atmosphere/scattering_orders.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
 
@@ -65,10 +67,10 @@ GatheringWeights gathering_weights(const ScatteringPhases& phases, double mu_s, 
 
 namespace {
 
-Gathering gather(const Atmosphere& atm, const TransmittanceReader& reader,
-                 const Texture& transmittance_lut, const Scattering3dShape& shape,
-                 const Scattering3dOrder& order, const GroundLight3d& ground,
-                 const GatheringWeights& weights, double h, double mu_s, int bands) {
+Gathering gather(const Atmosphere& atm, const Texture& transmittance_lut,
+                 const Scattering3dShape& shape, const Scattering3dOrder& order,
+                 const GroundLight3d& ground, const GatheringWeights& weights, double h,
+                 double mu_s, int bands) {
   const ScatteringPhases& phases = *order.phases;
   const double rb = atm.bottom_radius_m, r = rb + h;
   const double sin_s = safe_sqrt(1.0 - mu_s * mu_s);
@@ -95,7 +97,7 @@ Gathering gather(const Atmosphere& atm, const TransmittanceReader& reader,
     if (!hits || !ground_reflects) continue;
     // The lit ground seen along the band's rays, azimuth by azimuth.
     const double d = distance_to_bottom_boundary(rb, r, mu);
-    const glm::dvec3 T = reader.between(r, mu, d, true);
+    const glm::dvec3 T = ray_transmittance(atm, r, mu, d, kGroundRayNodes);
     const double cell = 2.0 * d_phi * (std::cos(l * d_theta) - std::cos((l + 1) * d_theta));
     for (int m = 0; m < bands; ++m) {
       const double nu = mu * mu_s + sin_t * sin_s * std::cos((m + 0.5) * d_phi);
@@ -111,8 +113,7 @@ Gathering gather(const Atmosphere& atm, const TransmittanceReader& reader,
 Gathering compute_gathering(const Atmosphere& atm, const Texture& transmittance_lut,
                             const Scattering3dShape& shape, const Scattering3dOrder& order,
                             const GroundLight3d& ground, double h, double mu_s, int bands) {
-  const TransmittanceReader reader(transmittance_lut, atm);
-  return gather(atm, reader, transmittance_lut, shape, order, ground,
+  return gather(atm, transmittance_lut, shape, order, ground,
                 gathering_weights(*order.phases, mu_s, bands), h, mu_s, bands);
 }
 
@@ -130,7 +131,6 @@ GatheringPass bake_gathering(const Atmosphere& atm, const Texture& transmittance
         *order.phases, mu_s_from_scattering3d_u(texel_center(y, shape.sun_size), shape.sun_size),
         bands);
   });
-  const TransmittanceReader reader(transmittance_lut, atm);
   const int texels = shape.height_size * shape.sun_size;
   ProgressCounter progress(ctx, size_t(texels));
   tbb::parallel_for(tbb::blocked_range<int>(0, texels), [&](const tbb::blocked_range<int>& range) {
@@ -140,7 +140,7 @@ GatheringPass bake_gathering(const Atmosphere& atm, const Texture& transmittance
           h_from_scattering3d_u(atm, texel_center(x, shape.height_size), shape.height_size);
       const double mu_s = mu_s_from_scattering3d_u(texel_center(y, shape.sun_size), shape.sun_size);
       const Gathering g =
-          gather(atm, reader, transmittance_lut, shape, order, ground, weights[y], h, mu_s, bands);
+          gather(atm, transmittance_lut, shape, order, ground, weights[y], h, mu_s, bands);
       float* texel = out.gathering.texel(x, y);
       for (int c = 0; c < 3; ++c) texel[c] = float(g.gathered[c]);
       if (x == 0) out.ground_irradiance[y] = g.ground;  // h = 0 exactly (texel centre)

@@ -60,6 +60,8 @@ MediumSample sample_medium(const Atmosphere& atm, double h) {
   return s;
 }
 
-glm::dvec3 extinction_at(const Atmosphere& atm, double h) { return sample_medium(atm, h).extinction; }
+glm::dvec3 extinction_at(const Atmosphere& atm, double h) {
+  return sample_medium(atm, h).extinction;
+}
 
 }  // namespace skybake

@@ -51,19 +51,19 @@ enum class PhaseKind {
 };
 
 struct MediumComponent {
-  std::string name;                       // "rayleigh", "mie", "ozone", ...
-  glm::dvec3 scattering_per_m{0.0};       // sigma_s at density 1, RGB = 680/550/440 nm
-  glm::dvec3 absorption_per_m{0.0};       // sigma_a at density 1
+  std::string name;                  // "rayleigh", "mie", "ozone", ...
+  glm::dvec3 scattering_per_m{0.0};  // sigma_s at density 1, RGB = 680/550/440 nm
+  glm::dvec3 absorption_per_m{0.0};  // sigma_a at density 1
   DensityProfile density;
   PhaseKind phase = PhaseKind::none;
-  double g = 0.0;                          // asymmetry for CS / HG phases
+  double g = 0.0;  // asymmetry for CS / HG phases
 };
 
 struct Atmosphere {
-  double bottom_radius_m = 6360e3;   // ground radius Rb
-  double top_radius_m = 6460e3;      // top of the atmosphere Rt
-  glm::dvec3 ground_albedo{0.3};     // diffuse, RGB
-  glm::dvec3 sun_illuminance{1.0};   // at the top of the atmosphere, RGB (relative units)
+  double bottom_radius_m = 6360e3;  // ground radius Rb
+  double top_radius_m = 6460e3;     // top of the atmosphere Rt
+  glm::dvec3 ground_albedo{0.3};    // diffuse, RGB
+  glm::dvec3 sun_illuminance{1.0};  // at the top of the atmosphere, RGB (relative units)
   double sun_angular_radius_rad = 0.004675;
   std::vector<MediumComponent> components;  // zero or absent components are dropped at load
 };

@@ -78,15 +78,15 @@ class SunAxisTable {
 };
 
 // S_c of order k + 1 for every texel from the gathering G_k (header).
-void bake_order_from_gathering(const Atmosphere& atm, const TransmittanceReader& reader,
-                               const Scattering3dShape& shape, const Texture& gathering, int nodes,
-                               Texture& rayleigh, Texture& mie, const BakeContext& ctx) {
+void bake_order_from_gathering(const Atmosphere& atm, const Scattering3dShape& shape,
+                               const Texture& gathering, int nodes, Texture& rayleigh, Texture& mie,
+                               const BakeContext& ctx) {
   const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
   const int rows = shape.height_size * shape.view_size;
   const SunAxisTable sun_axis(gathering.height);
   ProgressCounter progress(ctx, size_t(rows));
   tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& range) {
-    std::vector<RayNode> rule;
+    RayTransfer transfer;
     std::vector<glm::dvec3> sum_r(shape.sun_size), sum_m(shape.sun_size);
     std::vector<glm::dvec3> column(gathering.height);  // G at the node's h, per sun texel
     std::vector<double> mu_s(shape.sun_size);
@@ -96,16 +96,16 @@ void bake_order_from_gathering(const Atmosphere& atm, const TransmittanceReader&
       const int x = row % shape.height_size, y = row / shape.height_size;
       const Scattering3dParams p = scattering3d_texel_params(atm, shape, x, y, 0);
       const double r = rb + p.h, mu = p.mu;
-      ray_quadrature(r, mu, distance_to_nearest_boundary(rb, rt, r, mu, p.ray_hits_ground), nodes,
-                     rule);
+      ray_transfer(atm, r, mu, distance_to_nearest_boundary(rb, rt, r, mu, p.ray_hits_ground),
+                   nodes, transfer);
       std::fill(sum_r.begin(), sum_r.end(), glm::dvec3(0.0));
       std::fill(sum_m.begin(), sum_m.end(), glm::dvec3(0.0));
-      for (const RayNode& q : rule) {
-        const double r_y = std::clamp(radius_after(r, mu, q.s), rb, rt), h_y = r_y - rb;
+      for (const TransferNode& q : transfer.nodes) {
+        const double r_y = q.r, h_y = r_y - rb;
         glm::dvec3 sigma_r, sigma_m;
         scattering_by_group(atm, h_y, sigma_r, sigma_m);
         if (sigma_r == glm::dvec3(0.0) && sigma_m == glm::dvec3(0.0)) continue;
-        const glm::dvec3 wT = q.weight * reader.between(r, mu, q.s, p.ray_hits_ground);
+        const glm::dvec3 wT = q.weight;  // energy conserving (ray_transfer.hpp)
         if (wT == glm::dvec3(0.0)) continue;
         const AxisTap th =
             axis_tap(scattering3d_u_from_h(atm, h_y, gathering.width), gathering.width);
@@ -366,7 +366,7 @@ Scattering3dTextures bake_scattering3d(const Atmosphere& atm, const Texture& tra
     ground_E = pass.ground_irradiance;
     ground.per_sun_texel = &ground_E;
 
-    bake_order_from_gathering(atm, reader, shape, pass.gathering, spec.ray_nodes, delta_r, delta_m,
+    bake_order_from_gathering(atm, shape, pass.gathering, spec.ray_nodes, delta_r, delta_m,
                               stage_context(ctx, begin + 0.1 * stage, begin + stage));
     // Residual (header) and accumulation.
     double peak = 0.0;

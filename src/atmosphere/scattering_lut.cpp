@@ -271,7 +271,7 @@ void scattering_by_group(const Atmosphere& atm, double altitude_m, glm::dvec3& r
 
 // ---- Ray quadrature ----
 
-void ray_quadrature(double r, double mu, double d, int nodes, std::vector<RayNode>& out) {
+void ray_segments(double r, double mu, double d, int nodes, std::vector<RaySegment>& out) {
   out.clear();
   if (!(d > 0.0)) return;
   struct Piece {
@@ -293,22 +293,29 @@ void ray_quadrature(double r, double mu, double d, int nodes, std::vector<RayNod
     n[0] = std::clamp(int(std::lround(segments * (perigee / d))), 1, std::max(1, segments - 1));
     n[1] = std::max(1, segments - n[0]);
   }
-  // 3-point Gauss-Legendre: nodes 0, +-sqrt(3/5), weights 8/9, 5/9.
-  constexpr double kNodes[3] = {-0.77459666924148338, 0.0, 0.77459666924148338};
-  constexpr double kWeights[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
   for (int p = 0; p < count; ++p) {
     const Piece& piece = pieces[p];
     const double length = piece.b - piece.a;
+    const size_t first = out.size();
     for (int k = 0; k < n[p]; ++k) {
       // Distances from the dense end: [L t0^2, L t1^2].
       const double t0 = double(k) / n[p], t1 = double(k + 1) / n[p];
       const double g0 = length * t0 * t0, g1 = length * t1 * t1;
-      const double mid = 0.5 * (g0 + g1), half = 0.5 * (g1 - g0);
-      for (int i = 0; i < 3; ++i) {
-        const double g = mid + half * kNodes[i];
-        out.push_back({piece.dense_at_b ? piece.b - g : piece.a + g, half * kWeights[i]});
-      }
+      out.push_back(piece.dense_at_b ? RaySegment{piece.b - g1, piece.b - g0}
+                                     : RaySegment{piece.a + g0, piece.a + g1});
     }
+    if (piece.dense_at_b) std::reverse(out.begin() + first, out.end());
+  }
+}
+
+void ray_quadrature(double r, double mu, double d, int nodes, std::vector<RayNode>& out) {
+  out.clear();
+  std::vector<RaySegment> segments;
+  ray_segments(r, mu, d, nodes, segments);
+  for (const RaySegment& seg : segments) {
+    const double mid = 0.5 * (seg.a + seg.b), half = 0.5 * (seg.b - seg.a);
+    for (int i = 0; i < 3; ++i)
+      out.push_back({mid + half * kGauss3Nodes[i], half * kGauss3Weights[i]});
   }
 }
 
@@ -359,20 +366,18 @@ void SingleScatteringRay::prepare(const Atmosphere& atm, const TransmittanceRead
   nodes.clear();
   const double d =
       distance_to_nearest_boundary(atm.bottom_radius_m, atm.top_radius_m, r, mu, ray_hits_ground);
-  ray_quadrature(r, mu, d, count, rule);
-  for (const RayNode& q : rule) {
+  ray_transfer(atm, r, mu, d, count, transfer);
+  for (const TransferNode& q : transfer.nodes) {
+    if (q.weight == glm::dvec3(0.0)) continue;
+    glm::dvec3 sigma_r, sigma_m;
+    scattering_by_group(atm, q.r - atm.bottom_radius_m, sigma_r, sigma_m);
+    if (sigma_r == glm::dvec3(0.0) && sigma_m == glm::dvec3(0.0)) continue;
     Node n;
     n.s = q.s;
-    const double r_i = std::clamp(radius_after(r, mu, q.s), atm.bottom_radius_m, atm.top_radius_m);
-    n.inv_r = 1.0 / r_i;
-    glm::dvec3 sigma_r, sigma_m;
-    scattering_by_group(atm, r_i - atm.bottom_radius_m, sigma_r, sigma_m);
-    if (sigma_r == glm::dvec3(0.0) && sigma_m == glm::dvec3(0.0)) continue;
-    const glm::dvec3 wT = q.weight * reader.between(r, mu, q.s, ray_hits_ground);
-    if (wT == glm::dvec3(0.0)) continue;
-    n.sun_row = reader.row(r_i);
-    n.a_rayleigh = wT * sigma_r;
-    n.a_mie = wT * sigma_m;
+    n.inv_r = 1.0 / q.r;
+    n.sun_row = reader.row(q.r);
+    n.a_rayleigh = q.weight * sigma_r;
+    n.a_mie = q.weight * sigma_m;
     nodes.push_back(n);
   }
 }

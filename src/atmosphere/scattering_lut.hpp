@@ -47,6 +47,7 @@
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/medium.hpp"
 #include "atmosphere/phase.hpp"
+#include "atmosphere/ray_transfer.hpp"
 #include "core/bake_context.hpp"
 #include "core/math.hpp"
 #include "core/texture.hpp"
@@ -184,6 +185,17 @@ struct RayNode {
 };
 void ray_quadrature(double r, double mu, double d, int nodes, std::vector<RayNode>& out);
 
+// The segments of that rule, [a, b] in order of increasing s, tiling [0, d];
+// ray_quadrature puts 3-point Gauss-Legendre on each.
+struct RaySegment {
+  double a, b;  // m from the ray's origin
+};
+void ray_segments(double r, double mu, double d, int nodes, std::vector<RaySegment>& out);
+
+// 3-point Gauss-Legendre on [-1, 1]: nodes 0, +-sqrt(3/5), weights 8/9, 5/9.
+constexpr double kGauss3Nodes[3] = {-0.77459666924148338, 0.0, 0.77459666924148338};
+constexpr double kGauss3Weights[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+
 // ---- Transmittance ----------------------------------------------------------
 
 // lookup_transmittance_to_top and lookup_transmittance (transmittance_lut.hpp)
@@ -250,8 +262,9 @@ struct SingleScattering {
 };
 
 // The sun-independent part of single scattering along one view ray (nodes,
-// weight x T(x, y) x sigma_s(y) per group, the transmittance row at each
-// node), for bakers that evaluate many suns per ray.
+// the energy-conserving weight x T(x, y) of ray_transfer.hpp x sigma_s(y)
+// per group, the transmittance row at each node), for bakers that evaluate
+// many suns per ray.
 struct SingleScatteringRay {
   struct Node {
     double s = 0, inv_r = 0;  // distance along the ray, 1 / radius
@@ -260,7 +273,7 @@ struct SingleScatteringRay {
   };
   double r = 0;
   std::vector<Node> nodes;  // nodes with a zero contribution are left out
-  std::vector<RayNode> rule;
+  RayTransfer transfer;
 
   void prepare(const Atmosphere& atm, const TransmittanceReader& reader, double r, double mu,
                bool ray_hits_ground, int nodes);
@@ -276,8 +289,9 @@ struct SingleScatteringRay {
 };
 
 // S_R and S_M of one ray from (r, mu) to the ground or the top, for a sun at
-// (mu_s, nu), with `nodes` quadrature nodes (ray_quadrature). Transmittances
-// come from the LUT; thread-safe.
+// (mu_s, nu), with `nodes` quadrature nodes (ray_transfer). Transmittances
+// to the sun come from the LUT, along the view ray from ray_transfer;
+// thread-safe.
 SingleScattering compute_single_scattering(const Atmosphere& atm, const Texture& transmittance_lut,
                                            double r, double mu, double mu_s, double nu,
                                            bool ray_hits_ground, int nodes);

@@ -18,6 +18,7 @@
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/irradiance_lut.hpp"
 #include "atmosphere/phase.hpp"
+#include "atmosphere/ray_transfer.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
@@ -278,24 +279,28 @@ std::vector<glm::dvec3> compute_incident_radiance(const Atmosphere& atm,
                                                   const ScatteringOrder& previous,
                                                   const GroundIrradiance& ground, double r,
                                                   double mu_s, const SphereGrid& grid) {
-  const TransmittanceReader reader(transmittance_lut, atm);
   const double rb = atm.bottom_radius_m;
   const glm::dvec3 sun = sun_direction(mu_s);
   const glm::dvec3 albedo_over_pi = atm.ground_albedo / kPi;
   const bool ground_reflects = atm.ground_albedo != glm::dvec3(0.0);
   std::vector<glm::dvec3> L(grid.directions.size());
   for (int l = 0; l < grid.bands; ++l) {
+    const double mu = grid.directions[size_t(l) * grid.azimuths].z;
+    const bool hits = ray_intersects_ground(rb, r, mu);
+    // The ground seen along the band: distance and transmittance along the
+    // ray itself (ray_transfer.hpp: the LUT's ratio overshoots in dense media).
+    const double d = hits ? distance_to_bottom_boundary(rb, r, mu) : 0.0;
+    const glm::dvec3 T_ground = hits && ground_reflects
+                                    ? ray_transmittance(atm, r, mu, d, kGroundRayNodes)
+                                    : glm::dvec3(0.0);
     // Azimuths m and azimuths - 1 - m mirror each other about the sun's plane.
     for (int m = 0; m < grid.azimuths / 2; ++m) {
       const glm::dvec3& w = grid.directions[size_t(l) * grid.azimuths + m];
-      const double mu = w.z, nu = glm::dot(w, sun);
-      const bool hits = ray_intersects_ground(rb, r, mu);
+      const double nu = glm::dot(w, sun);
       glm::dvec3 radiance = previous.radiance_at(atm, shape, r, mu, mu_s, nu, hits);
       if (hits && ground_reflects) {
-        const double d = distance_to_bottom_boundary(rb, r, mu);
         const double mu_s_ground = clamp_cosine((r * mu_s + d * nu) / rb);
-        radiance += reader.between(r, mu, d, true) * albedo_over_pi *
-                    ground.at(atm, transmittance_lut, mu_s_ground);
+        radiance += T_ground * albedo_over_pi * ground.at(atm, transmittance_lut, mu_s_ground);
       }
       L[size_t(l) * grid.azimuths + m] = radiance;
       L[size_t(l) * grid.azimuths + (grid.azimuths - 1 - m)] = radiance;
@@ -404,39 +409,63 @@ Texture bake_scattering_density(const Atmosphere& atm, const Texture& transmitta
 
 // ---- Multiple scattering ----
 
-glm::dvec3 compute_multiple_scattering(const Atmosphere& atm, const Texture& transmittance_lut,
-                                       const ScatteringShape& shape, const Texture& density,
-                                       double r, double mu, double mu_s, double nu,
-                                       bool ray_hits_ground, int nodes) {
+Texture density_per_scattering(const Atmosphere& atm, const ScatteringShape& shape,
+                               const Texture& density) {
+  const ScatteringTexelGrid texels = scattering_texel_grid(atm, shape);
+  std::vector<glm::dvec3> sigma_s(shape.r_size);
+  for (int z = 0; z < shape.r_size; ++z)
+    sigma_s[z] = sample_medium(atm, texels.r[z] - atm.bottom_radius_m).scattering;
+  Texture out = density;
+  for (int c = 0; c < 3; ++c)
+    for (int z = 0; z < shape.r_size; ++z) {
+      // Where sigma_s = 0 (a layer that ends at the top texel, r = Rt
+      // exactly), J / sigma_s is undefined: take the nearest r texel's.
+      int from = z;
+      for (int k = 1; sigma_s[from][c] == 0.0 && k < shape.r_size; ++k)
+        for (int candidate : {z - k, z + k})
+          if (candidate >= 0 && candidate < shape.r_size && sigma_s[candidate][c] > 0.0 &&
+              sigma_s[from][c] == 0.0)
+            from = candidate;
+      for (int y = 0; y < density.height; ++y)
+        for (int x = 0; x < density.width; ++x)
+          out.texel(x, y, z)[c] = sigma_s[from][c] > 0.0
+                                      ? float(density.texel(x, y, from)[c] / sigma_s[from][c])
+                                      : 0.0f;
+    }
+  return out;
+}
+
+glm::dvec3 compute_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shape,
+                                       const Texture& density, double r, double mu, double mu_s,
+                                       double nu, bool ray_hits_ground, int nodes) {
   const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
   const double d = distance_to_nearest_boundary(rb, rt, r, mu, ray_hits_ground);
-  std::vector<RayNode> rule;
-  ray_quadrature(r, mu, d, nodes, rule);
+  const Texture radiance = density_per_scattering(atm, shape, density);
+  RayTransfer transfer;
+  ray_transfer(atm, r, mu, d, nodes, transfer);
   glm::dvec3 sum(0.0);
-  for (const RayNode& q : rule) {
-    const double r_i = std::clamp(radius_after(r, mu, q.s), rb, rt);
-    const double mu_i = mu_after(r, mu, q.s, r_i);
-    const double mu_s_i = clamp_cosine((r * mu_s + q.s * nu) / r_i);
-    const glm::dvec3 T = lookup_transmittance(transmittance_lut, atm, r, mu, q.s, ray_hits_ground);
-    sum += q.weight * T *
-           lookup_scattering_rgb(density, shape, atm, r_i, mu_i, mu_s_i, nu, ray_hits_ground);
+  for (const TransferNode& q : transfer.nodes) {
+    const double mu_i = mu_after(r, mu, q.s, q.r);
+    const double mu_s_i = clamp_cosine((r * mu_s + q.s * nu) / q.r);
+    const glm::dvec3 sigma_s = sample_medium(atm, q.r - rb).scattering;
+    sum += q.weight * sigma_s *
+           lookup_scattering_rgb(radiance, shape, atm, q.r, mu_i, mu_s_i, nu, ray_hits_ground);
   }
   return sum;
 }
 
-Texture bake_multiple_scattering(const Atmosphere& atm, const Texture& transmittance_lut,
-                                 const ScatteringShape& shape, const Texture& density, int nodes,
-                                 const BakeContext& ctx) {
+Texture bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shape,
+                                 const Texture& density, int nodes, const BakeContext& ctx) {
   const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
-  const TransmittanceReader reader(transmittance_lut, atm);
   const ScatteringTexelGrid texels = scattering_texel_grid(atm, shape);
   const MuSAxis mu_s_axis(atm, shape);
+  const Texture radiance = density_per_scattering(atm, shape, density);
   const int W = shape.texture_width(), n_mu_s = shape.mu_s_size;
   Texture out(W, shape.mu_size, shape.r_size, 1, {"R", "G", "B"});
   const int rows = shape.r_size * shape.mu_size;
   ProgressCounter progress(ctx, size_t(rows));
   tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& range) {
-    std::vector<RayNode> rule;
+    RayTransfer transfer;
     std::vector<double> slice(3 * size_t(W)), sum(3 * size_t(W));
     std::vector<ScatteringParams> params(W);
     std::vector<AxisTap> nu_taps(W);
@@ -448,20 +477,20 @@ Texture bake_multiple_scattering(const Atmosphere& atm, const Texture& transmitt
       }
       const double r = params[0].r, mu = params[0].mu;
       const bool hits = params[0].ray_hits_ground;
-      ray_quadrature(r, mu, distance_to_nearest_boundary(rb, rt, r, mu, hits), nodes, rule);
+      ray_transfer(atm, r, mu, distance_to_nearest_boundary(rb, rt, r, mu, hits), nodes, transfer);
       std::fill(sum.begin(), sum.end(), 0.0);
-      for (const RayNode& q : rule) {
-        const glm::dvec3 wT = q.weight * reader.between(r, mu, q.s, hits);
-        if (wT == glm::dvec3(0.0)) continue;
-        const double r_i = std::clamp(radius_after(r, mu, q.s), rb, rt);
-        const double mu_i = mu_after(r, mu, q.s, r_i);
+      for (const TransferNode& q : transfer.nodes) {
+        const glm::dvec3 wS = q.weight * sample_medium(atm, q.r - rb).scattering;
+        if (wS == glm::dvec3(0.0)) continue;
+        const double r_i = q.r, mu_i = mu_after(r, mu, q.s, r_i);
         const glm::dvec4 uvwz =
             scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r_i, mu_i, 1.0, 1.0, hits);
-        // J at (r_i, mu_i) for every (mu_s, nu) texel: the bilinear blend of
-        // four rows of the table, shared by the row's W texels.
+        // J / sigma_s at (r_i, mu_i) for every (mu_s, nu) texel: the
+        // bilinear blend of four rows of the table, shared by the row's W
+        // texels.
         const AxisTap tr = axis_tap(uvwz.w, shape.r_size), tm = axis_tap(uvwz.z, shape.mu_size);
-        const float* rows4[4] = {density.texel(0, tm.i0, tr.i0), density.texel(0, tm.i1, tr.i0),
-                                 density.texel(0, tm.i0, tr.i1), density.texel(0, tm.i1, tr.i1)};
+        const float* rows4[4] = {radiance.texel(0, tm.i0, tr.i0), radiance.texel(0, tm.i1, tr.i0),
+                                 radiance.texel(0, tm.i0, tr.i1), radiance.texel(0, tm.i1, tr.i1)};
         const double w4[4] = {(1.0 - tr.w) * (1.0 - tm.w), (1.0 - tr.w) * tm.w, tr.w * (1.0 - tm.w),
                               tr.w * tm.w};
         for (size_t i = 0; i < slice.size(); ++i)
@@ -476,9 +505,9 @@ Texture bake_multiple_scattering(const Atmosphere& atm, const Texture& transmitt
           const double* s10 = &slice[3 * size_t(tn.i1 * n_mu_s + tl.i0)];
           const double* s11 = &slice[3 * size_t(tn.i1 * n_mu_s + tl.i1)];
           for (int c = 0; c < 3; ++c) {
-            const double J = (1.0 - tn.w) * ((1.0 - tl.w) * s00[c] + tl.w * s01[c]) +
+            const double L = (1.0 - tn.w) * ((1.0 - tl.w) * s00[c] + tl.w * s01[c]) +
                              tn.w * ((1.0 - tl.w) * s10[c] + tl.w * s11[c]);
-            sum[3 * size_t(x) + c] += wT[c] * J;
+            sum[3 * size_t(x) + c] += wS[c] * L;
           }
         }
       }
@@ -546,7 +575,7 @@ BrunetonTextures bake_bruneton(const Atmosphere& atm, const Texture& transmittan
                                  spec.irradiance_height, spec.irradiance_directions, BakeContext{});
     for (size_t i = 0; i < irradiance.data.size(); ++i) irradiance.data[i] += E.data[i];
     Texture delta =
-        bake_multiple_scattering(atm, transmittance_lut, shape, density, spec.ray_nodes,
+        bake_multiple_scattering(atm, shape, density, spec.ray_nodes,
                                  stage_context(ctx, begin + 0.5 * stage, begin + stage));
 
     // Residual (header): peak of L_{<=k}, then the largest relative change.

@@ -17,7 +17,9 @@ namespace {
 constexpr double kDeg = kPi / 180.0;
 constexpr double kWhite = 4.0;  // extended Reinhard white point (exposed units)
 
-double luminance(const float* rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
+double luminance(const float* rgb) {
+  return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+}
 
 // Exposure that maps the panel's 90th-percentile luminance to 0.8: robust to
 // the sun disk, which covers far fewer than 10 % of the pixels.
@@ -56,8 +58,8 @@ Texture render_panel(const Atmosphere& atm, const Texture& transmittance,
     image.camera.pitch_rad = -kPi / 2;
     return render_sky_image(atm, luts, image, quiet);
   }
-  image.camera.altitude_m = std::min(spec.camera_altitude_m,
-                                     0.5 * (atm.top_radius_m - atm.bottom_radius_m));
+  image.camera.altitude_m =
+      std::min(spec.camera_altitude_m, 0.5 * (atm.top_radius_m - atm.bottom_radius_m));
   image.camera.pitch_rad = spec.camera_pitch_deg * kDeg;
   image.camera.yaw_rad = 0.0;  // toward the sun
 
@@ -68,7 +70,8 @@ Texture render_panel(const Atmosphere& atm, const Texture& transmittance,
   ap.camera = image.camera;
   ap.sun_zenith_rad = sun_zenith;
   ap.depth_range_m = std::min(32e3, 2.0 * (atm.top_radius_m - atm.bottom_radius_m));
-  const Texture aerial = bake_aerial_perspective_lut(atm, transmittance, multiscattering, ap, quiet);
+  const Texture aerial =
+      bake_aerial_perspective_lut(atm, transmittance, multiscattering, ap, quiet);
   luts.skyview = &skyview;
   luts.skyview_layer = 0;
   luts.aerial_perspective = &aerial;

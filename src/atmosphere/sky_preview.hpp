@@ -24,13 +24,13 @@
 namespace skybake {
 
 struct SkyPreviewPanel {
-  std::string label;           // "noon", "sun_10deg", ...
-  double sun_elevation_deg;    // above the horizon
-  bool from_space = false;     // camera far above, looking at the planet
+  std::string label;         // "noon", "sun_10deg", ...
+  double sun_elevation_deg;  // above the horizon
+  bool from_space = false;   // camera far above, looking at the planet
 };
 
 struct SkyPreviewSpec {
-  int width = 320;   // pixels per panel
+  int width = 320;  // pixels per panel
   int height = 180;
   double camera_altitude_m = 200.0;  // ground views
   double camera_pitch_deg = 12.0;    // ground views look slightly up, toward the sun

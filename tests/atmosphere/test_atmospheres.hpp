@@ -5,10 +5,14 @@
 // of tests/atmosphere may include it.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <utility>
 
+#include "atmosphere/geometry.hpp"
 #include "atmosphere/medium.hpp"
+#include "atmosphere/transmittance_lut.hpp"
 
 namespace skybake::fixtures {
 
@@ -86,6 +90,26 @@ inline Atmosphere uniform_slab_atmosphere(glm::dvec3 scattering_per_m, glm::dvec
                                    uniform_profile(0.0, top_radius_m - bottom_radius_m),
                                    PhaseKind::rayleigh)};
   return atm;
+}
+
+// Single scattering reads one thing from the transmittance LUT, the
+// transmittance toward the sun at each node; the view ray's own is
+// integrated along the ray (ray_transfer.hpp). With the sun straight along
+// the view ray (mu_s = mu, nu = 1), the largest relative error of those
+// reads against exp(-depth_to_top(s)), over 400 points of the ray of length
+// d, bounds the error single scattering inherits from the LUT.
+template <class DepthToTop>
+double sun_lut_error_along_ray(const Texture& lut, const Atmosphere& atm, double r, double mu,
+                               double d, DepthToTop depth_to_top) {
+  double worst = 0.0;
+  for (int i = 0; i <= 400; ++i) {
+    const double s = d * i / 400.0;
+    const double r_s = std::clamp(radius_after(r, mu, s), atm.bottom_radius_m, atm.top_radius_m);
+    const glm::dvec3 T = lookup_transmittance_to_top(lut, atm, r_s, mu_after(r, mu, s, r_s));
+    const glm::dvec3 exact = glm::exp(-depth_to_top(s));
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(T[c] / exact[c] - 1.0));
+  }
+  return worst;
 }
 
 }  // namespace skybake::fixtures
