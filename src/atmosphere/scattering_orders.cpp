@@ -156,6 +156,11 @@ void set_common_metadata(Metadata& meta, const Atmosphere& atm, const BrunetonSp
   set_meta(meta, "orders", out.orders_used);
   set_meta(meta, "last_residual", out.last_residual);
   set_meta(meta, "tolerance", spec.tolerance);
+  set_meta(meta, "geometric_tail",
+           spec.tolerance > 0.0 && spec.geometric_tail
+               ? fmt::format("{:.17g},{:.17g},{:.17g}", out.tail_factor.x, out.tail_factor.y,
+                             out.tail_factor.z)
+               : std::string("none"));
   set_meta(meta, "units", std::string("relative to the sun_illuminance of the preset"));
 }
 
@@ -534,6 +539,7 @@ BrunetonTextures bake_bruneton(const Atmosphere& atm, const Texture& transmittan
   const ScatteringPhases phases = scattering_phases(atm);
   const ScatteringTexelGrid texels = scattering_texel_grid(atm, shape);
   const bool converge = spec.tolerance > 0.0;
+  const bool tail_mode = converge && spec.geometric_tail;
   const int last_order = converge ? spec.max_orders : spec.orders;
   const double stage = 1.0 / (last_order + 1);  // single, orders 2..N, final irradiance
 
@@ -561,7 +567,8 @@ BrunetonTextures bake_bruneton(const Atmosphere& atm, const Texture& transmittan
                     });
 
   Texture previous_radiance;  // DeltaS of the previous order (k >= 3)
-  Texture ground_table;       // E_{k-2} for k >= 3
+  glm::dvec3 previous_order_sum(0.0), previous_tail_factor(0.0);
+  Texture ground_table;  // E_{k-2} for k >= 3
   ScatteringOrder previous = order1;
   GroundIrradiance ground;  // direct sunlight for order 2
   out.orders_used = 1;
@@ -587,6 +594,16 @@ BrunetonTextures bake_bruneton(const Atmosphere& atm, const Texture& transmittan
     for (size_t t = 0; t < texel_count; ++t)
       for (int c = 0; c < 3; ++c) peak = std::max(peak, radiance(t, c));
     const double floor = std::max(1e-6 * peak, std::numeric_limits<double>::min());
+    // The geometric tail (header): the ratio of this order's total to the
+    // last's, per channel, and the tail factor f = lambda / (1 - lambda).
+    glm::dvec3 order_sum(0.0);
+    for (size_t t = 0; t < texel_count; ++t)
+      for (int c = 0; c < 3; ++c) order_sum[c] += delta.data[3 * t + c];
+    glm::dvec3 tail_factor(0.0);
+    for (int c = 0; c < 3 && k >= 3; ++c) {
+      const double ratio = order_sum[c] > 0.0 ? order_sum[c] / previous_order_sum[c] : 0.0;
+      tail_factor[c] = ratio < kMaxTailRatio ? ratio / (1.0 - ratio) : 0.0;
+    }
     double residual = 0.0;
     for (size_t t = 0; t < texel_count; ++t)
       for (int c = 0; c < 3; ++c)
@@ -600,17 +617,29 @@ BrunetonTextures bake_bruneton(const Atmosphere& atm, const Texture& transmittan
     out.orders_used = k;
     out.last_residual = residual;
     out.residuals.push_back(residual);
+    previous_order_sum = order_sum;
+    previous_tail_factor = tail_factor;
     previous_radiance = std::move(delta);
     ground_table = std::move(E);
     previous = ScatteringOrder{nullptr, nullptr, &previous_radiance, &phases};
     ground.table = &ground_table;
     if (converge && residual < spec.tolerance) break;
   }
+  if (tail_mode) {
+    // Orders k > N stand as DeltaS_N lambda^(k - N): their sum is f DeltaS_N.
+    out.tail_factor = previous_tail_factor;
+    for (size_t t = 0; t < texel_count; ++t)
+      for (int c = 0; c < 3; ++c)
+        accumulated.data[3 * t + c] =
+            float(accumulated.data[3 * t + c] +
+                  previous_tail_factor[c] * double(previous_radiance.data[3 * t + c]) / phase_r[t]);
+  }
   // The sky of the last order lights the ground too (header).
   const Texture E_last =
       bake_indirect_irradiance(atm, shape, previous, spec.irradiance_width, spec.irradiance_height,
                                spec.irradiance_directions, BakeContext{});
-  for (size_t i = 0; i < irradiance.data.size(); ++i) irradiance.data[i] += E_last.data[i];
+  for (size_t i = 0; i < irradiance.data.size(); ++i)
+    irradiance.data[i] += E_last.data[i] * (1.0 + out.tail_factor[i % 3]);
   out.direct_irradiance = bake_direct_irradiance(atm, transmittance_lut, spec.irradiance_width,
                                                  spec.irradiance_height, BakeContext{});
   if (spec.irradiance_includes_direct)

@@ -30,6 +30,7 @@ BrunetonSpec bruneton_spec(const OutputSpec& spec) {
   b.orders = option_int(spec, "orders", b.orders);
   b.tolerance = option_double(spec, "tolerance", 0.0);
   b.max_orders = option_int(spec, "max_orders", b.max_orders);
+  b.geometric_tail = option_string(spec, "tail", "geometric") == "geometric";
   b.combined_mie_alpha = option_string(spec, "mie", "alpha") == "alpha";
   return b;
 }
