@@ -34,7 +34,8 @@ const std::vector<std::pair<std::string, ProductSection>>& measured_products() {
       {"transmittance", transmittance_report},
       {"multiscattering", multiscattering_report},
       {"skyview", skyview_report},
-      {"aerial_perspective", aerial_perspective_report}};
+      {"aerial_perspective", aerial_perspective_report},
+      {"scattering", scattering_report}};
   return table;
 }
 
@@ -80,10 +81,9 @@ nlohmann::json unmeasured_product(const std::string& product) {
   if (atmosphere)
     return {{"product", product},
             {"kind", "not_measured"},
-            {"note", product == "scattering"
-                         ? "no ladder yet; the sky it renders is measured against the path "
-                           "tracer in bruneton_comparison"
-                         : "no ladder for this product in this version of the report"}};
+            {"note", "no ladder for this product in this version of the report; for the "
+                     "Bruneton family, the sky the tables render is measured against the path "
+                     "tracer in bruneton_comparison"}};
   return {{"product", product},
           {"kind", "exact"},
           {"note",

@@ -10,6 +10,9 @@
 //                       and for single scattering the adaptive quadrature
 //                       (reference_single_scattering), independent of every LUT
 //   aerial_perspective  the same march with many more steps (same input LUTs)
+//   scattering          single scattering (one order) against adaptive
+//                       quadrature (reference_single_scattering); the orders
+//                       >= 2 are in the Bruneton comparison (path tracer)
 // The preset's own settings are the operating point (added to the ladder
 // when the grid lacks them); the Pareto front is over (seconds, max_rel).
 // Each product also measures its operating-point table stored as half.
@@ -35,6 +38,7 @@ nlohmann::json transmittance_report(const ReportInputs& in);
 nlohmann::json multiscattering_report(const ReportInputs& in);
 nlohmann::json skyview_report(const ReportInputs& in);
 nlohmann::json aerial_perspective_report(const ReportInputs& in);
+nlohmann::json scattering_report(const ReportInputs& in);
 
 // ---- Shared by the product files ---------------------------------------------
 

@@ -28,6 +28,9 @@ ReportLevel ReportLevel::full() {
   l.aerial_depths = {16, 32, 64};
   l.aerial_queries = 2048;
   l.aerial_reference_steps = 2000;
+  l.scattering_shapes = {{8, 32, 8, 4}, {16, 64, 16, 8}, {32, 128, 32, 8}, {32, 256, 32, 16}};
+  l.scattering_ray_nodes = {15, 30, 51, 99};
+  l.scattering_queries = 1024;
   l.reference_transmittance_size = {1024, 256};
   l.reference_transmittance_steps = 200;
   l.sun_elevations_deg = {60.0, 20.0, 5.0};
@@ -66,6 +69,9 @@ ReportLevel ReportLevel::quick() {
   l.aerial_depths = {16, 32};
   l.aerial_queries = 256;
   l.aerial_reference_steps = 500;
+  l.scattering_shapes = {{8, 32, 8, 4}, {16, 64, 16, 8}};
+  l.scattering_ray_nodes = {15, 51};
+  l.scattering_queries = 64;
   l.reference_transmittance_size = {512, 128};
   l.reference_transmittance_steps = 100;
   l.path_samples = 256;
@@ -100,6 +106,9 @@ nlohmann::json level_json(const ReportLevel& l) {
           {"aerial_depths", l.aerial_depths},
           {"aerial_queries", l.aerial_queries},
           {"aerial_reference_steps", l.aerial_reference_steps},
+          {"scattering_shapes", l.scattering_shapes},
+          {"scattering_ray_nodes", l.scattering_ray_nodes},
+          {"scattering_queries", l.scattering_queries},
           {"reference_transmittance_size", l.reference_transmittance_size},
           {"reference_transmittance_steps", l.reference_transmittance_steps},
           {"sun_elevations_deg", l.sun_elevations_deg},

@@ -52,6 +52,12 @@ struct ReportLevel {
   int aerial_queries = 0;
   int aerial_reference_steps = 0;
 
+  // Scattering (Bruneton 4D, single scattering): shapes (r, mu, mu_s, nu) x
+  // ray nodes, queries against adaptive quadrature.
+  std::vector<std::vector<int>> scattering_shapes;
+  std::vector<int> scattering_ray_nodes;
+  int scattering_queries = 0;
+
   // The reference transmittance table the fine references read.
   std::vector<int> reference_transmittance_size;
   int reference_transmittance_steps = 0;
