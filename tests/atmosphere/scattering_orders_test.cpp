@@ -57,6 +57,20 @@ BrunetonSpec small_spec(int orders) {
   return spec;
 }
 
+// Smaller still, for dense media that need hundreds of orders.
+BrunetonSpec dense_spec() {
+  BrunetonSpec spec = small_spec(4);
+  spec.r_size = 8;
+  spec.mu_size = 32;
+  spec.mu_s_size = 8;
+  spec.ray_nodes = 21;
+  spec.density_directions = 6;
+  spec.irradiance_width = 16;
+  spec.irradiance_height = 4;
+  spec.irradiance_directions = 8;
+  return spec;
+}
+
 // One order step by step, for tests that look inside the iteration.
 struct Orders {
   Atmosphere atm;
@@ -278,15 +292,7 @@ TEST(ScatteringOrdersEnergy, FluxLeavingEqualsFluxEnteringAThinSlab) {
 TEST(ScatteringOrdersEnergy, FiftyTimesDenserEarthConvergesWithManyOrders) {
   const Atmosphere atm = scaled(fixtures::earth_atmosphere(), 50.0);
   const Texture lut = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{});
-  BrunetonSpec spec = small_spec(4);
-  spec.r_size = 8;
-  spec.mu_size = 32;
-  spec.mu_s_size = 8;
-  spec.ray_nodes = 21;
-  spec.density_directions = 6;
-  spec.irradiance_width = 16;
-  spec.irradiance_height = 4;
-  spec.irradiance_directions = 8;
+  BrunetonSpec spec = dense_spec();
   spec.tolerance = 5e-3;
   spec.max_orders = 400;
   const BrunetonTextures t = bake_bruneton(atm, lut, spec, BakeContext{});
@@ -317,15 +323,7 @@ TEST(ScatteringOrdersEnergy, GeometricTailApproachesTheConvergedTableFromBelow) 
   // reference's own unconverged remainder).
   const Atmosphere atm = scaled(fixtures::earth_atmosphere(), 20.0);
   const Texture lut = bake_transmittance_lut(atm, {128, 32, 40}, BakeContext{});
-  BrunetonSpec spec = small_spec(4);
-  spec.r_size = 8;
-  spec.mu_size = 32;
-  spec.mu_s_size = 8;
-  spec.ray_nodes = 21;
-  spec.density_directions = 6;
-  spec.irradiance_width = 16;
-  spec.irradiance_height = 4;
-  spec.irradiance_directions = 8;
+  BrunetonSpec spec = dense_spec();
   spec.combined_mie_alpha = false;
   spec.max_orders = 400;
   auto total = [](const Texture& t) {
