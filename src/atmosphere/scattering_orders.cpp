@@ -441,11 +441,11 @@ Texture density_per_scattering(const Atmosphere& atm, const ScatteringShape& sha
 }
 
 glm::dvec3 compute_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shape,
-                                       const Texture& density, double r, double mu, double mu_s,
-                                       double nu, bool ray_hits_ground, int nodes) {
+                                       const Texture& density_per_sigma_s, double r, double mu,
+                                       double mu_s, double nu, bool ray_hits_ground, int nodes) {
   const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
   const double d = distance_to_nearest_boundary(rb, rt, r, mu, ray_hits_ground);
-  const Texture radiance = density_per_scattering(atm, shape, density);
+  const Texture& radiance = density_per_sigma_s;
   RayTransfer transfer;
   ray_transfer(atm, r, mu, d, nodes, transfer);
   glm::dvec3 sum(0.0);

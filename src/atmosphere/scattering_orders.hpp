@@ -176,11 +176,12 @@ Texture density_per_scattering(const Atmosphere& atm, const ScatteringShape& sha
                                const Texture& density);
 
 // DeltaS_k of one ray by the straightforward quadrature (ray_transfer weights,
-// sigma_s at the node times lookup_scattering_rgb of density_per_scattering):
-// the reference for bake_multiple_scattering.
+// sigma_s at the node times lookup_scattering_rgb of `density_per_sigma_s`,
+// the table density_per_scattering returns, made once for many rays): the
+// reference for bake_multiple_scattering.
 glm::dvec3 compute_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shape,
-                                       const Texture& density, double r, double mu, double mu_s,
-                                       double nu, bool ray_hits_ground, int nodes);
+                                       const Texture& density_per_sigma_s, double r, double mu,
+                                       double mu_s, double nu, bool ray_hits_ground, int nodes);
 
 // DeltaS_k at every texel (RGB radiance), fast path.
 Texture bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shape,

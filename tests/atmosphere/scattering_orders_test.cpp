@@ -175,13 +175,14 @@ TEST(MultipleScattering, FastPassEqualsTheDirectQuadrature) {
   const Orders o(fixtures::earth_atmosphere());
   const Texture J = bake_scattering_density(o.atm, o.lut, kSmall, o.order1, {}, 8, BakeContext{});
   const Texture S = bake_multiple_scattering(o.atm, kSmall, J, 30, BakeContext{});
+  const Texture J_per_sigma_s = density_per_scattering(o.atm, kSmall, J);
   const float peak = max_value(S);
   for (int z = 0; z < kSmall.r_size; z += 2)
     for (int y = 0; y < kSmall.mu_size; y += 3)
       for (int x = 0; x < kSmall.texture_width(); x += 5) {
         const ScatteringParams p = scattering_texel_params(o.atm, kSmall, x, y, z);
-        const glm::dvec3 ref = compute_multiple_scattering(o.atm, kSmall, J, p.r, p.mu, p.mu_s,
-                                                           p.nu, p.ray_hits_ground, 30);
+        const glm::dvec3 ref = compute_multiple_scattering(o.atm, kSmall, J_per_sigma_s, p.r, p.mu,
+                                                           p.mu_s, p.nu, p.ray_hits_ground, 30);
         for (int c = 0; c < 3; ++c)
           ASSERT_NEAR(S.at(x, y, z, 0, c), ref[c], 1e-6 * ref[c] + 1e-9 * peak) << x << " " << y;
       }
