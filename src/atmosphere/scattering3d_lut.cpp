@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "atmosphere/gathering_lut.hpp"
+#include "atmosphere/geometric_tail.hpp"
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/scattering_orders.hpp"
 #include "core/error.hpp"
@@ -149,6 +150,8 @@ void set_scattering3d_metadata(Metadata& meta, const Atmosphere& atm, const Scat
   set_meta(meta, "orders", out.orders_used);
   set_meta(meta, "last_residual", out.last_residual);
   set_meta(meta, "tolerance", spec.tolerance);
+  set_meta(meta, "geometric_tail",
+           geometric_tail_metadata(spec.tolerance > 0.0 && spec.geometric_tail, out.tail_factor));
   set_meta(meta, "azimuth_samples", spec.azimuth_samples);
   set_meta(meta, "gathering_directions", spec.gathering_directions);
   set_meta(meta, "ray_nodes", spec.ray_nodes);
@@ -316,6 +319,7 @@ Scattering3dTextures bake_scattering3d(const Atmosphere& atm, const Texture& tra
   const ScatteringPhases phases = scattering_phases(atm);
   const TransmittanceReader reader(transmittance_lut, atm);
   const bool converge = spec.tolerance > 0.0;
+  const bool tail_mode = converge && spec.geometric_tail;
   const int last_order = converge ? spec.max_orders : spec.orders;
   const double stage = 1.0 / last_order;
   const int W = shape.height_size, Hv = shape.view_size, D = shape.sun_size;
@@ -355,6 +359,8 @@ Scattering3dTextures bake_scattering3d(const Atmosphere& atm, const Texture& tra
   Texture delta_r = std::move(rayleigh), delta_m = std::move(mie);
   std::vector<glm::dvec3> ground_E;  // E_{k-1} per sun texel
   GroundLight3d ground;              // direct sunlight for order 1's gathering
+  Texture last_gathering;            // G_{k-1}, for the tail of the gathering sum
+  glm::dvec3 previous_order_sum(0.0), tail_factor(0.0);
   for (int k = 2; k <= last_order; ++k) {
     const double begin = (k - 1) * stage;
     // Gather order k - 1, lit ground of order k - 2.
@@ -368,6 +374,13 @@ Scattering3dTextures bake_scattering3d(const Atmosphere& atm, const Texture& tra
 
     bake_order_from_gathering(atm, shape, pass.gathering, spec.ray_nodes, delta_r, delta_m,
                               stage_context(ctx, begin + 0.1 * stage, begin + stage));
+    // The tail's ratio of this order's total to the last's (header).
+    glm::dvec3 order_sum(0.0);
+    for (size_t i = 0; i < delta_r.data.size(); ++i)
+      order_sum[i % 3] += double(delta_r.data[i]) + delta_m.data[i];
+    tail_factor = k >= 3 ? geometric_tail_factor(order_sum, previous_order_sum) : glm::dvec3(0.0);
+    previous_order_sum = order_sum;
+    if (tail_mode) last_gathering = pass.gathering;
     // Residual (header) and accumulation.
     double peak = 0.0;
     for (size_t i = 0; i < total_r.data.size(); ++i)
@@ -386,6 +399,18 @@ Scattering3dTextures bake_scattering3d(const Atmosphere& atm, const Texture& tra
     out.last_residual = residual;
     out.residuals.push_back(residual);
     if (converge && residual < spec.tolerance) break;
+  }
+  if (tail_mode) {
+    // Orders k > N stand as DeltaS_N lambda^(k - N): their sum is f DeltaS_N.
+    out.tail_factor = tail_factor;
+    for (size_t i = 0; i < total_r.data.size(); ++i) {
+      const double f = tail_factor[i % 3];
+      total_r.data[i] = float(total_r.data[i] + f * delta_r.data[i]);
+      total_m.data[i] = float(total_m.data[i] + f * delta_m.data[i]);
+    }
+    for (size_t i = 0; i < last_gathering.data.size(); ++i)
+      out.gathering_sum.data[i] =
+          float(out.gathering_sum.data[i] + tail_factor[i % 3] * last_gathering.data[i]);
   }
 
   out.scattering = Texture(W, Hv, D, 1,
@@ -418,6 +443,7 @@ Scattering3dTextures bake_scattering3d(const Atmosphere& atm, const Texture& tra
   set_meta(g, "mu_s_min", kScattering3dMuSMin);
   set_meta(g, "orders", out.orders_used);
   set_meta(g, "last_residual", out.last_residual);
+  set_meta(g, "geometric_tail", geometric_tail_metadata(tail_mode, out.tail_factor));
   set_meta(g, "mapping",
            std::string("coord(x, n) = 0.5/n + x*(1 - 1/n); u = coord(sqrt(h/(Rt - Rb)), width), "
                        "v = coord(0.5*(atan(max(mu_s, mu_s_min)*tan(0.945))/0.75 + 0.74), "

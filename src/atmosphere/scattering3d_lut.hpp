@@ -37,6 +37,13 @@
 //            so its azimuthal mean is G at the mean to second order.
 // Orders: fixed count or convergence as in scattering_orders.hpp, residual
 // = max over texels and channels of DeltaS / max(S, 1e-6 max S), S = S_R + S_M.
+// Geometric tail (tolerance > 0 and geometric_tail, the default), as in the
+// 4D orders (geometric_tail.hpp): lambda_c = sum of DeltaS_N / sum of
+// DeltaS_{N-1} over texels (S_R + S_M, channel c, N >= 3), f = lambda / (1 -
+// lambda); f DeltaS_N is added to both groups, and f G_{N-1} to the
+// gathering sum (G_N + G_{N+1} + ... = f G_{N-1} under the same ratio), so
+// the tables stand for every order. The metadata records f per channel
+// ("geometric_tail"). Fixed orders stay exactly orders 1..N.
 // Reads: the transmittance LUT.
 #pragma once
 
@@ -98,9 +105,10 @@ struct Scattering3dSpec {
   int height_size = 32;
   int view_size = 128;
   int sun_size = 32;
-  int orders = 4;          // scattering orders, single included, in [1, kMaxScatteringOrders]
-  double tolerance = 0.0;  // > 0: stop when an order's residual is below it
-  int max_orders = 100;    // cap when tolerance > 0
+  int orders = 4;              // scattering orders, single included, in [1, kMaxScatteringOrders]
+  double tolerance = 0.0;      // > 0: stop when an order's residual is below it
+  int max_orders = 100;        // cap when tolerance > 0
+  bool geometric_tail = true;  // tolerance > 0: sum the orders after the last (header)
   bool combined_mie_alpha = true;  // RGBA with S_M.r in A, else a separate `mie` texture
   int ray_nodes = 51;              // quadrature nodes per view ray (ray_quadrature)
   int azimuth_samples = 8;         // sun azimuths averaged in single scattering
@@ -115,8 +123,9 @@ struct Scattering3dTextures {
   Texture gathering_sum;  // height_size x sun_size RGB, sum of G_1..G_{N-1} (gathering_lut.hpp)
   Scattering3dShape shape;
   int orders_used = 0;
-  double last_residual = 1.0;  // 1 when only single scattering was baked
-  std::vector<double> residuals;
+  double last_residual = 1.0;     // 1 when only single scattering was baked
+  glm::dvec3 tail_factor{0.0};    // f of the geometric tail added, per channel (0: none)
+  std::vector<double> residuals;  // of orders 2..orders_used
 };
 
 void check_scattering3d_spec(const Scattering3dSpec& spec);

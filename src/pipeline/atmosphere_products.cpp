@@ -126,18 +126,13 @@ ProductInfo atmosphere_lut_product(std::string name, std::string summary,
                                    std::vector<std::string> axes, std::vector<int> size,
                                    std::vector<int> max_size, std::vector<std::string> dependencies,
                                    BakeFn bake, double ns_per_texel) {
-  ProductInfo p;
-  p.name = std::move(name);
-  p.summary = std::move(summary);
-  p.axes = std::move(axes);
-  p.default_size = std::move(size);
-  p.max_size = std::move(max_size);
+  ProductInfo p =
+      basic_product(std::move(name), std::move(summary), std::move(axes), std::move(size),
+                    std::move(max_size), std::move(bake), ns_per_texel);
   p.default_formats = {"exr", "dds"};
   p.allowed_formats = {"exr", "dds", "png"};
   p.dependencies = std::move(dependencies);
   p.scene_sections = kAtmosphereSections;
-  p.bake = std::move(bake);
-  p.ns_per_texel = ns_per_texel;
   return p;
 }
 

@@ -43,6 +43,7 @@ Scattering3dSpec scattering3d_spec(const OutputSpec& spec) {
   s.orders = option_int(spec, "orders", s.orders);
   s.tolerance = option_double(spec, "tolerance", 0.0);
   s.max_orders = option_int(spec, "max_orders", s.max_orders);
+  s.geometric_tail = option_string(spec, "tail", "geometric") == "geometric";
   s.combined_mie_alpha = option_string(spec, "mie", "alpha") == "alpha";
   return s;
 }

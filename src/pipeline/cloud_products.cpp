@@ -191,18 +191,13 @@ std::vector<ProductProblem> square_problems(const OutputSpec& spec) {
 ProductInfo cloud_product(std::string name, std::string summary, std::vector<std::string> axes,
                           std::vector<int> size, std::vector<int> max_size, BakeFn bake,
                           double ns_per_texel, bool tileable) {
-  ProductInfo p;
-  p.name = std::move(name);
-  p.summary = std::move(summary);
-  p.axes = std::move(axes);
-  p.default_size = std::move(size);
-  p.max_size = std::move(max_size);
+  ProductInfo p =
+      basic_product(std::move(name), std::move(summary), std::move(axes), std::move(size),
+                    std::move(max_size), std::move(bake), ns_per_texel);
   p.default_formats = {"dds", "exr", "png"};
   p.allowed_formats = {"dds", "exr", "png"};
   p.scene_sections = {"clouds"};
   p.default_dds_format = "unorm8";
-  p.bake = std::move(bake);
-  p.ns_per_texel = ns_per_texel;
   p.default_mips = tileable;
   p.preview_tiled = tileable;
   p.preview_split = true;

@@ -96,17 +96,12 @@ std::vector<ProductProblem> check(const OutputSpec& spec) {
 ProductInfo noise_product(std::string name, std::string summary, std::vector<std::string> axes,
                           std::vector<int> size, std::vector<int> max_size, BakeFn bake,
                           double ns_per_texel, CheckFn check_fn) {
-  ProductInfo p;
-  p.name = std::move(name);
-  p.summary = std::move(summary);
-  p.axes = std::move(axes);
-  p.default_size = std::move(size);
-  p.max_size = std::move(max_size);
+  ProductInfo p =
+      basic_product(std::move(name), std::move(summary), std::move(axes), std::move(size),
+                    std::move(max_size), std::move(bake), ns_per_texel);
   p.default_formats = {"dds", "png"};
   p.allowed_formats = {"dds", "exr", "vdb", "png"};
   p.default_dds_format = "unorm8";
-  p.bake = std::move(bake);
-  p.ns_per_texel = ns_per_texel;
   p.check = std::move(check_fn);
   p.default_mips = true;
   p.preview_tiled = true;

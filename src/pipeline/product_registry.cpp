@@ -3,6 +3,8 @@
 // and schemas/products/<name>.schema.json for its options.
 #include "pipeline/product.hpp"
 
+#include <utility>
+
 #include "pipeline/product_tables.hpp"
 
 namespace skybake {
@@ -19,6 +21,20 @@ std::vector<ProductInfo> make_registry() {
 }
 
 }  // namespace
+
+ProductInfo basic_product(std::string name, std::string summary, std::vector<std::string> axes,
+                          std::vector<int> size, std::vector<int> max_size, BakeFn bake,
+                          double ns_per_texel) {
+  ProductInfo p;
+  p.name = std::move(name);
+  p.summary = std::move(summary);
+  p.axes = std::move(axes);
+  p.default_size = std::move(size);
+  p.max_size = std::move(max_size);
+  p.bake = std::move(bake);
+  p.ns_per_texel = ns_per_texel;
+  return p;
+}
 
 const std::vector<ProductInfo>& product_registry() {
   static const std::vector<ProductInfo> registry = make_registry();

@@ -14,6 +14,14 @@ void add_noise_products(std::vector<ProductInfo>& registry);
 void add_cloud_products(std::vector<ProductInfo>& registry);
 void add_bruneton_products(std::vector<ProductInfo>& registry);
 
+// What every product states (product.hpp): its name and one-line summary,
+// its size axes with their default and largest sizes, its baker and its
+// cost per texel. The family helpers below add their family's defaults
+// (formats, scene sections, ...) on top (product_registry.cpp).
+ProductInfo basic_product(std::string name, std::string summary, std::vector<std::string> axes,
+                          std::vector<int> size, std::vector<int> max_size, BakeFn bake,
+                          double ns_per_texel);
+
 // An atmosphere LUT product reading the planet and atmosphere sections, EXR
 // and DDS by default (atmosphere_products.cpp).
 ProductInfo atmosphere_lut_product(std::string name, std::string summary,

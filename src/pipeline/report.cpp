@@ -35,7 +35,11 @@ const std::vector<std::pair<std::string, ProductSection>>& measured_products() {
       {"multiscattering", multiscattering_report},
       {"skyview", skyview_report},
       {"aerial_perspective", aerial_perspective_report},
-      {"scattering", scattering_report}};
+      {"scattering", scattering_report},
+      {"single_mie", single_mie_report},
+      {"irradiance", irradiance_report},
+      {"scattering3d", scattering3d_report},
+      {"gathering_sum", gathering_sum_report}};
   return table;
 }
 
@@ -81,9 +85,7 @@ nlohmann::json unmeasured_product(const std::string& product) {
   if (atmosphere)
     return {{"product", product},
             {"kind", "not_measured"},
-            {"note", "no ladder for this product in this version of the report; for the "
-                     "Bruneton family, the sky the tables render is measured against the path "
-                     "tracer in bruneton_comparison"}};
+            {"note", "no ladder for this product in this version of the report"}};
   return {{"product", product},
           {"kind", "exact"},
           {"note",

@@ -63,6 +63,13 @@ std::string summary_table(const nlohmann::json& report) {
   return s + "</table>\n";
 }
 
+// Column label of a ladder point's extra statistics.
+std::string extra_label(const std::string& key) {
+  if (key == "single_scattering") return "single";
+  if (key == "transmittance") return "A";
+  return key;  // header() escapes
+}
+
 std::string product_section(const nlohmann::json& p) {
   std::string s = fmt::format("<h2 id=\"{0}\">{0}</h2>\n", text(p["product"]));
   s += "<p class=\"note\">Reference: " + text(p["reference"]) +
@@ -82,21 +89,21 @@ std::string product_section(const nlohmann::json& p) {
   s += loglog_svg(points, "bake time (s)", "relative error");
   s += "<p class=\"note\">Filled: max relative error; hollow: RMS relative error; red: the "
        "preset's operating point; green line: the Pareto front (time, max rel).</p>\n";
-  const bool single = !p["ladder"].empty() && p["ladder"][0].contains("single_scattering");
-  const bool alpha = !p["ladder"].empty() && p["ladder"][0].contains("transmittance");
+  // Statistics a ladder point carries beside its main numbers (sky-view's
+  // single scattering, aerial perspective's A, ...): one pair of columns each.
+  std::vector<std::string> extra;
+  if (!p["ladder"].empty())
+    for (const auto& [key, value] : p["ladder"][0].items())
+      if (value.is_object() && value.contains("rms_rel")) extra.push_back(key);
   std::vector<std::string> cols = {"settings", "seconds", "max abs", "max rel", "rms rel"};
-  if (single) cols.insert(cols.end(), {"single: max rel", "single: rms rel"});
-  if (alpha) cols.insert(cols.end(), {"A: max rel", "A: rms rel"});
+  for (const std::string& key : extra)
+    cols.insert(cols.end(), {extra_label(key) + ": max rel", extra_label(key) + ": rms rel"});
   s += "<table>\n" + header(cols);
   for (const auto& q : p["ladder"]) {
     std::vector<std::string> cells = {text(q["label"]), num(q["seconds"]), num(q["max_abs"]),
                                       num(q["max_rel"]), num(q["rms_rel"])};
-    if (single)
-      cells.insert(cells.end(), {num(q["single_scattering"]["max_rel"]),
-                                 num(q["single_scattering"]["rms_rel"])});
-    if (alpha)
-      cells.insert(cells.end(),
-                   {num(q["transmittance"]["max_rel"]), num(q["transmittance"]["rms_rel"])});
+    for (const std::string& key : extra)
+      cells.insert(cells.end(), {num(q[key]["max_rel"]), num(q[key]["rms_rel"])});
     const std::string cls = q["operating_point"].get<bool>() ? "op"
                             : q["pareto"].get<bool>()        ? "front"
                                                              : "";

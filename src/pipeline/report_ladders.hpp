@@ -13,6 +13,17 @@
 //   scattering          single scattering (one order) against adaptive
 //                       quadrature (reference_single_scattering); the orders
 //                       >= 2 are in the Bruneton comparison (path tracer)
+//   single_mie          the separate single-Mie texture against adaptive
+//                       quadrature of the Mie group's phase-free single
+//                       scattering
+//   irradiance          one order: direct sunlight against adaptive quadrature
+//                       of the transmittance, indirect against a nested
+//                       adaptive hemisphere integral of that quadrature
+//   scattering3d        one order against the azimuth mean of the phase-free
+//                       quadrature (what an azimuth-free texel can hold), and
+//                       beside it against the radiance at the query's azimuth
+//   gathering_sum       the preset's orders against a finer bake
+//                       (self-convergence)
 // The preset's own settings are the operating point (added to the ladder
 // when the grid lacks them); the Pareto front is over (seconds, max_rel).
 // Each product also measures its operating-point table stored as half.
@@ -39,6 +50,10 @@ nlohmann::json multiscattering_report(const ReportInputs& in);
 nlohmann::json skyview_report(const ReportInputs& in);
 nlohmann::json aerial_perspective_report(const ReportInputs& in);
 nlohmann::json scattering_report(const ReportInputs& in);
+nlohmann::json single_mie_report(const ReportInputs& in);
+nlohmann::json irradiance_report(const ReportInputs& in);
+nlohmann::json scattering3d_report(const ReportInputs& in);
+nlohmann::json gathering_sum_report(const ReportInputs& in);
 
 // ---- Shared by the product files ---------------------------------------------
 

@@ -31,6 +31,23 @@ ReportLevel ReportLevel::full() {
   l.scattering_shapes = {{8, 32, 8, 4}, {16, 64, 16, 8}, {32, 128, 32, 8}, {32, 256, 32, 16}};
   l.scattering_ray_nodes = {15, 30, 51, 99};
   l.scattering_queries = 1024;
+  l.single_mie_shapes = l.scattering_shapes;
+  l.single_mie_ray_nodes = l.scattering_ray_nodes;
+  l.single_mie_queries = 1024;
+  l.irradiance_sizes = {{16, 4}, {32, 8}, {64, 16}, {128, 32}};
+  l.irradiance_directions = {8, 16, 32, 64};
+  l.irradiance_queries = 256;
+  l.irradiance_reference_tolerance = 1e-4;
+  l.scattering3d_shapes = {{8, 32, 8}, {16, 64, 16}, {32, 128, 32}, {64, 256, 64}};
+  l.scattering3d_ray_nodes = {15, 30, 51, 99};
+  l.scattering3d_queries = 1024;
+  l.scattering3d_reference_azimuths = 32;
+  l.gathering_shapes = {{8, 32, 8}, {16, 64, 16}, {32, 128, 32}};
+  l.gathering_directions = {4, 8, 16, 32};
+  l.gathering_queries = 512;
+  l.gathering_reference_shape = {64, 256, 64};
+  l.gathering_reference_directions = 64;
+  l.gathering_reference_ray_nodes = 99;
   l.reference_transmittance_size = {1024, 256};
   l.reference_transmittance_steps = 200;
   l.sun_elevations_deg = {60.0, 20.0, 5.0};
@@ -72,6 +89,23 @@ ReportLevel ReportLevel::quick() {
   l.scattering_shapes = {{8, 32, 8, 4}, {16, 64, 16, 8}};
   l.scattering_ray_nodes = {15, 51};
   l.scattering_queries = 64;
+  l.single_mie_shapes = l.scattering_shapes;
+  l.single_mie_ray_nodes = l.scattering_ray_nodes;
+  l.single_mie_queries = 64;
+  l.irradiance_sizes = {{16, 4}, {64, 16}};
+  l.irradiance_directions = {8, 32};
+  l.irradiance_queries = 16;
+  l.irradiance_reference_tolerance = 1e-3;
+  l.scattering3d_shapes = {{8, 32, 8}, {16, 64, 16}};
+  l.scattering3d_ray_nodes = {15, 51};
+  l.scattering3d_queries = 64;
+  l.scattering3d_reference_azimuths = 16;
+  l.gathering_shapes = {{8, 32, 8}, {16, 64, 16}};
+  l.gathering_directions = {4, 16};
+  l.gathering_queries = 128;
+  l.gathering_reference_shape = {48, 192, 48};
+  l.gathering_reference_directions = 32;
+  l.gathering_reference_ray_nodes = 99;
   l.reference_transmittance_size = {512, 128};
   l.reference_transmittance_steps = 100;
   l.path_samples = 256;
@@ -109,6 +143,23 @@ nlohmann::json level_json(const ReportLevel& l) {
           {"scattering_shapes", l.scattering_shapes},
           {"scattering_ray_nodes", l.scattering_ray_nodes},
           {"scattering_queries", l.scattering_queries},
+          {"single_mie_shapes", l.single_mie_shapes},
+          {"single_mie_ray_nodes", l.single_mie_ray_nodes},
+          {"single_mie_queries", l.single_mie_queries},
+          {"irradiance_sizes", l.irradiance_sizes},
+          {"irradiance_directions", l.irradiance_directions},
+          {"irradiance_queries", l.irradiance_queries},
+          {"irradiance_reference_tolerance", l.irradiance_reference_tolerance},
+          {"scattering3d_shapes", l.scattering3d_shapes},
+          {"scattering3d_ray_nodes", l.scattering3d_ray_nodes},
+          {"scattering3d_queries", l.scattering3d_queries},
+          {"scattering3d_reference_azimuths", l.scattering3d_reference_azimuths},
+          {"gathering_shapes", l.gathering_shapes},
+          {"gathering_directions", l.gathering_directions},
+          {"gathering_queries", l.gathering_queries},
+          {"gathering_reference_shape", l.gathering_reference_shape},
+          {"gathering_reference_directions", l.gathering_reference_directions},
+          {"gathering_reference_ray_nodes", l.gathering_reference_ray_nodes},
           {"reference_transmittance_size", l.reference_transmittance_size},
           {"reference_transmittance_steps", l.reference_transmittance_steps},
           {"sun_elevations_deg", l.sun_elevations_deg},

@@ -58,6 +58,39 @@ struct ReportLevel {
   std::vector<int> scattering_ray_nodes;
   int scattering_queries = 0;
 
+  // Single Mie (the 4D family's separate texture, one order): shapes
+  // (r, mu, mu_s, nu) x ray nodes, queries against adaptive quadrature of
+  // the Mie group's phase-free single scattering.
+  std::vector<std::vector<int>> single_mie_shapes;
+  std::vector<int> single_mie_ray_nodes;
+  int single_mie_queries = 0;
+
+  // Irradiance (the 4D family's ground irradiance, one order, read from a
+  // 4D table of the preset's scattering shape): sizes (mu_s, r) x
+  // hemisphere directions; the reference integrates adaptive quadrature of
+  // single scattering over the hemisphere, to this relative tolerance.
+  std::vector<std::vector<int>> irradiance_sizes;
+  std::vector<int> irradiance_directions;
+  int irradiance_queries = 0;
+  double irradiance_reference_tolerance = 1e-4;
+
+  // Scattering3d (azimuth-free, one order): shapes (h, mu, mu_s) x ray
+  // nodes; the reference is the mean over this many sun azimuths of the
+  // phase-free quadrature.
+  std::vector<std::vector<int>> scattering3d_shapes;
+  std::vector<int> scattering3d_ray_nodes;
+  int scattering3d_queries = 0;
+  int scattering3d_reference_azimuths = 0;
+
+  // Gathering sum (the 3D family's, the preset's orders): shapes (h, mu,
+  // mu_s) x gathering directions, against one finer bake (self-convergence).
+  std::vector<std::vector<int>> gathering_shapes;
+  std::vector<int> gathering_directions;
+  int gathering_queries = 0;
+  std::vector<int> gathering_reference_shape;
+  int gathering_reference_directions = 0;
+  int gathering_reference_ray_nodes = 0;
+
   // The reference transmittance table the fine references read.
   std::vector<int> reference_transmittance_size;
   int reference_transmittance_steps = 0;

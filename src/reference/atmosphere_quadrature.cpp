@@ -103,11 +103,78 @@ QuadratureOptions optical_depth_options(double tol) {
   return o;
 }
 
-// sigma_s,i * p_i(nu) of one component that scatters.
+// One component that scatters and its weight at density 1: sigma_s,i p_i(nu)
+// (radiance) or sigma_s,i alone (phase-free).
 struct ScatteringComponent {
   const DensityProfile* density;
-  glm::dvec3 scattering_phase;
+  glm::dvec3 weight;
 };
+
+// The integral of reference_single_scattering (header) over the components,
+// and with the weights, the caller picked.
+QuadratureResult<glm::dvec3> single_scattering(const Atmosphere& atm, double r, double mu,
+                                               double mu_s, double nu, double tol,
+                                               bool with_ground_shadow,
+                                               const std::vector<ScatteringComponent>& scatterers) {
+  const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+  mu = clamp_cosine(mu);
+  mu_s = clamp_cosine(mu_s);
+  nu = clamp_cosine(nu);
+  r = std::max(r, rb);
+  QuadratureResult<glm::dvec3> result;
+  result.converged = true;
+  if (r > rt) {  // move to where the ray enters the atmosphere
+    const double discriminant = r * r * (mu * mu - 1.0) + rt * rt;
+    if (mu >= 0.0 || discriminant < 0.0) return result;
+    const double t = -r * mu - std::sqrt(discriminant);
+    mu_s = clamp_cosine((r * mu_s + t * nu) / rt);
+    mu = clamp_cosine((r * mu + t) / rt);
+    r = rt;
+  }
+  const double d = distance_to_nearest_boundary(rb, rt, r, mu, ray_intersects_ground(rb, r, mu));
+  if (!(d > 0.0) || scatterers.empty()) return result;
+
+  const std::vector<double> kinks = density_kink_altitudes(atm);
+  QuadratureOptions inner;
+  inner.absolute_tolerance = 0.05 * tol;
+  inner.relative_tolerance = 1e-13;
+  inner.max_evaluations = 100000;
+  int64_t inner_evaluations = 0;
+  bool inner_converged = true;
+  glm::dvec3 inner_error_max(0.0);  // largest error of tau_view + tau_sun met, per channel
+  const auto integrand = [&](double s) -> glm::dvec3 {
+    const double r_s = std::max(radius_after(r, mu, s), rb);
+    const double h = r_s - rb;
+    glm::dvec3 source(0.0);
+    for (const ScatteringComponent& c : scatterers) source += density_at(*c.density, h) * c.weight;
+    if (source == glm::dvec3(0.0)) return source;
+    const double mu_s_here = clamp_cosine((r * mu_s + s * nu) / r_s);
+    if (with_ground_shadow && ray_intersects_ground(rb, r_s, mu_s_here)) return glm::dvec3(0.0);
+    const QuadratureResult<glm::dvec3> view = optical_depth(atm, kinks, r, mu, s, inner);
+    const QuadratureResult<glm::dvec3> sun =
+        optical_depth_to_top(atm, kinks, r_s, mu_s_here, inner);
+    inner_evaluations += view.evaluations + sun.evaluations;
+    inner_converged = inner_converged && view.converged && sun.converged;
+    inner_error_max = glm::max(inner_error_max, view.error + sun.error);
+    return source * glm::exp(-(view.value + sun.value));
+  };
+
+  std::vector<double> breakpoints = ray_breakpoints(atm, kinks, r, mu, d);
+  for (double s : sun_ray_tangencies(rb, r, mu, mu_s, nu)) breakpoints.push_back(s);
+  for (double h : kinks)
+    for (double s : sun_ray_tangencies(rb + h, r, mu, mu_s, nu)) breakpoints.push_back(s);
+  QuadratureOptions outer;
+  outer.relative_tolerance = 0.5 * tol;
+  outer.max_evaluations = 100000;
+  result = integrate_adaptive(integrand, 0.0, d, outer, breakpoints);
+  result.value *= atm.sun_illuminance;
+  // An error e in tau is a relative error of at most e in the integrand
+  // (|d exp(-tau)| = exp(-tau) |d tau|), first order.
+  result.error = result.error * atm.sun_illuminance + inner_error_max * glm::abs(result.value);
+  result.evaluations += inner_evaluations;
+  result.converged = result.converged && inner_converged;
+  return result;
+}
 
 }  // namespace
 
@@ -140,69 +207,24 @@ QuadratureResult<glm::dvec3> reference_transmittance_to_top(const Atmosphere& at
 QuadratureResult<glm::dvec3> reference_single_scattering(const Atmosphere& atm, double r, double mu,
                                                          double mu_s, double nu, double tol,
                                                          bool with_ground_shadow) {
-  const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
-  mu = clamp_cosine(mu);
-  mu_s = clamp_cosine(mu_s);
-  nu = clamp_cosine(nu);
-  r = std::max(r, rb);
-  QuadratureResult<glm::dvec3> result;
-  result.converged = true;
-  if (r > rt) {  // move to where the ray enters the atmosphere
-    const double discriminant = r * r * (mu * mu - 1.0) + rt * rt;
-    if (mu >= 0.0 || discriminant < 0.0) return result;
-    const double t = -r * mu - std::sqrt(discriminant);
-    mu_s = clamp_cosine((r * mu_s + t * nu) / rt);
-    mu = clamp_cosine((r * mu + t) / rt);
-    r = rt;
-  }
-  const double d = distance_to_nearest_boundary(rb, rt, r, mu, ray_intersects_ground(rb, r, mu));
   std::vector<ScatteringComponent> scatterers;
   for (const MediumComponent& c : atm.components)
     if (c.scattering_per_m != glm::dvec3(0.0) && c.phase != PhaseKind::none)
-      scatterers.push_back({&c.density, c.scattering_per_m * phase_function(c.phase, c.g, nu)});
-  if (!(d > 0.0) || scatterers.empty()) return result;
+      scatterers.push_back(
+          {&c.density, c.scattering_per_m * phase_function(c.phase, c.g, clamp_cosine(nu))});
+  return single_scattering(atm, r, mu, mu_s, nu, tol, with_ground_shadow, scatterers);
+}
 
-  const std::vector<double> kinks = density_kink_altitudes(atm);
-  QuadratureOptions inner;
-  inner.absolute_tolerance = 0.05 * tol;
-  inner.relative_tolerance = 1e-13;
-  inner.max_evaluations = 100000;
-  int64_t inner_evaluations = 0;
-  bool inner_converged = true;
-  glm::dvec3 inner_error_max(0.0);  // largest error of tau_view + tau_sun met, per channel
-  const auto integrand = [&](double s) -> glm::dvec3 {
-    const double r_s = std::max(radius_after(r, mu, s), rb);
-    const double h = r_s - rb;
-    glm::dvec3 source(0.0);
-    for (const ScatteringComponent& c : scatterers)
-      source += density_at(*c.density, h) * c.scattering_phase;
-    if (source == glm::dvec3(0.0)) return source;
-    const double mu_s_here = clamp_cosine((r * mu_s + s * nu) / r_s);
-    if (with_ground_shadow && ray_intersects_ground(rb, r_s, mu_s_here)) return glm::dvec3(0.0);
-    const QuadratureResult<glm::dvec3> view = optical_depth(atm, kinks, r, mu, s, inner);
-    const QuadratureResult<glm::dvec3> sun =
-        optical_depth_to_top(atm, kinks, r_s, mu_s_here, inner);
-    inner_evaluations += view.evaluations + sun.evaluations;
-    inner_converged = inner_converged && view.converged && sun.converged;
-    inner_error_max = glm::max(inner_error_max, view.error + sun.error);
-    return source * glm::exp(-(view.value + sun.value));
-  };
-
-  std::vector<double> breakpoints = ray_breakpoints(atm, kinks, r, mu, d);
-  for (double s : sun_ray_tangencies(rb, r, mu, mu_s, nu)) breakpoints.push_back(s);
-  for (double h : kinks)
-    for (double s : sun_ray_tangencies(rb + h, r, mu, mu_s, nu)) breakpoints.push_back(s);
-  QuadratureOptions outer;
-  outer.relative_tolerance = 0.5 * tol;
-  outer.max_evaluations = 100000;
-  result = integrate_adaptive(integrand, 0.0, d, outer, breakpoints);
-  result.value *= atm.sun_illuminance;
-  // An error e in tau is a relative error of at most e in the integrand
-  // (|d exp(-tau)| = exp(-tau) |d tau|), first order.
-  result.error = result.error * atm.sun_illuminance + inner_error_max * glm::abs(result.value);
-  result.evaluations += inner_evaluations;
-  result.converged = result.converged && inner_converged;
-  return result;
+QuadratureResult<glm::dvec3> reference_single_scattering_phase_free(
+    const Atmosphere& atm, double r, double mu, double mu_s, double nu, ScatteringGroup group,
+    double tol, bool with_ground_shadow) {
+  std::vector<ScatteringComponent> scatterers;
+  for (const MediumComponent& c : atm.components) {
+    if (c.scattering_per_m == glm::dvec3(0.0) || c.phase == PhaseKind::none) continue;
+    if ((c.phase == PhaseKind::rayleigh) == (group == ScatteringGroup::rayleigh))
+      scatterers.push_back({&c.density, c.scattering_per_m});
+  }
+  return single_scattering(atm, r, mu, mu_s, nu, tol, with_ground_shadow, scatterers);
 }
 
 QuadratureResult<glm::dvec3> reference_single_scattering(const Atmosphere& atm,

@@ -78,6 +78,20 @@ QuadratureResult<glm::dvec3> reference_single_scattering(const Atmosphere& atm, 
                                                          double mu_s, double nu, double tol,
                                                          bool with_ground_shadow = true);
 
+// The phase-free single scattering of one group of components, what
+// Bruneton-style tables store (scattering_lut.hpp, scattering3d_lut.hpp):
+//   S_group = E integral_0^D T(0, s) Vis(s) T_sun(s) sum_{i in group} sigma_s,i(h(s)) ds,
+// the Rayleigh group being the components with the Rayleigh phase, the Mie
+// group the other components that scatter. nu still places the sun (shadow,
+// T_sun); only the phase factor is left out, so that
+//   p_R(nu) S_rayleigh + p_M(nu) S_mie = reference_single_scattering
+// when the Mie group shares one phase p_M (tested). Same geometry and error
+// control as above.
+enum class ScatteringGroup { rayleigh, mie };
+QuadratureResult<glm::dvec3> reference_single_scattering_phase_free(
+    const Atmosphere& atm, double r, double mu, double mu_s, double nu, ScatteringGroup group,
+    double tol, bool with_ground_shadow = true);
+
 // The same for a planet-centred position (m), a view direction (travelling
 // away from the eye) and a direction toward the sun; directions need not be
 // normalized.

@@ -22,9 +22,9 @@ namespace skybake {
 namespace {
 
 constexpr int kChunkSamples = 64;  // samples per parallel work item
-// Below this collision probability the view ray's first flight is not
-// forced (rejection would need more than 1e4 tries per collision).
-constexpr double kMinForcedCollision = 1e-4;
+// Segments of the view ray's optical-depth table (forced collision, header).
+constexpr int kViewRaySegments = 16;
+constexpr double kViewRayDepthTolerance = 1e-12;
 
 // An exponential free path of rate m: -ln(1 - u) / m, u in [0, 1).
 double exponential_step(double m, double u) {
@@ -238,29 +238,53 @@ double SkyPathTracer::continue_path(Flight flight, glm::dvec3 w, glm::dvec3 sun_
   return radiance;
 }
 
-// The first flight along the view ray, split (see the header): when a
-// collision is likely enough, one collision forced by rejection (delta
-// tracking repeated until it collides: exactly the conditional
-// distribution) weighted by 1 - T, plus the ground weighted by T.
+// The distance t along the view ray where tau(0, t) = tau*, tau* =
+// -ln(1 - u (1 - T)) (header): the segment from the node table, then
+// Newton steps kept inside a shrinking bracket [a, b] of that segment,
+// tau(t_k, t) by the same quadrature as the table.
+double SkyPathTracer::forced_collision_distance(const ViewRay& view, int channel, double u) const {
+  const double total = view.depth.back()[channel];
+  const double target = std::min(-std::log1p(u * std::expm1(-total)), total);
+  size_t k = 0;
+  while (k + 2 < view.node_t.size() && view.depth[k + 1][channel] <= target) ++k;
+  const double t_k = view.node_t[k], depth_k = view.depth[k][channel];
+  const glm::dvec3 x_k = view.start + t_k * view.dir;
+  const double r_k = glm::length(x_k), mu_k = clamp_cosine(glm::dot(x_k, view.dir) / r_k);
+  const double rb = atm_.bottom_radius_m;
+  double a = t_k, b = view.node_t[k + 1];
+  const double span = view.depth[k + 1][channel] - depth_k;
+  double t = span > 0.0 ? a + (b - a) * (target - depth_k) / span : a;
+  for (int iteration = 0; iteration < 60; ++iteration) {
+    const double f =
+        depth_k +
+        reference_optical_depth(atm_, r_k, mu_k, t - t_k, kViewRayDepthTolerance).value[channel] -
+        target;
+    if (std::abs(f) <= 1e-13 * std::max(target, 1e-300)) break;
+    (f < 0.0 ? a : b) = t;
+    const double h = std::max(0.0, glm::length(view.start + t * view.dir) - rb);
+    const double slope = extinction(h, channel);
+    double next = slope > 0.0 ? t - f / slope : 0.5 * (a + b);
+    if (!(next > a && next < b)) next = 0.5 * (a + b);  // Newton left the bracket
+    if (b - a <= 1e-12 * view.node_t.back()) break;
+    t = next;
+  }
+  return t;
+}
+
+// The first flight along the view ray, split (see the header): a collision
+// forced onto the ray weighted by 1 - T, plus the ground weighted by T.
 template <typename Rng>
 double SkyPathTracer::trace_channel(const ViewRay& view, glm::dvec3 sun_dir,
                                     const PathTracerSpec& spec, int channel, Rng& rng) const {
   if (spec.max_bounces < 1) return 0.0;
   const double transmittance = view.transmittance[channel];
-  const double collision = 1.0 - transmittance;
-  if (!(collision >= kMinForcedCollision)) {
-    const Flight flight = fly(view.start, view.dir, channel, rng);
-    if (flight.event == Event::escaped) return 0.0;
-    return continue_path(flight, view.dir, sun_dir, spec, channel, rng);
+  const double collision = -std::expm1(-view.depth.back()[channel]);
+  double radiance = 0.0;
+  if (collision > 0.0) {
+    const double t = forced_collision_distance(view, channel, rng());
+    const Flight first{Event::medium, view.start + t * view.dir};
+    radiance += collision * continue_path(first, view.dir, sun_dir, spec, channel, rng);
   }
-  Flight flight;
-  for (int attempt = 0; flight.event != Event::medium; ++attempt) {
-    // Expected attempts 1 / (1 - T) <= 1e4; failing 1e7 times has a
-    // probability below exp(-1000): only a broken invariant gets here.
-    if (attempt == 10000000) return 0.0;
-    flight = fly(view.start, view.dir, channel, rng);
-  }
-  double radiance = collision * continue_path(flight, view.dir, sun_dir, spec, channel, rng);
   if (view.hits_ground && transmittance > 0.0)
     radiance += transmittance *
                 continue_path({Event::ground, view.ground}, view.dir, sun_dir, spec, channel, rng);
@@ -277,7 +301,21 @@ bool SkyPathTracer::prepare_view(glm::dvec3 position_m, glm::dvec3 view_dir, Vie
   const double t_end = distance_to_nearest_boundary(rb, rt, r, mu, view.hits_ground);
   const glm::dvec3 g = view.start + t_end * view.dir;
   view.ground = view.hits_ground ? g * (rb / glm::length(g)) : glm::dvec3(0.0);
-  view.transmittance = glm::exp(-reference_optical_depth(atm_, r, mu, t_end, 1e-12).value);
+  // The optical-depth table of the forced collision (header).
+  view.node_t.assign(kViewRaySegments + 1, 0.0);
+  view.depth.assign(kViewRaySegments + 1, glm::dvec3(0.0));
+  for (int k = 1; k <= kViewRaySegments; ++k) {
+    const double t0 = t_end * (k - 1) / kViewRaySegments;
+    view.node_t[k] = t_end * k / kViewRaySegments;
+    const glm::dvec3 x0 = view.start + t0 * view.dir;
+    const double r0 = glm::length(x0);
+    const glm::dvec3 segment =
+        reference_optical_depth(atm_, r0, clamp_cosine(glm::dot(x0, view.dir) / r0),
+                                view.node_t[k] - t0, kViewRayDepthTolerance)
+            .value;
+    view.depth[k] = view.depth[k - 1] + glm::max(segment, 0.0);
+  }
+  view.transmittance = glm::exp(-view.depth.back());
   return true;
 }
 

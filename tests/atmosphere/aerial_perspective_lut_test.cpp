@@ -18,18 +18,9 @@
 namespace skybake {
 namespace {
 
+using fixtures::bake_sky_lut_inputs;
 using fixtures::earth_atmosphere;
-
-struct Luts {
-  Texture transmittance, multiscattering;
-};
-
-Luts bake_inputs(const Atmosphere& atm) {
-  Luts l;
-  l.transmittance = bake_transmittance_lut(atm, {128, 64, 40}, {});
-  l.multiscattering = bake_multiscattering_lut(atm, l.transmittance, {16, 16, 32, 20}, {});
-  return l;
-}
+using fixtures::SkyLutInputs;
 
 AerialPerspectiveSpec small_spec() {
   AerialPerspectiveSpec spec;
@@ -87,7 +78,7 @@ TEST(AerialPerspectiveMapping, RoundTripAtFroxelCentres) {
 
 TEST(AerialPerspectiveLut, EmptyAtmosphereHasNoScatteringAndFullTransmittance) {
   const Atmosphere atm = fixtures::empty_atmosphere();
-  const Luts l = bake_inputs(atm);
+  const SkyLutInputs l = bake_sky_lut_inputs(atm);
   const Texture ap =
       bake_aerial_perspective_lut(atm, l.transmittance, l.multiscattering, small_spec(), {});
   for (size_t i = 0; i < ap.data.size(); i += 4) {
@@ -100,7 +91,7 @@ TEST(AerialPerspectiveLut, EmptyAtmosphereHasNoScatteringAndFullTransmittance) {
 
 TEST(AerialPerspectiveLut, GrowsMonotonicallyAlongEveryRayFromNearlyNothing) {
   const Atmosphere atm = earth_atmosphere();
-  const Luts l = bake_inputs(atm);
+  const SkyLutInputs l = bake_sky_lut_inputs(atm);
   const AerialPerspectiveSpec spec = small_spec();
   const Texture ap = bake_aerial_perspective_lut(atm, l.transmittance, l.multiscattering, spec, {});
   // Densities are at most 1: no path is more opaque than sum_i max_c sigma_t,i.
@@ -139,7 +130,7 @@ TEST(AerialPerspectiveLut, RaysStopAtTheGround) {
   // Camera 300 m up looking 30 degrees down: the centre ray meets the ground
   // at ~600 m; slices past that hold the path up to the ground.
   const Atmosphere atm = earth_atmosphere();
-  const Luts l = bake_inputs(atm);
+  const SkyLutInputs l = bake_sky_lut_inputs(atm);
   AerialPerspectiveSpec spec = small_spec();
   spec.width = spec.height = 1;
   spec.camera.pitch_rad = -kPi / 6;
@@ -153,7 +144,7 @@ TEST(AerialPerspectiveLut, SlicesMatchAConvergedMarch) {
   // Default 2 segments per slice against one march of 400 segments to the
   // froxel: luminance within 0.5 %, transmittance within 0.02 % (relative).
   const Atmosphere atm = earth_atmosphere();
-  const Luts l = bake_inputs(atm);
+  const SkyLutInputs l = bake_sky_lut_inputs(atm);
   AerialPerspectiveSpec spec = small_spec();
   const Texture ap = bake_aerial_perspective_lut(atm, l.transmittance, l.multiscattering, spec, {});
   const glm::dvec3 pos(0.0, 0.0, atm.bottom_radius_m + spec.camera.altitude_m);
@@ -177,7 +168,7 @@ TEST(AerialPerspectiveLut, SlicesMatchAConvergedMarch) {
 
 TEST(AerialPerspectiveLut, LookupReproducesFroxelsAndFadesBeforeTheFirstSlice) {
   const Atmosphere atm = earth_atmosphere();
-  const Luts l = bake_inputs(atm);
+  const SkyLutInputs l = bake_sky_lut_inputs(atm);
   const AerialPerspectiveSpec spec = small_spec();
   const Texture ap = bake_aerial_perspective_lut(atm, l.transmittance, l.multiscattering, spec, {});
   const glm::dvec2 uv(texel_center(2, spec.width), texel_center(5, spec.height));
@@ -197,7 +188,7 @@ TEST(AerialPerspectiveLut, SpaceCameraAndStiffMediaStayFinite) {
   Atmosphere dense = earth_atmosphere();
   dense.components[0].scattering_per_m *= 100.0;
   dense.components[1].g = 0.999;
-  const Luts l = bake_inputs(dense);
+  const SkyLutInputs l = bake_sky_lut_inputs(dense);
   AerialPerspectiveSpec spec = small_spec();
   for (double alt : {0.0, 200e3}) {
     spec.camera.altitude_m = alt;
@@ -217,7 +208,7 @@ TEST(AerialPerspectiveLut, SpaceCameraAndStiffMediaStayFinite) {
 
 TEST(AerialPerspectiveLut, IdenticalForOneAndTwoThreads) {
   const Atmosphere atm = earth_atmosphere();
-  const Luts l = bake_inputs(atm);
+  const SkyLutInputs l = bake_sky_lut_inputs(atm);
   Texture one, two;
   {
     tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);

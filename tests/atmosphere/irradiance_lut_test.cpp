@@ -11,11 +11,12 @@
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/math.hpp"
 #include "test_atmospheres.hpp"
+#include "test_scattering_specs.hpp"
 
 namespace skybake {
 namespace {
 
-const ScatteringShape kSmall{8, 32, 8, 4, kBrunetonMuSMin};
+const ScatteringShape kSmall = fixtures::tiny_scattering_shape();
 
 TEST(IrradianceMapping, RoundTripAndTexelCentresAtTheEnds) {
   const Atmosphere atm = fixtures::earth_atmosphere();

@@ -336,6 +336,62 @@ TEST(BakeScattering3d, FiftyTimesDenserEarthConverges) {
     }
 }
 
+TEST(BakeScattering3d, GeometricTailApproachesTheConvergedTableFromBelow) {
+  // As the 4D test (scattering_orders_test.cpp): 20x Earth, where the orders
+  // decay slowly. Stopped early (tolerance 0.05), the tables without the
+  // tail miss the later orders; the tail (f DeltaS_N, f G_{N-1} for the
+  // gathering sum, header) must bring every channel of the table, its Mie
+  // texture and the gathering sum closer to the bake iterated to 1e-4
+  // without a tail, and, the tail being an underestimate, never above it
+  // (0.5% slack for the reference's own unconverged remainder).
+  const Atmosphere atm = scaled(fixtures::earth_atmosphere(), 20.0);
+  const Texture lut = bake_transmittance_lut(atm, {128, 32, 40}, BakeContext{});
+  Scattering3dSpec spec = small_spec(4);
+  spec.combined_mie_alpha = false;
+  spec.max_orders = 400;
+  auto total = [](const Texture& t) {
+    glm::dvec3 sum(0.0);
+    for (size_t i = 0; i < t.texel_count(); ++i)
+      for (int c = 0; c < 3; ++c) sum[c] += t.data[3 * i + c];
+    return sum;
+  };
+  spec.tolerance = 1e-4;
+  spec.geometric_tail = false;
+  const Scattering3dTextures reference = bake_scattering3d(atm, lut, spec, BakeContext{});
+  spec.tolerance = 0.05;
+  const Scattering3dTextures plain = bake_scattering3d(atm, lut, spec, BakeContext{});
+  spec.geometric_tail = true;
+  const Scattering3dTextures tail = bake_scattering3d(atm, lut, spec, BakeContext{});
+  EXPECT_EQ(plain.orders_used, tail.orders_used);
+  EXPECT_GE(tail.orders_used, 3) << "no ratio of two multiple orders to extrapolate";
+  EXPECT_EQ(plain.tail_factor, glm::dvec3(0.0));
+  EXPECT_EQ(reference.scattering.metadata.at("geometric_tail"), "none");
+  EXPECT_EQ(tail.gathering_sum.metadata.at("geometric_tail"),
+            fmt::format("{:.17g},{:.17g},{:.17g}", tail.tail_factor.x, tail.tail_factor.y,
+                        tail.tail_factor.z));
+  RecordProperty("orders",
+                 fmt::format("{} (reference {})", tail.orders_used, reference.orders_used));
+  RecordProperty("tail_factor", fmt::format("{:.3f} {:.3f} {:.3f}", tail.tail_factor.x,
+                                            tail.tail_factor.y, tail.tail_factor.z));
+  struct Table {
+    const char* name;
+    const Texture Scattering3dTextures::*texture;
+  };
+  for (const Table table : {Table{"scattering", &Scattering3dTextures::scattering},
+                            Table{"mie", &Scattering3dTextures::mie},
+                            Table{"gathering_sum", &Scattering3dTextures::gathering_sum}}) {
+    const glm::dvec3 ref = total(reference.*table.texture), without = total(plain.*table.texture),
+                     with = total(tail.*table.texture);
+    RecordProperty(std::string(table.name) + "_blue_without_with",
+                   fmt::format("{:.4f} {:.4f}", without.b / ref.b, with.b / ref.b));
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_GT(tail.tail_factor[c], 0.0) << c;
+      EXPECT_LT(std::abs(with[c] - ref[c]), std::abs(without[c] - ref[c])) << table.name << c;
+      EXPECT_LE(with[c], 1.005 * ref[c]) << table.name << c;
+    }
+  }
+}
+
 TEST(BakeScattering3d, ExtremeMediaStayFiniteAndNonNegative) {
   Atmosphere sharp = fixtures::earth_atmosphere();
   sharp.components[1].g = 0.999;

@@ -24,6 +24,7 @@
 #include "core/half.hpp"
 #include "core/math.hpp"
 #include "test_atmospheres.hpp"
+#include "test_scattering_specs.hpp"
 
 namespace skybake {
 namespace {
@@ -43,31 +44,18 @@ float max_value(const Texture& t) {
 }
 
 BrunetonSpec small_spec(int orders) {
-  BrunetonSpec spec;
-  spec.r_size = kSmall.r_size;
-  spec.mu_size = kSmall.mu_size;
-  spec.mu_s_size = kSmall.mu_s_size;
-  spec.nu_size = kSmall.nu_size;
-  spec.orders = orders;
+  BrunetonSpec spec = fixtures::small_bruneton_spec(kSmall, orders);
   spec.irradiance_width = 32;
   spec.irradiance_height = 8;
-  spec.ray_nodes = 30;
-  spec.density_directions = 8;
   spec.irradiance_directions = 16;
   return spec;
 }
 
 // Smaller still, for dense media that need hundreds of orders.
 BrunetonSpec dense_spec() {
-  BrunetonSpec spec = small_spec(4);
-  spec.r_size = 8;
-  spec.mu_size = 32;
-  spec.mu_s_size = 8;
+  BrunetonSpec spec = fixtures::small_bruneton_spec(fixtures::tiny_scattering_shape());
   spec.ray_nodes = 21;
   spec.density_directions = 6;
-  spec.irradiance_width = 16;
-  spec.irradiance_height = 4;
-  spec.irradiance_directions = 8;
   return spec;
 }
 

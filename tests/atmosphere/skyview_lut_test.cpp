@@ -21,18 +21,9 @@
 namespace skybake {
 namespace {
 
+using fixtures::bake_sky_lut_inputs;
 using fixtures::earth_atmosphere;
-
-struct Luts {
-  Texture transmittance, multiscattering;
-};
-
-Luts bake_inputs(const Atmosphere& atm) {
-  Luts l;
-  l.transmittance = bake_transmittance_lut(atm, {128, 64, 40}, {});
-  l.multiscattering = bake_multiscattering_lut(atm, l.transmittance, {16, 16, 32, 20}, {});
-  return l;
-}
+using fixtures::SkyLutInputs;
 
 double horizon_mu(const Atmosphere& atm, double r) {
   return -std::sqrt(r * r - atm.bottom_radius_m * atm.bottom_radius_m) / r;
@@ -104,7 +95,7 @@ TEST(SkyviewMapping, DirectionVectorsRoundTrip) {
 
 TEST(SkyviewLut, EmptyAtmosphereIsBlack) {
   const Atmosphere atm = fixtures::empty_atmosphere();
-  const Luts l = bake_inputs(atm);
+  const SkyLutInputs l = bake_sky_lut_inputs(atm);
   SkyviewLutSpec spec{24, 16, 10, StepDistribution::quadratic, {{0.0, 0.5}, {2e5, 1.0}}};
   const Texture sky = bake_skyview_lut(atm, l.transmittance, l.multiscattering, spec, {});
   for (float v : sky.data) ASSERT_EQ(v, 0.0f);
@@ -114,7 +105,7 @@ TEST(SkyviewLut, MirrorSymmetricAboutTheSunPlane) {
   // The physics: marching the mirrored direction (y -> -y) gives the same
   // luminance up to rounding, at every texel centre of a layer...
   const Atmosphere atm = earth_atmosphere();
-  const Luts l = bake_inputs(atm);
+  const SkyLutInputs l = bake_sky_lut_inputs(atm);
   const SkyviewLutSpec spec{33, 24, 20, StepDistribution::quadratic, {{500.0, 1.2}}};
   const double r = atm.bottom_radius_m + 500.0;
   const glm::dvec3 sun(std::sin(1.2), 0.0, std::cos(1.2));
@@ -153,7 +144,7 @@ TEST(SkyviewLut, ForwardMiePeakPointsAtTheSun) {
   Atmosphere atm = earth_atmosphere();
   atm.components[1].scattering_per_m *= 10.0;
   atm.components[1].absorption_per_m *= 10.0;
-  const Luts l = bake_inputs(atm);
+  const SkyLutInputs l = bake_sky_lut_inputs(atm);
   const double sun_zenith = 1.2;
   const SkyviewLutSpec spec{32, 32, 20, StepDistribution::quadratic, {{0.0, sun_zenith}}};
   const Texture sky = bake_skyview_lut(atm, l.transmittance, l.multiscattering, spec, {});
@@ -169,7 +160,7 @@ TEST(SkyviewLut, DefaultStepsMatchATenTimesFinerMarch) {
   // on every channel of the sky texels (above the horizon), 3 % below it,
   // for ground, mountain and high-altitude views at noon, 10 degrees and sunset.
   const Atmosphere atm = earth_atmosphere();
-  const Luts l = bake_inputs(atm);
+  const SkyLutInputs l = bake_sky_lut_inputs(atm);
   SkyviewLutSpec spec{
       24, 36, 30, StepDistribution::quadratic, {{0.0, 0.0}, {3e3, 1.4}, {0.0, 1.55}, {30e3, 1.5}}};
   const Texture sky = bake_skyview_lut(atm, l.transmittance, l.multiscattering, spec, {});
@@ -216,7 +207,7 @@ TEST(SkyviewLut, MarsButterscotchByDayBlueAroundTheSunAtSunset) {
   // Sunset: the long slant path strips the red from the sunlight, and the
   // grey dust's forward lobe (g = 0.85) shows that blue light around the sun.
   const Atmosphere atm = mars_atmosphere();
-  const Luts l = bake_inputs(atm);
+  const SkyLutInputs l = bake_sky_lut_inputs(atm);
   const double noon = 30.0 * kPi / 180.0, sunset = 88.0 * kPi / 180.0;
   const SkyviewLutSpec spec{32, 32, 30, StepDistribution::quadratic, {{0.0, noon}, {0.0, sunset}}};
   const Texture sky = bake_skyview_lut(atm, l.transmittance, l.multiscattering, spec, {});
@@ -235,7 +226,7 @@ TEST(SkyviewLut, MarsButterscotchByDayBlueAroundTheSunAtSunset) {
 
 TEST(SkyviewLut, LayersAreIndependentViewsWithMetadata) {
   const Atmosphere atm = earth_atmosphere();
-  const Luts l = bake_inputs(atm);
+  const SkyLutInputs l = bake_sky_lut_inputs(atm);
   const SkyviewLutSpec two{16, 12, 10, StepDistribution::quadratic, {{0.0, 0.3}, {5e3, 1.5}}};
   const SkyviewLutSpec one{16, 12, 10, StepDistribution::quadratic, {{5e3, 1.5}}};
   const Texture a = bake_skyview_lut(atm, l.transmittance, l.multiscattering, two, {});
@@ -255,7 +246,7 @@ TEST(SkyviewLut, StiffMediaAndSpaceViewsStayFinite) {
   tiny.bottom_radius_m = 1e3;
   tiny.top_radius_m = 101e3;
   for (const Atmosphere& atm : {dense, tiny}) {
-    const Luts l = bake_inputs(atm);
+    const SkyLutInputs l = bake_sky_lut_inputs(atm);
     const double top = atm.top_radius_m - atm.bottom_radius_m;
     const SkyviewLutSpec spec{16,
                               16,
@@ -272,7 +263,7 @@ TEST(SkyviewLut, StiffMediaAndSpaceViewsStayFinite) {
 
 TEST(SkyviewLut, IdenticalForOneAndTwoThreads) {
   const Atmosphere atm = earth_atmosphere();
-  const Luts l = bake_inputs(atm);
+  const SkyLutInputs l = bake_sky_lut_inputs(atm);
   const SkyviewLutSpec spec{32, 18, 10, StepDistribution::quadratic, {{0.0, 0.5}, {1e3, 1.5}}};
   Texture one, two;
   {
@@ -291,7 +282,7 @@ TEST(SkyviewLut, IdenticalForOneAndTwoThreads) {
 TEST(SkyRender, SunDiskIsIlluminanceOverSolidAngleThroughTheAtmosphere) {
   Atmosphere atm = earth_atmosphere();
   atm.sun_illuminance = glm::dvec3(3.0);
-  const Luts l = bake_inputs(atm);
+  const SkyLutInputs l = bake_sky_lut_inputs(atm);
   const double mu_s = 0.5;
   const glm::dvec3 sun(std::sqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
   const glm::dvec3 p(0.0, 0.0, atm.bottom_radius_m + 10.0);
@@ -318,7 +309,7 @@ TEST(SkyRender, SkyviewAndRayMarchAgree) {
   // degrees: within 3 % for sky directions away from the horizon, ground
   // directions included.
   const Atmosphere atm = earth_atmosphere();
-  const Luts l = bake_inputs(atm);
+  const SkyLutInputs l = bake_sky_lut_inputs(atm);
   const double alt = 1e3, sun_zenith = kPi / 3;
   const SkyviewLutSpec spec{192, 108, 30, StepDistribution::quadratic, {{alt, sun_zenith}}};
   const Texture sky = bake_skyview_lut(atm, l.transmittance, l.multiscattering, spec, {});
@@ -343,7 +334,7 @@ TEST(SkyRender, SkyviewAndRayMarchAgree) {
 
 TEST(SkyRender, ImagesFromTheGroundAndFromSpaceAreFiniteAndShowTheSun) {
   const Atmosphere atm = earth_atmosphere();
-  const Luts l = bake_inputs(atm);
+  const SkyLutInputs l = bake_sky_lut_inputs(atm);
   SkyImageSpec spec;
   spec.width = 32;
   spec.height = 18;

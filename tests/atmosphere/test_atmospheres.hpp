@@ -1,7 +1,8 @@
 // Atmospheres for the atmosphere tests, built with the medium.hpp helpers:
 // Earth with the constants of REFERENCE.md (Hillaire 2020 and its demo), a
 // small fake planet, and media simple enough to have closed forms (empty, a
-// uniform slab, a single exponential or tent layer). Header only; every test
+// uniform slab, a single exponential or tent layer); and the small input
+// LUTs of the sky-view and aerial-perspective tests. Header only; every test
 // of tests/atmosphere may include it.
 #pragma once
 
@@ -12,6 +13,7 @@
 
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/medium.hpp"
+#include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 
 namespace skybake::fixtures {
@@ -90,6 +92,19 @@ inline Atmosphere uniform_slab_atmosphere(glm::dvec3 scattering_per_m, glm::dvec
                                    uniform_profile(0.0, top_radius_m - bottom_radius_m),
                                    PhaseKind::rayleigh)};
   return atm;
+}
+
+// The LUTs the sky-view and aerial-perspective bakers read, small: a 128 x 64
+// transmittance LUT (40 steps) and a 16 x 16 multiple-scattering LUT.
+struct SkyLutInputs {
+  Texture transmittance, multiscattering;
+};
+
+inline SkyLutInputs bake_sky_lut_inputs(const Atmosphere& atm) {
+  SkyLutInputs l;
+  l.transmittance = bake_transmittance_lut(atm, {128, 64, 40}, {});
+  l.multiscattering = bake_multiscattering_lut(atm, l.transmittance, {16, 16, 32, 20}, {});
+  return l;
 }
 
 // Single scattering reads one thing from the transmittance LUT, the

@@ -52,55 +52,14 @@ trap cleanup EXIT
 fail() { echo "ninja_e2e: FAIL: $*" >&2; exit 1; }
 ok() { echo "ok   $*"; }
 
-# Every baked file (outputs, stamps) is byte-identical between two output
-# folders, the same files exist in both, and the manifests agree except for
-# bake times. Ninja's own files and the lock file are not compared.
-same_outputs() {
-  local a="$1" b="$2" f la lb
-  la="$(cd "$a" && find . -type f ! -name '.ninja_*' ! -name .skybake.lock | sort)"
-  lb="$(cd "$b" && find . -type f ! -name '.ninja_*' ! -name .skybake.lock | sort)"
-  [ -n "$la" ] || fail "$a is empty"
-  [ "$la" = "$lb" ] || fail "different files in '$a' and '$b':
-$(diff <(echo "$la") <(echo "$lb") || true)"
-  while IFS= read -r f; do
-    case "$f" in
-      */manifest.json)
-        # Times ("bake_seconds", "seconds" of the error estimate) differ by nature.
-        diff <(grep -vE '"[a-z_]*seconds": ' "$a/$f") <(grep -vE '"[a-z_]*seconds": ' "$b/$f") >/dev/null ||
-          fail "manifests differ: $a/$f $b/$f" ;;
-      *) cmp -s "$a/$f" "$b/$f" || fail "not byte-identical: $a/$f $b/$f" ;;
-    esac
-  done <<<"$la"
-}
+. "$here/e2e_checks.sh"  # same_outputs, edges_run, find_dependent_product
 
 # Name, size and modification time of every baked file and stamp.
 snapshot() { (cd "$1" && find . -type f ! -name '.ninja_*' ! -name .skybake.lock -printf '%p %s %T@\n' | sort); }
 
-# Edges ninja ran, from its status lines "[i/n] bake scene/product".
-edges_run() { grep -cE '^\[[0-9]+/[0-9]+\] bake ' <<<"$1" || true; }
-
 run_ninja() {  # ninja args...; output in $nlog, exit code in $rc
   rc=0
   nlog="$(timeout 300 ninja "$@" 2>&1)" || rc=$?
-}
-
-# A registered product that reads another one (multiscattering, skyview, ...):
-# the first whose probe scene {transmittance, P} gives an edge in plan --json.
-find_dependent_product() {
-  local p probe="$T/probe" products help plan
-  help="$("$skybake" --help)"
-  products="$(awk '/^Products:/ { on = 1; next } on && NF == 0 { exit } on { print $1 }' <<<"$help")"
-  # Cheapest first when registered.
-  for p in multiscattering skyview $products; do
-    [ "$p" != transmittance ] && grep -qx "$p" <<<"$products" || continue
-    rm -rf "$probe"
-    "$here/make_catalog.sh" -p "transmittance,$p" -s 64x16 1 "$probe" >/dev/null
-    plan="$("$skybake" plan "$probe" -d "$probe/out" --json 2>/dev/null)" || continue
-    if grep -q '"edges": \[$' <<<"$plan"; then
-      echo "$p"
-      return
-    fi
-  done
 }
 
 cat="$T/catalog \$dir"  # '$' must reach ninja as "$$"

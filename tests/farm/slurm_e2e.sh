@@ -222,39 +222,7 @@ if [ ${#with_cluster[@]} -gt 0 ]; then
 fi
 
 # --- helpers shared with ninja_e2e.sh ------------------------------------------
-same_outputs() {
-  local a="$1" b="$2" f la lb
-  la="$(cd "$a" && find . -type f ! -name '.ninja_*' ! -name .skybake.lock | sort)"
-  lb="$(cd "$b" && find . -type f ! -name '.ninja_*' ! -name .skybake.lock | sort)"
-  [ -n "$la" ] || fail "$a is empty"
-  [ "$la" = "$lb" ] || fail "different files in '$a' and '$b':
-$(diff <(echo "$la") <(echo "$lb") || true)"
-  while IFS= read -r f; do
-    case "$f" in
-      */manifest.json)
-        # Times ("bake_seconds", "seconds" of the error estimate) differ by nature.
-        diff <(grep -vE '"[a-z_]*seconds": ' "$a/$f") <(grep -vE '"[a-z_]*seconds": ' "$b/$f") >/dev/null ||
-          fail "manifests differ: $a/$f $b/$f" ;;
-      *) cmp -s "$a/$f" "$b/$f" || fail "not byte-identical: $a/$f $b/$f" ;;
-    esac
-  done <<<"$la"
-}
-edges_run() { grep -cE '^\[[0-9]+/[0-9]+\] bake ' <<<"$1" || true; }
-find_dependent_product() {
-  local p probe="$T/probe" products help plan
-  help="$("$skybake" --help)"
-  products="$(awk '/^Products:/ { on = 1; next } on && NF == 0 { exit } on { print $1 }' <<<"$help")"
-  for p in multiscattering skyview $products; do
-    [ "$p" != transmittance ] && grep -qx "$p" <<<"$products" || continue
-    rm -rf "$probe"
-    "$here/make_catalog.sh" -p "transmittance,$p" -s 64x16 1 "$probe" >/dev/null
-    plan="$("$skybake" plan "$probe" -d "$probe/out" --json 2>/dev/null)" || continue
-    if grep -q '"edges": \[$' <<<"$plan"; then
-      echo "$p"
-      return
-    fi
-  done
-}
+. "$here/e2e_checks.sh"  # same_outputs, edges_run, find_dependent_product
 # Runs ninja inside a 2-node allocation; output in $nlog, exit code in $rc.
 salloc_ninja() {
   rc=0

@@ -177,6 +177,48 @@ TEST(ReferenceSingleScattering, ComponentsUseTheirOwnPhase) {
              exact, 1e-10, "mixture");
 }
 
+// The phase-free groups of the same mixture: each is its own sigma_s times
+// h exp(-sigma_t h), the other group's light left out.
+TEST(ReferenceSingleScatteringPhaseFree, MixedSlabClosedForm) {
+  const double h = 100e3;
+  Atmosphere atm = uniform_slab_atmosphere(glm::dvec3(1e-5), glm::dvec3(0.0));
+  atm.components.push_back(fixtures::make_component("mie", glm::dvec3(4e-6), glm::dvec3(1e-6),
+                                                    uniform_profile(0.0, h),
+                                                    PhaseKind::cornette_shanks, 0.8));
+  const glm::dvec3 path = h * glm::exp(-glm::dvec3(1e-5 + 5e-6) * h);
+  const double rb = atm.bottom_radius_m;
+  expect_rel(reference_single_scattering_phase_free(atm, rb, 1.0, 1.0, 1.0,
+                                                    ScatteringGroup::rayleigh, kTolSingle)
+                 .value,
+             1e-5 * path, 1e-10, "rayleigh");
+  expect_rel(reference_single_scattering_phase_free(atm, rb, 1.0, 1.0, 1.0, ScatteringGroup::mie,
+                                                    kTolSingle)
+                 .value,
+             4e-6 * path, 1e-10, "mie");
+}
+
+// On Earth: p_R S_R + p_M S_M is the radiance, across the sky, toward the
+// ground and with the planet's shadow on the ray (the header's identity).
+TEST(ReferenceSingleScatteringPhaseFree, GroupsRecombineToTheRadiance) {
+  const Atmosphere atm = earth_atmosphere();
+  const double rb = atm.bottom_radius_m, g = atm.components[1].g;
+  struct View {
+    double r, mu, mu_s, nu;
+  };
+  for (const View v : {View{rb, 0.5, 0.7, 0.6}, View{rb + 1.0, 0.02, 0.1, 0.95},
+                       View{rb + 30e3, -0.4, 0.3, -0.2}, View{rb, 0.3, -0.05, 0.9}}) {
+    const auto l = reference_single_scattering(atm, v.r, v.mu, v.mu_s, v.nu, 1e-9);
+    const auto s_r = reference_single_scattering_phase_free(atm, v.r, v.mu, v.mu_s, v.nu,
+                                                            ScatteringGroup::rayleigh, 1e-9);
+    const auto s_m = reference_single_scattering_phase_free(atm, v.r, v.mu, v.mu_s, v.nu,
+                                                            ScatteringGroup::mie, 1e-9);
+    EXPECT_TRUE(s_r.converged && s_m.converged);
+    expect_rel(rayleigh_phase(v.nu) * s_r.value + cornette_shanks_phase(v.nu, g) * s_m.value,
+               l.value, 1e-8, "recombined");
+    for (int c = 0; c < 3; ++c) EXPECT_GT(s_m.value[c], 0.0) << c;
+  }
+}
+
 // Sun at the nadir, looking up from the ground: every point of the view ray
 // is in the planet's shadow. Without the shadow (a transparent planet) the
 // sun ray from height s crosses s of air, the planet, then H of air:

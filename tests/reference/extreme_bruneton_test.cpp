@@ -17,6 +17,7 @@
 #include "atmosphere/irradiance_lut.hpp"
 #include "atmosphere/ray_transfer.hpp"
 #include "atmosphere/scattering_orders.hpp"
+#include "atmosphere/test_scattering_specs.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/math.hpp"
 #include "pipeline/preset_loader.hpp"
@@ -36,16 +37,7 @@ Atmosphere extreme_atmosphere(const std::string& name) {
 
 // A table small enough for the suite's time budget (tests run in seconds).
 BrunetonSpec small_spec() {
-  BrunetonSpec spec;
-  spec.r_size = 8;
-  spec.mu_size = 32;
-  spec.mu_s_size = 8;
-  spec.nu_size = 4;
-  spec.ray_nodes = 30;
-  spec.density_directions = 8;
-  spec.irradiance_width = 16;
-  spec.irradiance_height = 4;
-  spec.irradiance_directions = 8;
+  BrunetonSpec spec = fixtures::small_bruneton_spec(fixtures::tiny_scattering_shape());
   spec.combined_mie_alpha = false;
   return spec;
 }

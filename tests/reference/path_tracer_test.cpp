@@ -5,8 +5,10 @@
 //   - an empty atmosphere: sky 0 and ground albedo / pi E mu_s, exactly;
 //   - a pure absorber: the ground seen through it (ratio and delta tracking);
 //   - single-scattering mode against the quadrature on Earth (noon, horizon,
-//     from 30 km toward the ground, sunset with the planet's shadow) and in
-//     a 100x Rayleigh atmosphere;
+//     from 30 km toward the ground, sunset with the planet's shadow), with
+//     the forced first collision at both ends of the view ray's 1 - T (an
+//     atmosphere 1 m thick, 100x Rayleigh), and in a 100x Rayleigh
+//     atmosphere with a sharp Mie peak;
 //   - a furnace: under isotropic illumination (a sun of random direction), a
 //     non-absorbing medium over a white ground sends back exactly what it
 //     receives: 4 pi E[L] / E = 1 - T(view ray to space);
@@ -15,14 +17,17 @@
 #include "reference/path_tracer.hpp"
 
 #include <cmath>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/test_atmospheres.hpp"
+#include "pipeline/preset_loader.hpp"
 #include "reference/atmosphere_quadrature.hpp"
 #include "reference/counter_rng.hpp"
+#include "support/run.hpp"
 
 namespace skybake {
 namespace {
@@ -146,6 +151,41 @@ TEST(PathTracer, SingleScatteringMatchesQuadratureOnEarth) {
     const auto truth = reference_single_scattering(atm, x, w, sun, 1e-8);
     ASSERT_TRUE(truth.converged) << v.name;
     expect_within_ci(tracer.trace(x, w, sun, spec), truth.value, v.max_ci, v.name);
+  }
+}
+
+// The forced first collision (drawn from the view ray's optical depth, see
+// the header) in single-scattering mode against the quadrature, at both
+// ends of 1 - T: the atmosphere 1 m thick (1 - T from ~1e-5 looking up to
+// ~0.2 along the ground, where rejection needed up to 1e5 tries) and 100x
+// Earth's Rayleigh (1 - T = 1 to rounding; the collision within a few
+// hundred metres of a viewer on the ground, spread over many bins from
+// above). The suns keep the sun's transmittance estimable (see the dense
+// test below).
+TEST(PathTracer, ForcedCollisionMatchesQuadratureInThinAndDenseAir) {
+  struct Case {
+    const char* preset;
+    View v;
+  };
+  PathTracerSpec spec = single_scattering_spec();
+  spec.samples = 4000;
+  for (const Case& c :
+       {Case{"atmosphere_1m", {"1 m: along the ground", 0.0, 0.0, 30.0, 10.0}},
+        Case{"atmosphere_1m", {"1 m: 2 deg up", 0.0, 2.0, 150.0, 40.0}},
+        Case{"atmosphere_1m", {"1 m: 60 deg up", 0.5, 60.0, 0.0, 30.0}},
+        Case{"atmosphere_1m", {"1 m: from the top down", 1.0, -5.0, 90.0, 20.0}},
+        Case{"rayleigh_100x", {"100x: 10 deg up", 0.0, 10.0, 0.0, 90.0}},
+        Case{"rayleigh_100x", {"100x: from 60 km level", 60e3, 0.0, 45.0, 60.0}},
+        Case{"rayleigh_100x", {"100x: from the top down", 100e3, -30.0, 0.0, 60.0}}}) {
+    const Atmosphere atm =
+        load_scene(test::source_path(std::string("presets/extreme/") + c.preset + ".json"))
+            .atmosphere;
+    const glm::dvec3 x = above_ground(atm, c.v.altitude_m),
+                     w = direction(c.v.elevation_deg, c.v.azimuth_deg);
+    const glm::dvec3 sun = direction(c.v.sun_elevation_deg, 0.0);
+    const auto truth = reference_single_scattering(atm, x, w, sun, 1e-8);
+    ASSERT_TRUE(truth.converged) << c.v.name;
+    expect_within_ci(trace_sky_radiance(atm, x, w, sun, spec), truth.value, c.v.max_ci, c.v.name);
   }
 }
 
