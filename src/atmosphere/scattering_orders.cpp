@@ -551,7 +551,10 @@ BrunetonTextures bake_bruneton(const Atmosphere& atm, const Texture& transmittan
   const ScatteringOrder order1{&single.rayleigh, &single.mie, nullptr, &phases};
   Texture irradiance(spec.irradiance_width, spec.irradiance_height, 1, 1, {"R", "G", "B"});
 
-  // Per-texel phases at the texel's own nu, for the residual and the / p_R.
+  // The phases of each texel: Mie at the texel's own nu (clamped to what its
+  // mu and mu_s allow), Rayleigh at its slice's nu before that clamp, for the
+  // / p_R of the orders >= 2 and the residual (header, "Storage of orders
+  // >= 2").
   const size_t texel_count = accumulated.texel_count();
   std::vector<float> phase_r(texel_count), phase_m(texel_count);
   tbb::parallel_for(tbb::blocked_range<int>(0, shape.r_size),
@@ -559,10 +562,9 @@ BrunetonTextures bake_bruneton(const Atmosphere& atm, const Texture& transmittan
                       for (int z = zs.begin(); z != zs.end(); ++z)
                         for (int y = 0; y < shape.mu_size; ++y)
                           for (int x = 0; x < shape.texture_width(); ++x) {
-                            const double nu = texels.at(x, y, z).nu;
                             const size_t t = accumulated.index(x, y, z) / 3;
-                            phase_r[t] = float(phases.rayleigh(nu));
-                            phase_m[t] = float(phases.mie(nu));
+                            phase_r[t] = float(phases.rayleigh(texels.nu[x / shape.mu_s_size]));
+                            phase_m[t] = float(phases.mie(texels.at(x, y, z).nu));
                           }
                     });
 

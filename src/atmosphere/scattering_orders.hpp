@@ -36,6 +36,20 @@
 // nodes, transmittances and (r, mu) interpolation taps are shared by the
 // 256 (mu_s, nu) texels of a row.
 //
+// Storage of orders >= 2 (Bruneton 2017 stores them the same way): in the
+// Rayleigh channels, divided by p_R, since the runtime multiplies them by
+// p_R(nu). The divisor is p_R at the nu of the texel's slice *before* the
+// clamp to the range its mu and mu_s allow, while DeltaS itself is computed
+// at the clamped nu. A read lerps slices across neighbouring (mu, mu_s)
+// texels with different clamps; dividing by p_R at the clamped nu made the
+// stored DeltaS / p_R of such taps too large, and reads in the sun's
+// vertical plane (where nu sits at its bound) up to 18% too bright toward
+// the sun (tests/atmosphere/scattering_orders_test.cpp,
+// OrdersAboveOneReadBackAsTheOrdersOwnTable; Earth's daytime sky against
+// the path tracer: 3.0% -> 2.0% relative RMSE). With the unclamped divisor
+// every (mu, mu_s) texel divides a slice by the same p_R, and the read
+// returns lerp(DeltaS) to the curvature of 1 / p_R between slices.
+//
 // Phase quadrature: each phase's weights over the direction grid are
 // normalized per view direction (divided by their sum), so an isotropic
 // incident radiance scatters exactly sigma_s L, whatever the grid does to the

@@ -49,23 +49,6 @@ int max_bounces_for(const Atmosphere& atm) {
   return int(std::clamp(std::ceil(4.0 * t * t), 64.0, 4096.0));
 }
 
-nlohmann::json target_json(const nlohmann::json& multiple) {
-  const double raw = multiple["worst"]["rel_rmse"];
-  const double denoised = multiple["worst"]["rel_rmse_denoised"];
-  std::string status = "undetermined";
-  if (raw < kDaytimeRelativeRmseTarget)
-    status = "met";
-  else if (denoised > kDaytimeRelativeRmseTarget)
-    status = "not met";
-  return {{"what",
-           "Earth daytime: relative RMSE < 1% for the model with multiple scattering, worst "
-           "channel, all sun elevations"},
-          {"threshold", kDaytimeRelativeRmseTarget},
-          {"rel_rmse", raw},
-          {"rel_rmse_denoised", denoised},
-          {"status", status}};
-}
-
 // Hillaire's Psi_ms without its series of higher orders: the second order
 // L_2 alone (eq. 5-6), in the multiple-scattering table's layout. With it the
 // sky-view march gives orders 1 and 2, which the path tracer gives with
@@ -161,6 +144,23 @@ nlohmann::json multiple_scattering_share(const std::vector<ViewResult>& views) {
 }
 
 }  // namespace
+
+nlohmann::json target_json(const nlohmann::json& multiple) {
+  const double raw = multiple["worst"]["rel_rmse"];
+  const double denoised = multiple["worst"]["rel_rmse_denoised"];
+  std::string status = "undetermined";
+  if (raw < kDaytimeRelativeRmseTarget)
+    status = "met";
+  else if (denoised > kDaytimeRelativeRmseTarget)
+    status = "not met";
+  return {{"what",
+           "Earth daytime: relative RMSE < 1% for the model with multiple scattering, worst "
+           "channel, all sun elevations"},
+          {"threshold", kDaytimeRelativeRmseTarget},
+          {"rel_rmse", raw},
+          {"rel_rmse_denoised", denoised},
+          {"status", status}};
+}
 
 nlohmann::json radiance_stats(const std::vector<RadiancePair>& rows) {
   nlohmann::json channels = nlohmann::json::array();

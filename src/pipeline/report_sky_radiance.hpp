@@ -70,4 +70,9 @@ nlohmann::json radiance_stats(const std::vector<RadiancePair>& rows);
 
 constexpr double kDaytimeRelativeRmseTarget = 0.01;
 
+// The daytime target judged on radiance statistics (radiance_stats): "met"
+// when even the noisy worst-channel rel_rmse is below it, "not met" when the
+// denoised one is above it, else "undetermined".
+nlohmann::json target_json(const nlohmann::json& stats);
+
 }  // namespace skybake

@@ -443,6 +443,53 @@ TEST(BakeBruneton, OrdersAddLightAndTheSkyIsPhysical) {
   EXPECT_GT(horizon.g, zenith.g);
 }
 
+TEST(BakeBruneton, OrdersAboveOneReadBackAsTheOrdersOwnTable) {
+  // The table stores orders >= 2 as DeltaS / p_R in its Rayleigh channels
+  // and an engine multiplies the read by p_R(nu) (header). A view in the
+  // sun's vertical plane has the largest or smallest nu its mu and mu_s
+  // allow, so its taps at the neighbouring mu, mu_s texels hold slices whose
+  // nu those texels had to clamp. Divided by p_R at the clamped nu, the
+  // read gave orders >= 2 up to 18% too bright toward the sun's azimuth
+  // (Rayleigh only, sun 30 degrees from the zenith; the path tracer had them
+  // flat across azimuths within 3%). Here order 2 read through the table
+  // (table minus the single-scattering tables, same taps) must match the
+  // order's own DeltaS table read directly, within 2.5%, in and out of the
+  // sun's plane. Default shape: the one engines ship.
+  Atmosphere atm = fixtures::earth_atmosphere();
+  atm.ground_albedo = glm::dvec3(0.0);
+  const Texture lut = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{});
+  BrunetonSpec spec;
+  spec.orders = 2;
+  spec.combined_mie_alpha = false;
+  const BrunetonTextures table = bake_bruneton(atm, lut, spec, BakeContext{});
+  const ScatteringShape shape = spec.shape();
+  const ScatteringPhases phases = scattering_phases(atm);
+  const SingleScatteringTables single =
+      bake_single_scattering(atm, lut, shape, spec.ray_nodes, BakeContext{});
+  const ScatteringOrder order1{&single.rayleigh, &single.mie, nullptr, &phases};
+  const Texture density = bake_scattering_density(atm, lut, shape, order1, GroundIrradiance{},
+                                                  spec.density_directions, BakeContext{});
+  const Texture delta =
+      bake_multiple_scattering(atm, shape, density, spec.ray_nodes, BakeContext{});
+  const double r = atm.bottom_radius_m + 200.0, deg = kPi / 180.0;
+  for (double sun_elevation : {60.0, 20.0})
+    for (double elevation : {60.0, 20.0, 5.0})
+      for (double azimuth : {0.0, 90.0, 180.0}) {
+        const double e = elevation * deg, a = azimuth * deg, s = sun_elevation * deg;
+        const double mu = std::sin(e), mu_s = std::sin(s);
+        const double nu = std::cos(e) * std::cos(a) * std::cos(s) + mu * mu_s;
+        const glm::dvec3 read =
+            lookup_scattering(table.scattering, table.single_mie, shape, atm, r, mu, mu_s, nu,
+                              false) -
+            lookup_scattering(single.rayleigh, single.mie, shape, atm, r, mu, mu_s, nu, false);
+        const glm::dvec3 own = lookup_scattering_rgb(delta, shape, atm, r, mu, mu_s, nu, false);
+        for (int c = 0; c < 3; ++c)
+          EXPECT_NEAR(read[c] / own[c], 1.0, 0.025)
+              << "sun " << sun_elevation << " view " << elevation << " azimuth " << azimuth
+              << " channel " << c;
+      }
+}
+
 TEST(BakeBruneton, SameDataForOneAndTwoThreads) {
   const Atmosphere atm = fixtures::earth_atmosphere();
   const Texture lut = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{});
