@@ -79,30 +79,31 @@ Gathering gather(const Atmosphere& atm, const Texture& transmittance_lut,
   const double d_theta = kPi / bands, d_phi = kPi / bands;  // bands azimuths over half a circle
   Gathering out;
   for (int l = 0; l < bands; ++l) {
-    const double theta = (l + 0.5) * d_theta, mu = std::cos(theta), sin_t = std::sin(theta);
-    const bool hits = ray_intersects_ground(rb, r, mu);
-    glm::dvec3 sky(0.0), sky_cos(0.0);
-    if (phases.has_rayleigh) {
-      const glm::dvec3 S = lookup_scattering3d_rgb(*order.rayleigh, shape, atm, h, mu, mu_s, hits);
-      sky += weights.sphere_rayleigh[l] * S;
-      sky_cos += weights.cosine_rayleigh[l] * S;
+    // The band's sky and ground, sub-stepped near the horizon (band_parts).
+    const std::vector<BandPart> parts =
+        band_parts(atm, r, l * d_theta, (l + 1) * d_theta, d_theta, ground_reflects);
+    glm::dvec3 S_r(0.0), S_m(0.0);
+    for (const BandPart& p : parts) {
+      const double mu = std::cos(p.theta);
+      if (phases.has_rayleigh)
+        S_r += p.share * lookup_scattering3d_rgb(*order.rayleigh, shape, atm, h, mu, mu_s, p.hits);
+      if (phases.has_mie)
+        S_m += p.share * lookup_scattering3d_rgb(*order.mie, shape, atm, h, mu, mu_s, p.hits);
     }
-    if (phases.has_mie) {
-      const glm::dvec3 S = lookup_scattering3d_rgb(*order.mie, shape, atm, h, mu, mu_s, hits);
-      sky += weights.sphere_mie[l] * S;
-      sky_cos += weights.cosine_mie[l] * S;
-    }
-    out.gathered += sky;
-    out.ground += sky_cos;
-    if (!hits || !ground_reflects) continue;
+    out.gathered += weights.sphere_rayleigh[l] * S_r + weights.sphere_mie[l] * S_m;
+    out.ground += weights.cosine_rayleigh[l] * S_r + weights.cosine_mie[l] * S_m;
+    if (!ground_reflects) continue;
     // The lit ground seen along the band's rays, azimuth by azimuth.
-    const double d = distance_to_bottom_boundary(rb, r, mu);
-    const glm::dvec3 T = ray_transmittance(atm, r, mu, d, kGroundRayNodes);
     const double cell = 2.0 * d_phi * (std::cos(l * d_theta) - std::cos((l + 1) * d_theta));
-    for (int m = 0; m < bands; ++m) {
-      const double nu = mu * mu_s + sin_t * sin_s * std::cos((m + 0.5) * d_phi);
-      const double mu_s_ground = clamp_cosine((r * mu_s + d * nu) / rb);
-      out.gathered += cell * T * albedo_over_pi * ground.at(atm, transmittance_lut, mu_s_ground);
+    for (const BandPart& p : parts) {
+      if (!p.hits) continue;
+      const double mu = std::cos(p.theta), sin_t = std::sin(p.theta);
+      for (int m = 0; m < bands; ++m) {
+        const double nu = mu * mu_s + sin_t * sin_s * std::cos((m + 0.5) * d_phi);
+        const double mu_s_ground = clamp_cosine((r * mu_s + p.d * nu) / rb);
+        out.gathered += p.share * cell * p.T_ground * albedo_over_pi *
+                        ground.at(atm, transmittance_lut, mu_s_ground);
+      }
     }
   }
   return out;

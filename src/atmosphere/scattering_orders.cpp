@@ -278,6 +278,34 @@ SphereGrid sphere_grid(int bands) {
   return g;
 }
 
+// See the header for the parts and why.
+std::vector<BandPart> band_parts(const Atmosphere& atm, double r, double theta0, double theta1,
+                                 double near, bool ground_reflects) {
+  const double rb = atm.bottom_radius_m;
+  const double horizon = kPi - std::asin(std::min(1.0, rb / r));  // zenith angle of the horizon
+  const int steps = theta0 - near < horizon && horizon < theta1 + near ? kIncidentSubBands : 1;
+  std::vector<double> cuts;
+  for (int k = 0; k <= steps; ++k) cuts.push_back(theta0 + (theta1 - theta0) * k / steps);
+  if (horizon > theta0 && horizon < theta1) {
+    cuts.push_back(horizon);
+    std::sort(cuts.begin(), cuts.end());
+  }
+  const double band = std::cos(theta0) - std::cos(theta1);
+  std::vector<BandPart> parts;
+  for (size_t k = 0; k + 1 < cuts.size(); ++k) {
+    if (!(cuts[k + 1] > cuts[k])) continue;
+    BandPart p;
+    p.theta = 0.5 * (cuts[k] + cuts[k + 1]);
+    p.share = (std::cos(cuts[k]) - std::cos(cuts[k + 1])) / band;
+    const double mu = std::cos(p.theta);
+    p.hits = ray_intersects_ground(rb, r, mu);
+    if (p.hits) p.d = distance_to_bottom_boundary(rb, r, mu);
+    if (p.hits && ground_reflects) p.T_ground = ray_transmittance(atm, r, mu, p.d, kGroundRayNodes);
+    parts.push_back(p);
+  }
+  return parts;
+}
+
 std::vector<glm::dvec3> compute_incident_radiance(const Atmosphere& atm,
                                                   const Texture& transmittance_lut,
                                                   const ScatteringShape& shape,
@@ -288,24 +316,25 @@ std::vector<glm::dvec3> compute_incident_radiance(const Atmosphere& atm,
   const glm::dvec3 sun = sun_direction(mu_s);
   const glm::dvec3 albedo_over_pi = atm.ground_albedo / kPi;
   const bool ground_reflects = atm.ground_albedo != glm::dvec3(0.0);
+  const double d_theta = kPi / grid.bands, d_phi = 2.0 * kPi / grid.azimuths;
   std::vector<glm::dvec3> L(grid.directions.size());
   for (int l = 0; l < grid.bands; ++l) {
-    const double mu = grid.directions[size_t(l) * grid.azimuths].z;
-    const bool hits = ray_intersects_ground(rb, r, mu);
-    // The ground seen along the band: distance and transmittance along the
-    // ray itself (ray_transfer.hpp: the LUT's ratio overshoots in dense media).
-    const double d = hits ? distance_to_bottom_boundary(rb, r, mu) : 0.0;
-    const glm::dvec3 T_ground = hits && ground_reflects
-                                    ? ray_transmittance(atm, r, mu, d, kGroundRayNodes)
-                                    : glm::dvec3(0.0);
+    const std::vector<BandPart> parts =
+        band_parts(atm, r, l * d_theta, (l + 1) * d_theta, d_theta, ground_reflects);
     // Azimuths m and azimuths - 1 - m mirror each other about the sun's plane.
     for (int m = 0; m < grid.azimuths / 2; ++m) {
-      const glm::dvec3& w = grid.directions[size_t(l) * grid.azimuths + m];
-      const double nu = glm::dot(w, sun);
-      glm::dvec3 radiance = previous.radiance_at(atm, shape, r, mu, mu_s, nu, hits);
-      if (hits && ground_reflects) {
-        const double mu_s_ground = clamp_cosine((r * mu_s + d * nu) / rb);
-        radiance += T_ground * albedo_over_pi * ground.at(atm, transmittance_lut, mu_s_ground);
+      const double phi = (m + 0.5) * d_phi;
+      glm::dvec3 radiance(0.0);
+      for (const BandPart& p : parts) {
+        const glm::dvec3 w(std::sin(p.theta) * std::cos(phi), std::sin(p.theta) * std::sin(phi),
+                           std::cos(p.theta));
+        const double nu = glm::dot(w, sun);
+        glm::dvec3 part = previous.radiance_at(atm, shape, r, w.z, mu_s, nu, p.hits);
+        if (p.hits && ground_reflects) {
+          const double mu_s_ground = clamp_cosine((r * mu_s + p.d * nu) / rb);
+          part += p.T_ground * albedo_over_pi * ground.at(atm, transmittance_lut, mu_s_ground);
+        }
+        radiance += p.share * part;
       }
       L[size_t(l) * grid.azimuths + m] = radiance;
       L[size_t(l) * grid.azimuths + (grid.azimuths - 1 - m)] = radiance;

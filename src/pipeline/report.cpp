@@ -219,10 +219,15 @@ namespace {
 nlohmann::json bruneton_summary(const nlohmann::json& b) {
   if (b.is_null()) return nullptr;
   if (b["status"] != "measured") return {{"status", b["status"]}};
-  return {{"status", "measured"},
-          {"orders_used", b["bruneton"]["orders_used"]},
-          {"hillaire_rel_rmse", b["hillaire"]["worst"]["rel_rmse"]},
-          {"bruneton_rel_rmse", b["bruneton_vs_path_tracer"]["worst"]["rel_rmse"]}};
+  return {
+      {"status", "measured"},
+      {"orders_used", b["bruneton"]["orders_used"]},
+      {"hillaire_rel_rmse", b["hillaire"]["worst"]["rel_rmse"]},
+      {"bruneton_rel_rmse", b["bruneton_vs_path_tracer"]["worst"]["rel_rmse"]},
+      {"bruneton_exact_mie_rel_rmse", b["bruneton_exact_mie_vs_path_tracer"]["worst"]["rel_rmse"]},
+      {"target", b["target"]["status"]},
+      {"exact_mie_target", b["exact_mie_target"]["status"]},
+      {"hybrid_target", b["hybrid_target"]["status"]}};
 }
 
 }  // namespace

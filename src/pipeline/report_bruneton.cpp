@@ -110,7 +110,8 @@ nlohmann::json bruneton_comparison_report(const ReportInputs& in,
         {{"sun_elevation_deg", elevation},
          {"bruneton", radiance_stats(by_sun[elevation])},
          {"skyview_single_plus_bruneton_multiple", radiance_stats(hybrid_by_sun[elevation])}});
-  const nlohmann::json hybrid_stats = radiance_stats(hybrid);
+  const nlohmann::json stats = radiance_stats(all), exact_mie_stats = radiance_stats(exact_mie),
+                       hybrid_stats = radiance_stats(hybrid);
   return {{"status", "measured"},
           {"bruneton",
            {{"source", own ? "the scene's scattering output" : "the report level's table"},
@@ -122,9 +123,11 @@ nlohmann::json bruneton_comparison_report(const ReportInputs& in,
             {"mie", spec.combined_mie_alpha ? "alpha" : "separate"},
             {"bake_seconds", seconds}}},
           {"hillaire", sky_radiance["multiple"]},
-          {"bruneton_vs_path_tracer", radiance_stats(all)},
+          {"bruneton_vs_path_tracer", stats},
+          {"target", target_json(stats)},
+          {"exact_mie_target", target_json(exact_mie_stats)},
           {"bruneton_by_sun", sun_stats},
-          {"bruneton_exact_mie_vs_path_tracer", radiance_stats(exact_mie)},
+          {"bruneton_exact_mie_vs_path_tracer", exact_mie_stats},
           {"skyview_single_plus_bruneton_multiple_vs_path_tracer", hybrid_stats},
           {"hybrid_target", target_json(hybrid_stats)},
           {"views", views}};

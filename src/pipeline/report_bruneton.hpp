@@ -19,7 +19,13 @@
 // "bruneton_exact_mie_vs_path_tracer": the same table read with single Mie
 // from its own texture instead of the alpha channel's extrapolation (equal
 // to the above when the table stores Mie separately),
-// "views": [{sun, elevation, azimuth, "bruneton": RGB}]}, or
+// "skyview_single_plus_bruneton_multiple_vs_path_tracer": the sky-view
+// layer's single scattering (Psi_ms = 0) plus the table's orders >= 2 (the
+// table minus its own single-scattering tables, same taps), the daytime
+// target judged on each (target_json): "target", "exact_mie_target",
+// "hybrid_target",
+// "views": [{sun, elevation, azimuth, "bruneton": RGB,
+// "skyview_single_plus_bruneton_multiple": RGB}]}, or
 // {"status": "not run", "reason"} when there is no sky radiance section.
 #pragma once
 

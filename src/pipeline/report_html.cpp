@@ -123,11 +123,20 @@ std::string radiance_table(const std::string& title, const nlohmann::json& stats
   return s + "</table>\n";
 }
 
+// One target verdict (target_json, report_sky_radiance.hpp) as a paragraph.
+std::string target_paragraph(const std::string& model, const nlohmann::json& target) {
+  const std::string status = target["status"];
+  return fmt::format(
+      "<p>Target for {} ({}): <span class=\"{}\">{}</span> (worst-channel rel RMSE {}, "
+      "{} without the reference noise).</p>\n",
+      model, text(target["what"]), status == "met" ? "met" : (status == "not met" ? "notmet" : ""),
+      status, pct(target["rel_rmse"]), pct(target["rel_rmse_denoised"]));
+}
+
 std::string sky_section(const nlohmann::json& sky) {
   std::string s = "<h2 id=\"sky\">Sky radiance: LUTs against the path tracer</h2>\n";
   if (sky.is_null()) return s + "<p>Not run (neither skyview nor scattering was selected).</p>\n";
   const auto& pt = sky["path_tracer"];
-  const std::string status = sky["target"]["status"];
   s += fmt::format(
       "<p>Camera at {} m; sun elevations {} deg; views at elevations {} deg x {} azimuths; "
       "sky-view {}. Path tracer: {} paths per channel and view (every order), up to {} "
@@ -137,11 +146,7 @@ std::string sky_section(const nlohmann::json& sky) {
       text(sky["view_elevations_deg"]), text(sky["view_azimuths"]), text(sky["skyview"]),
       text(pt["samples"]), text(pt["max_bounces"]), text(pt["ground_albedo"]),
       num(pt["single_scattering_max_z_vs_quadrature"]));
-  s += fmt::format(
-      "<p>Target ({}): <span class=\"{}\">{}</span> (worst-channel rel RMSE {}, "
-      "{} without the reference noise).</p>\n",
-      text(sky["target"]["what"]), status == "met" ? "met" : (status == "not met" ? "notmet" : ""),
-      status, pct(sky["target"]["rel_rmse"]), pct(sky["target"]["rel_rmse_denoised"]));
+  s += target_paragraph("Hillaire's model", sky["target"]);
   s += radiance_table("With multiple scattering (Hillaire's Psi_ms) vs path tracer, all orders",
                       sky["multiple"]);
   for (const auto& b : sky["multiple_by_sun"])
@@ -217,9 +222,15 @@ std::string bruneton_section(const nlohmann::json& b) {
       t["mie"] == "alpha" ? "extrapolated from alpha" : "from its own table",
       num(t["bake_seconds"]));
   s += radiance_table("Hillaire 2020 (sky-view + Psi_ms)", b["hillaire"]);
+  s += target_paragraph("Bruneton's table as read", b["target"]);
+  s += target_paragraph("Bruneton's table with single Mie from its own texture",
+                        b["exact_mie_target"]);
+  s += target_paragraph("sky-view single + Bruneton orders >= 2", b["hybrid_target"]);
   s += radiance_table("Bruneton 2017 (4D table of orders)", b["bruneton_vs_path_tracer"]);
   s += radiance_table("Bruneton 2017, single Mie from its own texture (no alpha extrapolation)",
                       b["bruneton_exact_mie_vs_path_tracer"]);
+  s += radiance_table("Sky-view single scattering + Bruneton orders &ge; 2",
+                      b["skyview_single_plus_bruneton_multiple_vs_path_tracer"]);
   for (const auto& x : b["bruneton_by_sun"])
     s += radiance_table(fmt::format("Bruneton, sun at {} deg", num(x["sun_elevation_deg"])),
                         x["bruneton"]);

@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
 
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/irradiance_lut.hpp"
@@ -125,6 +126,69 @@ TEST(ScatteringDensity, IsotropicIncidentLightScattersSigmaSTimesIt) {
           ASSERT_NEAR(J.at(x, y, z, 0, c), expected, 2e-6 * expected) << x << " " << y << " " << z;
         }
       }
+}
+
+TEST(ScatteringDensity, SixteenBandsMatchAFineSphereQuadrature) {
+  // J_2 of Earth's Rayleigh (black ground) with the default 16 bands
+  // against sigma_s int p_R L_1 d omega over a 256 x 96 grid of the same
+  // single-scattering field: within 1% at every altitude, view and channel.
+  // With one sample of the field per band, the bright sky between the
+  // horizontal and the horizon was read as dark ground: 2.7% low at 3 km,
+  // 2.2% at 8 km (header, compute_incident_radiance).
+  Atmosphere atm = fixtures::earth_atmosphere();
+  atm.ground_albedo = glm::dvec3(0.0);
+  atm.components.erase(atm.components.begin() + 1);  // Mie's peak would need a finer grid
+  const Texture lut = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{});
+  const BrunetonSpec spec;
+  const ScatteringShape shape = spec.shape();
+  const ScatteringPhases phases = scattering_phases(atm);
+  const SingleScatteringTables single =
+      bake_single_scattering(atm, lut, shape, spec.ray_nodes, BakeContext{});
+  const ScatteringOrder order1{&single.rayleigh, &single.mie, nullptr, &phases};
+  const double mu_s = std::sin(60.0 * kPi / 180.0);
+  const glm::dvec3 sun(std::sqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
+  // The reference grid has the horizon at r as a band edge (kBands above
+  // it, kBands below), so none of its cells mixes sky and ground.
+  constexpr int kBands = 128, kAzimuths = 96;
+  for (double altitude : {200.0, 3e3, 8e3, 20e3}) {
+    const double r = atm.bottom_radius_m + altitude;
+    const double horizon = kPi - std::asin(atm.bottom_radius_m / r);
+    std::vector<glm::dvec3> w(2 * kBands * kAzimuths), L(w.size());
+    std::vector<double> dw(w.size());
+    tbb::parallel_for(0, int(w.size()), [&](int i) {
+      const int b = i / kAzimuths, a = i % kAzimuths;
+      const double t0 =
+          b < kBands ? horizon * b / kBands : horizon + (kPi - horizon) * (b - kBands) / kBands;
+      const double t1 = b < kBands ? horizon * (b + 1) / kBands
+                                   : horizon + (kPi - horizon) * (b + 1 - kBands) / kBands;
+      const double theta = 0.5 * (t0 + t1), phi = (a + 0.5) * 2.0 * kPi / kAzimuths;
+      w[i] = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+      dw[i] = (std::cos(t0) - std::cos(t1)) * 2.0 * kPi / kAzimuths;
+      L[i] = order1.radiance_at(atm, shape, r, w[i].z, mu_s, glm::dot(w[i], sun), b >= kBands);
+    });
+    const glm::dvec3 sigma_s =
+        atm.components[0].scattering_per_m * density_at(atm.components[0].density, altitude);
+    for (double elevation : {60.0, 20.0, -10.0})
+      for (double azimuth : {0.0, 180.0}) {
+        const double e = elevation * kPi / 180.0, a = azimuth * kPi / 180.0;
+        const glm::dvec3 v(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
+        glm::dvec3 sum(0.0);
+        double weight = 0.0;
+        for (size_t i = 0; i < w.size(); ++i) {
+          const double p = rayleigh_phase(glm::dot(v, w[i])) * dw[i];
+          sum += p * L[i];
+          weight += p;
+        }
+        const glm::dvec3 reference = sigma_s * sum / weight;
+        const glm::dvec3 J =
+            compute_scattering_density(atm, lut, shape, order1, GroundIrradiance{}, r, v.z, mu_s,
+                                       glm::dot(v, sun), spec.density_directions);
+        for (int c = 0; c < 3; ++c)
+          EXPECT_NEAR(J[c] / reference[c], 1.0, 0.01)
+              << "altitude " << altitude << " view " << elevation << " azimuth " << azimuth
+              << " channel " << c;
+      }
+  }
 }
 
 TEST(ScatteringDensity, FastPassEqualsTheDirectQuadrature) {
