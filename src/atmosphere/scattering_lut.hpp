@@ -343,6 +343,11 @@ struct ScatteringOrder {
   const Texture* mie = nullptr;       // order 1: S_M
   const Texture* radiance = nullptr;  // order >= 2: radiance, phase included
   const ScatteringPhases* phases = nullptr;
+  // The tables' rows of rays that meet the ground hold the value divided by
+  // the ray's opacity 1 - T (scattering_orders.hpp, divide_ground_rows_by_
+  // opacity); radiance_at returns that quotient there, and the caller
+  // multiplies by the opacity of its own ray.
+  bool ground_rows_per_opacity = false;
 
   glm::dvec3 radiance_at(const Atmosphere& atm, const ScatteringShape& shape, double r, double mu,
                          double mu_s, double nu, bool ray_hits_ground) const;

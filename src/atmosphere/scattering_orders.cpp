@@ -280,7 +280,7 @@ SphereGrid sphere_grid(int bands) {
 
 // See the header for the parts and why.
 std::vector<BandPart> band_parts(const Atmosphere& atm, double r, double theta0, double theta1,
-                                 double near, bool ground_reflects) {
+                                 double near, bool with_transmittance) {
   const double rb = atm.bottom_radius_m;
   const double horizon = kPi - std::asin(std::min(1.0, rb / r));  // zenith angle of the horizon
   const int steps = theta0 - near < horizon && horizon < theta1 + near ? kIncidentSubBands : 1;
@@ -300,10 +300,43 @@ std::vector<BandPart> band_parts(const Atmosphere& atm, double r, double theta0,
     const double mu = std::cos(p.theta);
     p.hits = ray_intersects_ground(rb, r, mu);
     if (p.hits) p.d = distance_to_bottom_boundary(rb, r, mu);
-    if (p.hits && ground_reflects) p.T_ground = ray_transmittance(atm, r, mu, p.d, kGroundRayNodes);
+    if (p.hits && with_transmittance)
+      p.T_ground = ray_transmittance(atm, r, mu, p.d, kGroundRayNodes);
     parts.push_back(p);
   }
   return parts;
+}
+
+std::vector<glm::dvec3> ground_row_opacity(const Atmosphere& atm, const ScatteringShape& shape) {
+  const ScatteringTexelGrid texels = scattering_texel_grid(atm, shape);
+  std::vector<glm::dvec3> opacity(size_t(shape.r_size) * shape.mu_size, glm::dvec3(0.0));
+  tbb::parallel_for(0, shape.r_size, [&](int z) {
+    for (int y = 0; y < shape.mu_size; ++y) {
+      const size_t row = size_t(z) * shape.mu_size + y;
+      if (!texels.ray_hits_ground[row]) continue;
+      const double r = texels.r[z], mu = texels.mu[row];
+      const double d = distance_to_bottom_boundary(atm.bottom_radius_m, r, mu);
+      opacity[row] = 1.0 - ray_transmittance(atm, r, mu, d, kGroundRayNodes);
+    }
+  });
+  return opacity;
+}
+
+Texture divide_ground_rows_by_opacity(const Texture& table, const ScatteringShape& shape,
+                                      const std::vector<glm::dvec3>& opacity) {
+  Texture out = table;
+  const int channels = std::min(out.channel_count(), 3);
+  tbb::parallel_for(0, shape.r_size, [&](int z) {
+    for (int y = 0; y < shape.mu_size; ++y) {
+      const glm::dvec3 o = opacity[size_t(z) * shape.mu_size + y];
+      if (o == glm::dvec3(0.0)) continue;  // a sky row (or a ray of zero length)
+      for (int x = 0; x < shape.texture_width(); ++x) {
+        float* texel = out.texel(x, y, z);
+        for (int c = 0; c < channels; ++c) texel[c] = o[c] > 0.0 ? float(texel[c] / o[c]) : 0.0f;
+      }
+    }
+  });
+  return out;
 }
 
 std::vector<glm::dvec3> compute_incident_radiance(const Atmosphere& atm,
@@ -320,7 +353,8 @@ std::vector<glm::dvec3> compute_incident_radiance(const Atmosphere& atm,
   std::vector<glm::dvec3> L(grid.directions.size());
   for (int l = 0; l < grid.bands; ++l) {
     const std::vector<BandPart> parts =
-        band_parts(atm, r, l * d_theta, (l + 1) * d_theta, d_theta, ground_reflects);
+        band_parts(atm, r, l * d_theta, (l + 1) * d_theta, d_theta,
+                   ground_reflects || previous.ground_rows_per_opacity);
     // Azimuths m and azimuths - 1 - m mirror each other about the sun's plane.
     for (int m = 0; m < grid.azimuths / 2; ++m) {
       const double phi = (m + 0.5) * d_phi;
@@ -330,6 +364,7 @@ std::vector<glm::dvec3> compute_incident_radiance(const Atmosphere& atm,
                            std::cos(p.theta));
         const double nu = glm::dot(w, sun);
         glm::dvec3 part = previous.radiance_at(atm, shape, r, w.z, mu_s, nu, p.hits);
+        if (p.hits && previous.ground_rows_per_opacity) part *= 1.0 - p.T_ground;
         if (p.hits && ground_reflects) {
           const double mu_s_ground = clamp_cosine((r * mu_s + p.d * nu) / rb);
           part += p.T_ground * albedo_over_pi * ground.at(atm, transmittance_lut, mu_s_ground);
@@ -603,10 +638,23 @@ BrunetonTextures bake_bruneton(const Atmosphere& atm, const Texture& transmittan
   ScatteringOrder previous = order1;
   GroundIrradiance ground;  // direct sunlight for order 2
   out.orders_used = 1;
+  // The density reads the previous order with its ground rows per opacity
+  // (header, ground_row_opacity); the irradiance reads only the sky.
+  const std::vector<glm::dvec3> opacity = ground_row_opacity(atm, shape);
+  const Texture single_r_per_opacity =
+      divide_ground_rows_by_opacity(single.rayleigh, shape, opacity);
+  const Texture single_m_per_opacity = divide_ground_rows_by_opacity(single.mie, shape, opacity);
+  Texture previous_per_opacity;
   for (int k = 2; k <= last_order; ++k) {
     const double begin = (k - 1) * stage;
+    ScatteringOrder density_previous{&single_r_per_opacity, &single_m_per_opacity, nullptr, &phases,
+                                     true};
+    if (k >= 3) {
+      previous_per_opacity = divide_ground_rows_by_opacity(previous_radiance, shape, opacity);
+      density_previous = ScatteringOrder{nullptr, nullptr, &previous_per_opacity, &phases, true};
+    }
     const Texture density = bake_scattering_density(
-        atm, transmittance_lut, shape, previous, ground, spec.density_directions,
+        atm, transmittance_lut, shape, density_previous, ground, spec.density_directions,
         stage_context(ctx, begin, begin + 0.45 * stage));
     Texture E =
         bake_indirect_irradiance(atm, shape, previous, spec.irradiance_width,

@@ -159,7 +159,7 @@ SphereGrid sphere_grid(int bands);
 // one of its zenith sub-steps: its middle zenith angle, its share of the
 // band's solid angle, and, below the horizon, the ground it sees (distance
 // and transmittance along the ray itself: ray_transfer.hpp, the LUT's ratio
-// overshoots in dense media; transmittance only with ground_reflects).
+// overshoots in dense media; transmittance only with with_transmittance).
 // Within `near` of the horizon at r a band is cut into kIncidentSubBands
 // equal zenith steps, and at the horizon itself when it falls inside;
 // elsewhere it is one part, its middle. The incident field varies fastest
@@ -177,7 +177,7 @@ struct BandPart {
   glm::dvec3 T_ground{0.0};
 };
 std::vector<BandPart> band_parts(const Atmosphere& atm, double r, double theta0, double theta1,
-                                 double near, bool ground_reflects);
+                                 double near, bool with_transmittance);
 
 // The incident radiance of order k - 1 at (r, mu_s) on the grid (sky plus
 // ground term, see the opening comment). Each grid cell holds the
@@ -189,6 +189,23 @@ std::vector<glm::dvec3> compute_incident_radiance(const Atmosphere& atm,
                                                   const ScatteringOrder& previous,
                                                   const GroundIrradiance& ground, double r,
                                                   double mu_s, const SphereGrid& grid);
+
+// Rays that meet the ground: the incident field of the density reads the
+// previous order's radiance toward the ground by interpolating between mu
+// texels of the ground half, which are spaced linearly in the distance to
+// the ground. In a dense sky that radiance saturates within a mean free path
+// (L ~ J/sigma_t (1 - T)), far shorter than the texel spacing (300 m at the
+// ground at 100x Rayleigh, 2.3 km between texels 105 m up on a 32 x 128
+// table), and a linear blend of the saturating 1 - T reads too little: an
+// energy loss every order, compounded over the hundreds a dense sky needs.
+// So the density reads those rows divided by their ray's opacity 1 - T (a
+// smooth mean of the source along the ray) and multiplies by the opacity of
+// its own ray: exact at texels, and the saturation follows 1 - T instead of
+// a straight line between texels. The opacity is per texel row (r, mu) of
+// the ground half, RGB, 1 - ray_transmittance to the ground.
+std::vector<glm::dvec3> ground_row_opacity(const Atmosphere& atm, const ScatteringShape& shape);
+Texture divide_ground_rows_by_opacity(const Texture& table, const ScatteringShape& shape,
+                                      const std::vector<glm::dvec3>& opacity);
 
 // J_k at (r, mu, mu_s, nu) by the direct quadrature over the grid: the
 // reference for bake_scattering_density, which must agree (tests).
