@@ -81,7 +81,7 @@ Gathering gather(const Atmosphere& atm, const Texture& transmittance_lut,
   for (int l = 0; l < bands; ++l) {
     // The band's sky and ground, sub-stepped near the horizon (band_parts).
     const std::vector<BandPart> parts =
-        band_parts(atm, r, l * d_theta, (l + 1) * d_theta, d_theta, ground_reflects);
+        band_parts(atm, r, l * d_theta, (l + 1) * d_theta, ground_reflects);
     glm::dvec3 S_r(0.0), S_m(0.0);
     for (const BandPart& p : parts) {
       const double mu = std::cos(p.theta);

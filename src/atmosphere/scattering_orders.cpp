@@ -280,12 +280,13 @@ SphereGrid sphere_grid(int bands) {
 
 // See the header for the parts and why.
 std::vector<BandPart> band_parts(const Atmosphere& atm, double r, double theta0, double theta1,
-                                 double near, bool with_transmittance) {
+                                 bool with_transmittance) {
   const double rb = atm.bottom_radius_m;
   const double horizon = kPi - std::asin(std::min(1.0, rb / r));  // zenith angle of the horizon
-  const int steps = theta0 - near < horizon && horizon < theta1 + near ? kIncidentSubBands : 1;
+  const double width = theta1 - theta0;
+  const int steps = theta0 - width < horizon && horizon < theta1 + width ? kIncidentSubBands : 1;
   std::vector<double> cuts;
-  for (int k = 0; k <= steps; ++k) cuts.push_back(theta0 + (theta1 - theta0) * k / steps);
+  for (int k = 0; k <= steps; ++k) cuts.push_back(theta0 + width * k / steps);
   if (horizon > theta0 && horizon < theta1) {
     cuts.push_back(horizon);
     std::sort(cuts.begin(), cuts.end());
@@ -353,7 +354,7 @@ std::vector<glm::dvec3> compute_incident_radiance(const Atmosphere& atm,
   std::vector<glm::dvec3> L(grid.directions.size());
   for (int l = 0; l < grid.bands; ++l) {
     const std::vector<BandPart> parts =
-        band_parts(atm, r, l * d_theta, (l + 1) * d_theta, d_theta,
+        band_parts(atm, r, l * d_theta, (l + 1) * d_theta,
                    ground_reflects || previous.ground_rows_per_opacity);
     // Azimuths m and azimuths - 1 - m mirror each other about the sun's plane.
     for (int m = 0; m < grid.azimuths / 2; ++m) {

@@ -160,7 +160,7 @@ SphereGrid sphere_grid(int bands);
 // band's solid angle, and, below the horizon, the ground it sees (distance
 // and transmittance along the ray itself: ray_transfer.hpp, the LUT's ratio
 // overshoots in dense media; transmittance only with with_transmittance).
-// Within `near` of the horizon at r a band is cut into kIncidentSubBands
+// Within one band's width of the horizon at r a band is cut into kIncidentSubBands
 // equal zenith steps, and at the horizon itself when it falls inside;
 // elsewhere it is one part, its middle. The incident field varies fastest
 // near the horizon (the brightest sky just above it, the ground just
@@ -177,7 +177,7 @@ struct BandPart {
   glm::dvec3 T_ground{0.0};
 };
 std::vector<BandPart> band_parts(const Atmosphere& atm, double r, double theta0, double theta1,
-                                 double near, bool with_transmittance);
+                                 bool with_transmittance);
 
 // The incident radiance of order k - 1 at (r, mu_s) on the grid (sky plus
 // ground term, see the opening comment). Each grid cell holds the

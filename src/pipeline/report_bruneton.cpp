@@ -72,32 +72,29 @@ nlohmann::json bruneton_comparison_report(const ReportInputs& in,
     const glm::dvec3 dir(std::cos(e) * std::cos(phi), std::cos(e) * std::sin(phi), std::sin(e));
     const glm::dvec3 sun(std::cos(s), 0.0, std::sin(s));
     const double mu = dir.z, mu_s = sun.z, nu = glm::dot(dir, sun);
+    const bool hits = ray_intersects_ground(atm.bottom_radius_m, r, mu);
     const glm::dvec3 l =
-        lookup_scattering(tables.scattering, single_mie, tables.shape, atm, r, mu, mu_s, nu,
-                          ray_intersects_ground(atm.bottom_radius_m, r, mu));
+        lookup_scattering(tables.scattering, single_mie, tables.shape, atm, r, mu, mu_s, nu, hits);
     const glm::dvec3 pt = rgb_of(v["path_traced"]), ci95 = rgb_of(v["path_traced_ci95"]);
     const RadiancePair pair{l, pt, ci95, pt};
     // The same table with single Mie read from its own texture: what the
     // alpha channel's extrapolation costs.
-    exact_mie.push_back(
-        {lookup_scattering(tables.scattering, tables.single_mie, tables.shape, atm, r, mu, mu_s, nu,
-                           ray_intersects_ground(atm.bottom_radius_m, r, mu)),
-         pt, ci95, pt});
+    const glm::dvec3 exact = lookup_scattering(tables.scattering, tables.single_mie, tables.shape,
+                                               atm, r, mu, mu_s, nu, hits);
+    exact_mie.push_back({exact, pt, ci95, pt});
     // Single scattering marched in the sky-view table (Psi_ms = 0) plus the
-    // 4D table's orders >= 2: the table with its own single Mie minus the
-    // single-scattering tables, both read with the same taps, so the
-    // difference is the interpolated multiple scattering.
-    const bool hits = ray_intersects_ground(atm.bottom_radius_m, r, mu);
-    const glm::dvec3 multiple = lookup_scattering(tables.scattering, tables.single_mie,
-                                                  tables.shape, atm, r, mu, mu_s, nu, hits) -
-                                lookup_scattering(single_tables.rayleigh, single_tables.mie,
-                                                  tables.shape, atm, r, mu, mu_s, nu, hits);
+    // 4D table's orders >= 2: the exact-Mie read minus the single-scattering
+    // tables read with the same taps, so the difference is the interpolated
+    // multiple scattering.
+    const glm::dvec3 multiple = exact - lookup_scattering(single_tables.rayleigh, single_tables.mie,
+                                                          tables.shape, atm, r, mu, mu_s, nu, hits);
     const glm::dvec3 h = rgb_of(v["lut_single"]) + glm::max(multiple, 0.0);
     const RadiancePair hybrid_pair{h, pt, ci95, pt};
     all.push_back(pair);
     hybrid.push_back(hybrid_pair);
-    by_sun[v["sun_elevation_deg"].get<double>()].push_back(pair);
-    hybrid_by_sun[v["sun_elevation_deg"].get<double>()].push_back(hybrid_pair);
+    const double sun_elevation = v["sun_elevation_deg"];
+    by_sun[sun_elevation].push_back(pair);
+    hybrid_by_sun[sun_elevation].push_back(hybrid_pair);
     views.push_back({{"sun_elevation_deg", v["sun_elevation_deg"]},
                      {"view_elevation_deg", v["view_elevation_deg"]},
                      {"view_azimuth_deg", v["view_azimuth_deg"]},

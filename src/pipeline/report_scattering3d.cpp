@@ -51,8 +51,7 @@ struct PhaseFreePair {
 };
 PhaseFreePair phase_free_at(const Atmosphere& atm, double r, double mu, double mu_s, double phi,
                             double tol) {
-  const double nu =
-      clamp_cosine(mu * mu_s + safe_sqrt((1.0 - mu * mu) * (1.0 - mu_s * mu_s)) * std::cos(phi));
+  const double nu = nu_from_azimuth(mu, mu_s, phi);
   return {
       reference_single_scattering_phase_free(atm, r, mu, mu_s, nu, ScatteringGroup::rayleigh, tol)
           .value,
@@ -63,21 +62,14 @@ PhaseFreePair phase_free_at(const Atmosphere& atm, double r, double mu, double m
 std::vector<Scattering3dQuery> scattering3d_queries(const ReportInputs& in) {
   const Atmosphere& atm = in.scene.atmosphere;
   const ScatteringPhases phases = scattering_phases(atm);
-  const double top = atm.top_radius_m - atm.bottom_radius_m;
   const double tol = in.level.single_scattering_tolerance;
   const int azimuths = in.level.scattering3d_reference_azimuths;
   std::vector<Scattering3dQuery> q(size_t(in.level.scattering3d_queries));
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
-    const double u = query_unit(i, 70);
-    q[i].h = top * u * u;
-    const double r = atm.bottom_radius_m + q[i].h;
-    q[i].mu = 2.0 * query_unit(i, 71) - 1.0;
-    q[i].mu_s = kScattering3dMuSMin + (1.0 - kScattering3dMuSMin) * query_unit(i, 72);
-    const double phi = 2.0 * kPi * query_unit(i, 73);
-    q[i].nu = clamp_cosine(q[i].mu * q[i].mu_s +
-                           safe_sqrt((1.0 - q[i].mu * q[i].mu) * (1.0 - q[i].mu_s * q[i].mu_s)) *
-                               std::cos(phi));
-    q[i].hits_ground = ray_intersects_ground(atm.bottom_radius_m, r, q[i].mu);
+    const ViewQuery v = view_query(atm, i, 70, kScattering3dMuSMin);
+    q[i].h = v.altitude_m, q[i].mu = v.mu, q[i].mu_s = v.mu_s, q[i].nu = v.nu;
+    q[i].hits_ground = v.hits_ground;
+    const double r = v.r;
     PhaseFreePair mean{glm::dvec3(0.0), glm::dvec3(0.0)};
     for (int a = 0; a < azimuths; ++a) {
       const PhaseFreePair s =

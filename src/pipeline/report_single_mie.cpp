@@ -37,18 +37,11 @@ struct MieQuery {
 
 std::vector<MieQuery> single_mie_queries(const ReportInputs& in, double mu_s_min) {
   const Atmosphere& atm = in.scene.atmosphere;
-  const double top = atm.top_radius_m - atm.bottom_radius_m;
   std::vector<MieQuery> q(size_t(in.level.single_mie_queries));
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
-    const double u = query_unit(i, 50);
-    q[i].r = atm.bottom_radius_m + top * u * u;
-    q[i].mu = 2.0 * query_unit(i, 51) - 1.0;
-    q[i].mu_s = mu_s_min + (1.0 - mu_s_min) * query_unit(i, 52);
-    const double phi = 2.0 * kPi * query_unit(i, 53);
-    q[i].nu = clamp_cosine(q[i].mu * q[i].mu_s +
-                           std::sqrt((1.0 - q[i].mu * q[i].mu) * (1.0 - q[i].mu_s * q[i].mu_s)) *
-                               std::cos(phi));
-    q[i].hits_ground = ray_intersects_ground(atm.bottom_radius_m, q[i].r, q[i].mu);
+    const ViewQuery v = view_query(atm, i, 50, mu_s_min);
+    q[i].r = v.r, q[i].mu = v.mu, q[i].mu_s = v.mu_s, q[i].nu = v.nu;
+    q[i].hits_ground = v.hits_ground;
     q[i].reference = reference_single_scattering_phase_free(atm, q[i].r, q[i].mu, q[i].mu_s,
                                                             q[i].nu, ScatteringGroup::mie,
                                                             in.level.single_scattering_tolerance)
