@@ -7,7 +7,7 @@
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
-#include "../tests/atmosphere/test_atmospheres.hpp"
+#include "support/test_atmospheres.hpp"
 #include "atmosphere/scattering3d_lut.hpp"
 #include "atmosphere/scattering_orders.hpp"
 #include "atmosphere/transmittance_lut.hpp"

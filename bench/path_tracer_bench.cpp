@@ -12,7 +12,7 @@
 #include <cmath>
 #include <vector>
 
-#include "../tests/atmosphere/test_atmospheres.hpp"
+#include "support/test_atmospheres.hpp"
 #include "core/math.hpp"
 #include "reference/path_tracer.hpp"
 

@@ -8,7 +8,7 @@
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
-#include "../tests/atmosphere/test_atmospheres.hpp"
+#include "support/test_atmospheres.hpp"
 #include "atmosphere/aerial_perspective_lut.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/skyview_lut.hpp"

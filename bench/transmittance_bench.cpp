@@ -4,7 +4,7 @@
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
-#include "../tests/atmosphere/test_atmospheres.hpp"
+#include "support/test_atmospheres.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 
 namespace skybake {

@@ -1,10 +1,16 @@
 #!/usr/bin/env bash
-# Configures and builds skybake (Release) into build/. Used by bake.sh and test.sh.
+# Configures and builds skybake (Release) into build/ (or $SKYBAKE_BUILD_DIR).
+# Used by bake.sh and test.sh. Arguments are build targets (default: all).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-generator=()
-if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
-if [ ! -f build/CMakeCache.txt ]; then
-  cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release "$@"
+dir="${SKYBAKE_BUILD_DIR:-build}"
+configure=(-DCMAKE_BUILD_TYPE=Release)
+if command -v ninja >/dev/null 2>&1; then configure+=(-G Ninja); fi
+# ccache, where a developer installed it, shares objects between build folders.
+if command -v ccache >/dev/null 2>&1; then configure+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+if [ ! -f "$dir/CMakeCache.txt" ]; then
+  cmake -S . -B "$dir" "${configure[@]}"
 fi
-cmake --build build --parallel "$(nproc)"
+targets=()
+for t in "$@"; do targets+=(--target "$t"); done
+cmake --build "$dir" --parallel "$(nproc)" "${targets[@]}"

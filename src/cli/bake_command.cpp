@@ -12,8 +12,9 @@
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
 #include "core/error.hpp"
+#include "farm/catalog.hpp"
+#include "farm/stamps.hpp"
 #include "pipeline/bake.hpp"
-#include "pipeline/catalog.hpp"
 #include "pipeline/preset_loader.hpp"
 
 namespace skybake::cli {
@@ -62,6 +63,7 @@ int run_bake(const BakeArgs& args) {
     options.out_dir = args.out_dir;
     options.only = args.only;
     options.force = args.force;
+    options.on_recorded = update_stamp;
     options.on_progress = [&](const std::string& product, double f) {
       progress.update(scene.name + "/" + product, f);
     };

@@ -15,9 +15,10 @@
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/manifest.hpp"
-#include "pipeline/catalog.hpp"
-#include "pipeline/farm_graph.hpp"
+#include "farm/catalog.hpp"
+#include "farm/farm_graph.hpp"
 #include "pipeline/freshness.hpp"
+#include "pipeline/output_writer.hpp"
 #include "pipeline/preset_loader.hpp"
 #include "pipeline/product_graph.hpp"
 

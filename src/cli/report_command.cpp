@@ -1,5 +1,5 @@
 // skybake report: error against run time of every product of a scene
-// (pipeline/report.hpp). Loads every preset first (one bad preset stops the
+// (report/report.hpp). Loads every preset first (one bad preset stops the
 // run before anything is measured), then writes DIR/<scene>/report/ for each
 // and prints a summary table (or --json). Accuracy never changes the exit
 // code: a report reports; only errors do (bad preset, usage, files).
@@ -14,7 +14,7 @@
 #include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "pipeline/preset_loader.hpp"
-#include "pipeline/report.hpp"
+#include "report/report.hpp"
 
 namespace skybake::cli {
 

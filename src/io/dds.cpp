@@ -18,6 +18,7 @@
 #include "core/error.hpp"
 #include "core/half.hpp"
 #include "core/mip_chain.hpp"
+#include "core/suggest.hpp"
 
 namespace skybake {
 namespace {
@@ -57,23 +58,6 @@ std::string format_list(bool with_codes) {
     s += with_codes ? fmt::format("{} ({})", f.name, uint32_t(f.format)) : f.name;
   }
   return s;
-}
-
-size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diag = row[0];
-    row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t up = row[j];
-      const bool same =
-          std::toupper((unsigned char)a[i - 1]) == std::toupper((unsigned char)b[j - 1]);
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (same ? 0 : 1)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
 }
 
 // ---- little-endian bytes -------------------------------------------------
@@ -413,14 +397,11 @@ DdsFormat dds_format_from_name(const std::string& name, const std::string& conte
       name.compare(0, prefix.size(), prefix) == 0 ? name.substr(prefix.size()) : name;
   for (const FormatInfo& f : kFormats)
     if (bare == f.name) return f.format;
-  const FormatInfo* best = nullptr;
-  size_t best_distance = 3;  // suggest only names within 2 edits
-  for (const FormatInfo& f : kFormats) {
-    const size_t d = edit_distance(bare, f.name);
-    if (d < best_distance) best = &f, best_distance = d;
-  }
+  std::vector<std::string> names;
+  for (const FormatInfo& f : kFormats) names.push_back(f.name);
+  const std::string* best = closest_name(bare, names, 2);
   throw IoError(fmt::format("{}: expected one of {}, got \"{}\"{}", context, format_list(false),
-                            name, best ? fmt::format(" (did you mean \"{}\"?)", best->name) : ""));
+                            name, best ? fmt::format(" (did you mean \"{}\"?)", *best) : ""));
 }
 
 std::string four_cc_string(uint32_t four_cc) {

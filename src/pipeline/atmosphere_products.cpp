@@ -7,6 +7,7 @@
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/error_estimates.hpp"
 #include "pipeline/product_graph.hpp"
+#include "pipeline/product_options.hpp"
 #include "pipeline/product_tables.hpp"
 
 namespace skybake {

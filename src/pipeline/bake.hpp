@@ -21,6 +21,11 @@ struct BakeOptions {
   std::function<void(const std::string&, double)> on_progress;
   // Called when an output is finished (baked or found current).
   std::function<void(const struct OutputRecord&)> on_output;
+  // Called once an output is known current on disk and listed in the
+  // manifest: (scene folder, output name, input hash). The CLI writes the
+  // farm's stamps here (farm/stamps.hpp).
+  std::function<void(const std::filesystem::path&, const std::string&, const std::string&)>
+      on_recorded;
 };
 
 struct OutputRecord {
@@ -40,12 +45,5 @@ struct BakeSummary {
 };
 
 BakeSummary bake_scene(const Scene& scene, const BakeOptions& options);
-
-// <scene_dir>/.stamps/<output name>.stamp holds the output's input hash. It is
-// rewritten only when the hash changes, so a build tool that compares file
-// times (ninja with restat) sees an unchanged stamp when a re-run was a no-op.
-std::filesystem::path stamp_path(const std::filesystem::path& scene_dir, const std::string& name);
-void update_stamp(const std::filesystem::path& scene_dir, const std::string& name,
-                  const std::string& hash);
 
 }  // namespace skybake

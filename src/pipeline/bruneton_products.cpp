@@ -16,6 +16,7 @@
 #include "core/math.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/product_graph.hpp"
+#include "pipeline/product_options.hpp"
 #include "pipeline/product_tables.hpp"
 
 namespace skybake {

@@ -9,6 +9,8 @@
 // clouds_section_problems() holds the rules of the section that a schema
 // cannot say (ramp order, a coverage the rain floor allows, unique type
 // names); its pointers are relative to the section.
+#include "pipeline/cloud_products.hpp"
+
 #include <fmt/format.h>
 
 #include "clouds/cirrus.hpp"
@@ -17,6 +19,7 @@
 #include "clouds/weather_map.hpp"
 #include "core/error.hpp"
 #include "pipeline/product_graph.hpp"
+#include "pipeline/product_options.hpp"
 #include "pipeline/product_tables.hpp"
 
 namespace skybake {

@@ -6,6 +6,7 @@
 #include "core/math.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/product_graph.hpp"
+#include "pipeline/product_options.hpp"
 
 namespace skybake {
 

@@ -2,14 +2,9 @@
 
 #include <fmt/format.h>
 
-namespace skybake {
+#include "pipeline/output_writer.hpp"
 
-std::vector<std::string> output_files(const OutputSpec& spec) {
-  std::vector<std::string> files;
-  for (const std::string& format : spec.formats)
-    files.push_back(format == "png" ? spec.name + ".preview.png" : spec.name + "." + format);
-  return files;
-}
+namespace skybake {
 
 Freshness check_freshness(const GraphNode& node, const Manifest& manifest,
                           const std::filesystem::path& scene_dir) {

@@ -15,9 +15,6 @@ struct Freshness {
   std::string reason;  // "up to date", "not baked yet", "inputs changed", "missing file x"...
 };
 
-// The file names a node writes, one per format, relative to the scene folder.
-std::vector<std::string> output_files(const OutputSpec& spec);
-
 Freshness check_freshness(const GraphNode& node, const Manifest& manifest,
                           const std::filesystem::path& scene_dir);
 

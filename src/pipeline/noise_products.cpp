@@ -8,6 +8,7 @@
 #include "noise/noise_volume.hpp"
 #include "noise/perlin_worley.hpp"
 #include "pipeline/product_graph.hpp"
+#include "pipeline/product_options.hpp"
 #include "pipeline/product_tables.hpp"
 
 namespace skybake {

@@ -11,8 +11,7 @@
 #include "io/exr.hpp"
 #include "io/png_preview.hpp"
 #include "io/vdb.hpp"
-#include "pipeline/freshness.hpp"
-#include "pipeline/product_graph.hpp"
+#include "pipeline/product_options.hpp"
 
 namespace skybake {
 
@@ -31,6 +30,13 @@ DdsFormat choose_dds_format(const Texture& tex, const ProductInfo& info, const O
 }
 
 }  // namespace
+
+std::vector<std::string> output_files(const OutputSpec& spec) {
+  std::vector<std::string> files;
+  for (const std::string& format : spec.formats)
+    files.push_back(format == "png" ? spec.name + ".preview.png" : spec.name + "." + format);
+  return files;
+}
 
 std::vector<ManifestFile> write_outputs(const Texture& tex, const ProductInfo& info,
                                         const OutputSpec& spec,

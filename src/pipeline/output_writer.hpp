@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "core/texture.hpp"
@@ -11,6 +12,9 @@
 #include "pipeline/product.hpp"
 
 namespace skybake {
+
+// The file names an output writes, one per format, relative to the scene folder.
+std::vector<std::string> output_files(const OutputSpec& spec);
 
 std::vector<ManifestFile> write_outputs(const Texture& tex, const ProductInfo& info,
                                         const OutputSpec& spec,

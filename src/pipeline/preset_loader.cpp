@@ -4,8 +4,6 @@
 // file is reported against that file, not the scene that references it.
 #include "pipeline/preset_loader.hpp"
 
-#include "pipeline/product_tables.hpp"
-
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -20,8 +18,10 @@
 #include <fmt/ranges.h>
 
 #include "core/error.hpp"
+#include "core/suggest.hpp"
+#include "pipeline/cloud_products.hpp"
+#include "pipeline/product_tables.hpp"
 #include "pipeline/schema_validator.hpp"
-#include "pipeline/suggest.hpp"
 
 namespace skybake {
 

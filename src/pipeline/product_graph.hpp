@@ -38,19 +38,4 @@ ProductGraph build_product_graph(const Scene& scene, const std::vector<std::stri
 // The spec a product gets when only a dependency: registry defaults.
 OutputSpec default_spec(const ProductInfo& info);
 
-// Reads an integer / number / string option of a product from the output
-// object, with a default (the schema has already checked types and ranges).
-int option_int(const OutputSpec& spec, const std::string& key, int fallback);
-double option_double(const OutputSpec& spec, const std::string& key, double fallback);
-std::string option_string(const OutputSpec& spec, const std::string& key,
-                          const std::string& fallback);
-
-// A baker spec's field name as a JSON pointer relative to the output or
-// section: "worley[2].octaves" -> "/worley/2/octaves".
-std::string pointer_from_field(const std::string& field);
-
-// A square / cube product's rule: every size axis equal. `what` says why
-// ("the texture is a cube (square) and tiles on every axis").
-std::vector<ProductProblem> equal_size_problems(const OutputSpec& spec, const std::string& what);
-
 }  // namespace skybake

@@ -29,8 +29,4 @@ ProductInfo atmosphere_lut_product(std::string name, std::string summary,
                                    std::vector<int> max_size, std::vector<std::string> dependencies,
                                    BakeFn bake, double ns_per_texel);
 
-// Semantic rules of a scene's resolved "clouds" section (pointers relative to
-// the section), checked at preset load.
-std::vector<ProductProblem> clouds_section_problems(const nlohmann::json& clouds);
-
 }  // namespace skybake

@@ -20,7 +20,7 @@
 #include <rapidjson/stringbuffer.h>
 
 #include "core/error.hpp"
-#include "pipeline/suggest.hpp"
+#include "core/suggest.hpp"
 
 namespace skybake {
 

@@ -12,7 +12,7 @@
 
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/sky_integrator.hpp"
-#include "atmosphere/test_atmospheres.hpp"
+#include "support/test_atmospheres.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 
 namespace skybake {

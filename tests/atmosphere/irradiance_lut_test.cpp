@@ -10,8 +10,8 @@
 
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/math.hpp"
-#include "test_atmospheres.hpp"
-#include "test_scattering_specs.hpp"
+#include "support/test_atmospheres.hpp"
+#include "support/test_scattering_specs.hpp"
 
 namespace skybake {
 namespace {

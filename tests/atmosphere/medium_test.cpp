@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "test_atmospheres.hpp"
+#include "support/test_atmospheres.hpp"
 
 namespace skybake {
 namespace {

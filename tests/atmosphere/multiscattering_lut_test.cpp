@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
-#include "atmosphere/test_atmospheres.hpp"
+#include "support/test_atmospheres.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/math.hpp"
 

@@ -17,7 +17,7 @@
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
-#include "test_atmospheres.hpp"
+#include "support/test_atmospheres.hpp"
 
 namespace skybake {
 namespace {

@@ -24,8 +24,8 @@
 #include "core/error.hpp"
 #include "core/half.hpp"
 #include "core/math.hpp"
-#include "test_atmospheres.hpp"
-#include "test_scattering_specs.hpp"
+#include "support/test_atmospheres.hpp"
+#include "support/test_scattering_specs.hpp"
 
 namespace skybake {
 namespace {

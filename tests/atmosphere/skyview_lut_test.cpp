@@ -14,7 +14,7 @@
 
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/sky_render.hpp"
-#include "atmosphere/test_atmospheres.hpp"
+#include "support/test_atmospheres.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/math.hpp"
 

@@ -16,7 +16,7 @@
 #include "atmosphere/geometry.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
-#include "test_atmospheres.hpp"
+#include "support/test_atmospheres.hpp"
 
 namespace skybake {
 namespace {

@@ -5,7 +5,7 @@
 #include "core/error.hpp"
 #include "pipeline/preset_loader.hpp"
 #include "pipeline/product_graph.hpp"
-#include "pipeline/suggest.hpp"
+#include "core/suggest.hpp"
 #include "support/run.hpp"
 
 namespace skybake {

@@ -10,7 +10,7 @@
 
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/phase.hpp"
-#include "atmosphere/test_atmospheres.hpp"
+#include "support/test_atmospheres.hpp"
 
 namespace skybake {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "atmosphere/test_atmospheres.hpp"
+#include "support/test_atmospheres.hpp"
 
 namespace skybake {
 namespace {

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "atmosphere/geometry.hpp"
-#include "atmosphere/test_atmospheres.hpp"
+#include "support/test_atmospheres.hpp"
 #include "reference/counter_rng.hpp"
 
 namespace skybake {

@@ -17,7 +17,7 @@
 #include "atmosphere/irradiance_lut.hpp"
 #include "atmosphere/ray_transfer.hpp"
 #include "atmosphere/scattering_orders.hpp"
-#include "atmosphere/test_scattering_specs.hpp"
+#include "support/test_scattering_specs.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/math.hpp"
 #include "pipeline/preset_loader.hpp"

@@ -23,7 +23,7 @@
 #include <tbb/task_arena.h>
 
 #include "atmosphere/geometry.hpp"
-#include "atmosphere/test_atmospheres.hpp"
+#include "support/test_atmospheres.hpp"
 #include "pipeline/preset_loader.hpp"
 #include "reference/atmosphere_quadrature.hpp"
 #include "reference/counter_rng.hpp"

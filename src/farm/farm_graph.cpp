@@ -1,0 +1,216 @@
+#include "farm/farm_graph.hpp"
+
+#include <map>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "farm/stamps.hpp"
+#include "io/manifest.hpp"
+#include "pipeline/freshness.hpp"
+#include "pipeline/output_writer.hpp"
+#include "pipeline/product_graph.hpp"
+
+namespace fs = std::filesystem;
+
+namespace skybake {
+
+namespace {
+
+double estimate_seconds(const GraphNode& node) {
+  double texels = 1.0;
+  for (int s : node.spec.size) texels *= s;
+  return texels * node.info->ns_per_texel * 1e-9;
+}
+
+}  // namespace
+
+FarmGraph build_farm_graph(const std::vector<Scene>& scenes, const fs::path& out_dir) {
+  FarmGraph farm;
+  farm.out_dir = out_dir;
+  std::map<std::string, std::string> preset_of_scene;
+  for (const Scene& scene : scenes) {
+    auto [it, fresh] = preset_of_scene.emplace(scene.name, scene.file.string());
+    if (!fresh)
+      throw UsageError(fmt::format("scenes of {} and {} are both named '{}': their outputs would "
+                                   "share {}/{}",
+                                   it->second, scene.file.string(), scene.name, out_dir.string(),
+                                   scene.name));
+    const ProductGraph graph = build_product_graph(scene, {});
+    const fs::path scene_dir = out_dir / scene.name;
+    const Manifest manifest = read_manifest(scene_dir / "manifest.json");
+    std::vector<double> cost(graph.nodes.size(), 0.0);
+    for (size_t i = 0; i < graph.nodes.size(); ++i) {
+      const GraphNode& node = graph.nodes[i];
+      cost[i] = estimate_seconds(node);
+      std::vector<std::string> deps;
+      for (size_t d : node.deps) {
+        if (graph.nodes[d].requested)
+          deps.push_back(scene.name + "/" + graph.nodes[d].spec.name);
+        else
+          cost[i] += cost[d];  // computed in memory by this task
+      }
+      if (!node.requested) continue;
+      FarmNode f;
+      f.id = scene.name + "/" + node.spec.name;
+      f.preset = scene.file.string();
+      for (const fs::path& s : scene.sources) f.sources.push_back(s.string());
+      f.scene = scene.name;
+      f.product = node.info->name;
+      f.input_hash = node.input_hash;
+      for (const std::string& file : output_files(node.spec))
+        f.files.push_back((fs::path(scene.name) / file).string());
+      f.stamp = stamp_path(fs::path(scene.name), node.spec.name).string();
+      f.estimated_seconds = cost[i];
+      f.deps = deps;
+      const Freshness fresh = check_freshness(node, manifest, scene_dir);
+      f.current = fresh.current;
+      f.reason = fresh.reason;
+      farm.nodes.push_back(std::move(f));
+    }
+  }
+  return farm;
+}
+
+nlohmann::json farm_graph_json(const FarmGraph& graph) {
+  std::map<std::string, bool> stale;
+  for (const FarmNode& n : graph.nodes) stale[n.id] = !n.current;
+  nlohmann::json nodes = nlohmann::json::array(), edges = nlohmann::json::array();
+  for (const FarmNode& n : graph.nodes) {
+    if (n.current) continue;
+    std::vector<std::string> deps;
+    for (const std::string& d : n.deps)
+      if (stale[d]) {
+        deps.push_back(d);
+        edges.push_back({d, n.id});
+      }
+    nodes.push_back({{"id", n.id},
+                     {"preset", n.preset},
+                     {"scene", n.scene},
+                     {"product", n.product},
+                     {"input_hash", n.input_hash},
+                     {"outputs", n.files},
+                     {"estimated_seconds", n.estimated_seconds},
+                     {"dependencies", deps},
+                     {"reason", n.reason},
+                     {"command", {"skybake", "bake", n.preset, "--only", n.product, "-o",
+                                  graph.out_dir.string()}}});
+  }
+  return {{"out_dir", graph.out_dir.string()}, {"nodes", nodes}, {"edges", edges}};
+}
+
+namespace {
+
+// Ninja paths: escape '$', ' ' and ':' (ninja's path grammar).
+std::string ninja_path(const std::string& p) {
+  std::string s;
+  for (char c : p) {
+    if (c == '$' || c == ' ' || c == ':') s += '$';
+    s += c;
+  }
+  return s;
+}
+
+// A ninja variable value: '$' starts a ninja variable, so a literal one is "$$".
+std::string ninja_value(const std::string& v) {
+  std::string s;
+  for (char c : v) {
+    if (c == '$') s += '$';
+    s += c;
+  }
+  return s;
+}
+
+std::string shell_quote(const std::string& s) {
+  if (s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./=") ==
+      std::string::npos)
+    return s;
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+}  // namespace
+
+std::string emit_ninja(const FarmGraph& graph, const EmitOptions& opt) {
+  // Absolute paths: the file works from any folder and on any node of a
+  // cluster that mounts the same paths.
+  auto abs = [](const std::string& p) { return fs::absolute(p).lexically_normal().string(); };
+  const std::string out = abs(graph.out_dir.string());
+  std::string s;
+  s += "# Generated by `skybake plan --emit ninja`: one edge per product.\n";
+  s += "# Run with `ninja -f <this file> -j N`; every edge runs\n";
+  s += "# `skybake bake PRESET --only PRODUCT`, which rewrites the product's stamp\n";
+  s += "# only when it bakes, so restat keeps ninja and skybake in agreement.\n";
+  s += "ninja_required_version = 1.7\n\n";
+  s += fmt::format("skybake = {}\n", ninja_value(shell_quote(opt.skybake)));
+  s += fmt::format("launcher = {}\n", ninja_value(opt.launcher));
+  s += fmt::format("out_dir = {}\n", ninja_value(shell_quote(out)));
+  // ninja keeps its log beside the outputs, not in the current folder.
+  s += fmt::format("builddir = {}\n\n", ninja_path(out));
+  // Note: `deps` is reserved by ninja; the per-edge variables avoid it.
+  s += "rule bake\n";
+  s += fmt::format(
+      "  command = $launcher $skybake bake $preset --only $product -o $out_dir --threads {} "
+      "--quiet\n",
+      opt.threads);
+  s += "  description = bake $scene/$product\n";
+  s += "  restat = 1\n\n";
+  std::vector<std::string> all;
+  std::map<std::string, std::string> stamp_of;
+  for (const FarmNode& n : graph.nodes) stamp_of[n.id] = abs((graph.out_dir / n.stamp).string());
+  for (const FarmNode& n : graph.nodes) {
+    const std::string stamp = ninja_path(stamp_of[n.id]);
+    all.push_back(stamp);
+    std::string implicit;
+    for (size_t i = 1; i < n.sources.size(); ++i) implicit += " " + ninja_path(abs(n.sources[i]));
+    for (const std::string& d : n.deps) implicit += " " + ninja_path(stamp_of[d]);
+    implicit += " " + ninja_path(opt.skybake);
+    // The product's files are implicit outputs: ninja re-runs an edge whose
+    // file was deleted (skybake then finds it missing and bakes it).
+    std::string files;
+    for (const std::string& f : n.files)
+      files += " " + ninja_path(abs((graph.out_dir / f).string()));
+    s += fmt::format("build {} |{}: bake {} |{}\n", stamp, files, ninja_path(abs(n.preset)),
+                     implicit);
+    s += fmt::format("  preset = {}\n  product = {}\n  scene = {}\n\n",
+                     ninja_value(shell_quote(abs(n.preset))), n.product, n.scene);
+  }
+  s += "build all: phony";
+  for (const std::string& a : all) s += " " + a;
+  s += "\ndefault all\n";
+  return s;
+}
+
+std::string emit_slurm(const FarmGraph& graph, const EmitOptions& opt) {
+  std::vector<std::string> presets;
+  for (const FarmNode& n : graph.nodes)
+    if (presets.empty() || presets.back() != n.preset) presets.push_back(n.preset);
+  if (presets.empty())
+    throw UsageError("the catalog has no scene presets: no job array to submit");
+  const int chunk = std::max(1, opt.chunk);
+  const int tasks = std::max(1, int((presets.size() + chunk - 1) / chunk));
+  std::string s = "#!/bin/bash\n";
+  s += "# Generated by `skybake plan --emit slurm`: submit with `sbatch <this file>`.\n";
+  s += "# One array task per chunk of presets; each task bakes its presets' products\n";
+  s += "# (dependencies inside a preset run in order within the task).\n";
+  s += "#SBATCH --job-name=skybake\n";
+  s += fmt::format("#SBATCH --array=0-{}{}\n", tasks - 1,
+                   opt.max_parallel > 0 ? fmt::format("%{}", opt.max_parallel) : "");
+  s += fmt::format("#SBATCH --cpus-per-task={}\n", std::max(1, opt.threads));
+  s += "#SBATCH --output=skybake-%A_%a.log\n";
+  s += "set -euo pipefail\n";
+  s += "presets=(\n";
+  for (const std::string& p : presets)
+    s += "  " + shell_quote(fs::absolute(p).lexically_normal().string()) + "\n";
+  s += ")\n";
+  s += fmt::format("chunk={}\n", chunk);
+  s += "first=$(( SLURM_ARRAY_TASK_ID * chunk ))\n";
+  s += fmt::format("{} bake \"${{presets[@]:first:chunk}}\" -o {} --threads {} --quiet\n",
+                   shell_quote(opt.skybake),
+                   shell_quote(fs::absolute(graph.out_dir).lexically_normal().string()),
+                   std::max(1, opt.threads));
+  return s;
+}
+
+}  // namespace skybake

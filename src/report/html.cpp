@@ -1,0 +1,266 @@
+#include "report/html.hpp"
+
+#include <fmt/format.h>
+
+namespace skybake {
+
+namespace {
+
+const char* kStyle = R"(<style>
+body { font: 14px/1.45 system-ui, sans-serif; margin: 2em auto; max-width: 70em; color: #222; }
+h1 { font-size: 1.6em; } h2 { margin-top: 2em; border-bottom: 1px solid #ccc; }
+table { border-collapse: collapse; margin: 0.6em 0; }
+th, td { border: 1px solid #ccc; padding: 2px 8px; text-align: right; }
+th { background: #f3f3f3; } td.l, th.l { text-align: left; }
+tr.op td { background: #fde8e8; font-weight: bold; } tr.front td:first-child { color: #2a7; }
+.note { color: #555; } .plot text { font-size: 11px; fill: #444; }
+.met { color: #2a7; font-weight: bold; } .notmet { color: #d22; font-weight: bold; }
+img { max-width: 100%; border: 1px solid #ccc; }
+</style>
+)";
+
+std::string num(const nlohmann::json& v) {
+  if (!v.is_number()) return "-";
+  return fmt::format("{:.3g}", v.get<double>());
+}
+
+std::string pct(const nlohmann::json& v) {
+  if (!v.is_number()) return "-";
+  return fmt::format("{:.3g} %", 100.0 * v.get<double>());
+}
+
+std::string text(const nlohmann::json& v) {
+  return html_escape(v.is_string() ? v.get<std::string>() : v.dump());
+}
+
+std::string row(const std::vector<std::string>& cells, const std::string& cls = "") {
+  std::string s = cls.empty() ? "<tr>" : "<tr class=\"" + cls + "\">";
+  for (size_t i = 0; i < cells.size(); ++i)
+    s += (i == 0 ? "<td class=\"l\">" : "<td>") + cells[i] + "</td>";
+  return s + "</tr>\n";
+}
+
+std::string header(const std::vector<std::string>& cells) {
+  std::string s = "<tr>";
+  for (size_t i = 0; i < cells.size(); ++i)
+    s += (i == 0 ? "<th class=\"l\">" : "<th>") + html_escape(cells[i]) + "</th>";
+  return s + "</tr>\n";
+}
+
+std::string summary_table(const nlohmann::json& report) {
+  std::string s = "<table>\n" + header({"product", "kind", "operating point", "seconds", "max rel",
+                                        "rms rel", "half max rel", "on front"});
+  for (const auto& p : report["products"]) {
+    if (p["kind"] != "lut") {
+      s += row({text(p["product"]), text(p["kind"]), "", "", "", "", "", ""});
+      continue;
+    }
+    const auto& op = p["ladder"][p["operating_point"].get<size_t>()];
+    s += row({text(p["product"]), "lut", text(op["label"]), num(op["seconds"]), num(op["max_rel"]),
+              num(op["rms_rel"]), num(p["half"]["half"]["max_rel"]),
+              op["pareto"].get<bool>() ? "yes" : "no"});
+  }
+  return s + "</table>\n";
+}
+
+// Column label of a ladder point's extra statistics.
+std::string extra_label(const std::string& key) {
+  if (key == "single_scattering") return "single";
+  if (key == "transmittance") return "A";
+  return key;  // header() escapes
+}
+
+std::string product_section(const nlohmann::json& p) {
+  std::string s = fmt::format("<h2 id=\"{0}\">{0}</h2>\n", text(p["product"]));
+  s += "<p class=\"note\">Reference: " + text(p["reference"]) +
+       ".<br>Queries: " + text(p["queries"]) + ".</p>\n";
+  std::vector<PlotPoint> points;
+  for (const auto& q : p["ladder"]) {
+    PlotPoint a;
+    a.x = q["seconds"], a.y = q["max_rel"];
+    a.highlight = q["operating_point"], a.front = q["pareto"];
+    a.title = q["label"].get<std::string>() + " (max rel)";
+    points.push_back(a);
+    PlotPoint b = a;
+    b.y = q["rms_rel"], b.front = false, b.secondary = true;
+    b.title = q["label"].get<std::string>() + " (rms rel)";
+    points.push_back(b);
+  }
+  s += loglog_svg(points, "bake time (s)", "relative error");
+  s += "<p class=\"note\">Filled: max relative error; hollow: RMS relative error; red: the "
+       "preset's operating point; green line: the Pareto front (time, max rel).</p>\n";
+  // Statistics a ladder point carries beside its main numbers (sky-view's
+  // single scattering, aerial perspective's A, ...): one pair of columns each.
+  std::vector<std::string> extra;
+  if (!p["ladder"].empty())
+    for (const auto& [key, value] : p["ladder"][0].items())
+      if (value.is_object() && value.contains("rms_rel")) extra.push_back(key);
+  std::vector<std::string> cols = {"settings", "seconds", "max abs", "max rel", "rms rel"};
+  for (const std::string& key : extra)
+    cols.insert(cols.end(), {extra_label(key) + ": max rel", extra_label(key) + ": rms rel"});
+  s += "<table>\n" + header(cols);
+  for (const auto& q : p["ladder"]) {
+    std::vector<std::string> cells = {text(q["label"]), num(q["seconds"]), num(q["max_abs"]),
+                                      num(q["max_rel"]), num(q["rms_rel"])};
+    for (const std::string& key : extra)
+      cells.insert(cells.end(), {num(q[key]["max_rel"]), num(q[key]["rms_rel"])});
+    const std::string cls = q["operating_point"].get<bool>() ? "op"
+                            : q["pareto"].get<bool>()        ? "front"
+                                                             : "";
+    s += row(cells, cls);
+  }
+  return s + "</table>\n";
+}
+
+std::string radiance_table(const std::string& title, const nlohmann::json& stats) {
+  std::string s = "<h3>" + html_escape(title) + "</h3>\n<table>\n" +
+                  header({"channel", "views", "RMSE", "rel RMSE", "reference noise (rel)",
+                          "rel RMSE without noise", "rel bias", "max rel", "max CI95 (rel)"});
+  for (const auto& c : stats["channels"])
+    s += row({text(c["channel"]), text(c["views"]), num(c["rmse"]), pct(c["rel_rmse"]),
+              pct(c["noise_rel_rms"]), pct(c["rel_rmse_denoised"]), pct(c["rel_bias"]),
+              pct(c["max_rel"]), pct(c["max_ci95_rel"])});
+  return s + "</table>\n";
+}
+
+// One target verdict (target_json, report_sky_radiance.hpp) as a paragraph.
+std::string target_paragraph(const std::string& model, const nlohmann::json& target) {
+  const std::string status = target["status"];
+  return fmt::format(
+      "<p>Target for {} ({}): <span class=\"{}\">{}</span> (worst-channel rel RMSE {}, "
+      "{} without the reference noise).</p>\n",
+      model, text(target["what"]), status == "met" ? "met" : (status == "not met" ? "notmet" : ""),
+      status, pct(target["rel_rmse"]), pct(target["rel_rmse_denoised"]));
+}
+
+std::string sky_section(const nlohmann::json& sky) {
+  std::string s = "<h2 id=\"sky\">Sky radiance: LUTs against the path tracer</h2>\n";
+  if (sky.is_null()) return s + "<p>Not run (neither skyview nor scattering was selected).</p>\n";
+  const auto& pt = sky["path_tracer"];
+  s += fmt::format(
+      "<p>Camera at {} m; sun elevations {} deg; views at elevations {} deg x {} azimuths; "
+      "sky-view {}. Path tracer: {} paths per channel and view (every order), up to {} "
+      "bounces, ground albedo {}; its single scattering is within {} standard errors of the "
+      "quadrature.</p>\n",
+      num(sky["camera_altitude_m"]), text(sky["sun_elevations_deg"]),
+      text(sky["view_elevations_deg"]), text(sky["view_azimuths"]), text(sky["skyview"]),
+      text(pt["samples"]), text(pt["max_bounces"]), text(pt["ground_albedo"]),
+      num(pt["single_scattering_max_z_vs_quadrature"]));
+  s += target_paragraph("Hillaire's model", sky["target"]);
+  s += radiance_table("With multiple scattering (Hillaire's Psi_ms) vs path tracer, all orders",
+                      sky["multiple"]);
+  for (const auto& b : sky["multiple_by_sun"])
+    s += radiance_table(fmt::format("... sun at {} deg", num(b["sun_elevation_deg"])),
+                        b["multiple"]);
+  s += "<p>Share of the path-traced radiance carried by orders &ge; 2 (R, G, B): " +
+       text(sky["multiple_scattering_share"]) + ".</p>\n";
+  s += radiance_table(
+      "Orders 1 and 2 only (Psi_ms replaced by its second order L_2) vs path tracer, 2 vertices",
+      sky["second_order_vs_path_tracer"]);
+  s += radiance_table("Single scattering only vs path tracer (1 bounce, black ground)",
+                      sky["single_vs_path_tracer"]);
+  s += radiance_table("Single scattering only vs adaptive quadrature (noise free)",
+                      sky["single_vs_quadrature"]);
+  s += "<details><summary>Every view (RGB, units of the sun's illuminance)</summary>\n<table>\n" +
+       header({"sun", "elevation", "azimuth", "LUT", "path traced", "CI95", "LUT orders 1-2",
+               "path traced 2", "LUT single", "quadrature single"});
+  auto rgb = [](const nlohmann::json& v) {
+    return fmt::format("{:.4g} {:.4g} {:.4g}", v[0].get<double>(), v[1].get<double>(),
+                       v[2].get<double>());
+  };
+  for (const auto& v : sky["views"])
+    s += row({num(v["sun_elevation_deg"]), num(v["view_elevation_deg"]), num(v["view_azimuth_deg"]),
+              rgb(v["lut"]), rgb(v["path_traced"]), rgb(v["path_traced_ci95"]),
+              rgb(v["lut_second_order"]), rgb(v["path_traced_2"]), rgb(v["lut_single"]),
+              rgb(v["quadrature_single"])});
+  return s + "</table>\n</details>\n";
+}
+
+std::string precision_section(const nlohmann::json& precision) {
+  std::string s = "<h2 id=\"precision\">Where float32 and half lose</h2>\n";
+  const auto& h = precision["horizon_transmittance"];
+  if (!h.is_null()) {
+    s += "<h3>Transmittance between two points near the horizon</h3>\n<p class=\"note\">" +
+         text(h["what"]) + "; reference " + text(h["reference"]) + "; camera altitudes " +
+         text(h["altitudes_m"]) + " m; path fractions " + text(h["path_fractions"]) +
+         ". Relative errors divide by max(T, 1e-6); lost = cases with T &gt; 1e-6 off by "
+         "more than 50 %; underflow = cases whose denominator is 0 in that storage.</p>\n";
+    s += "<table>\n" +
+         header({"elevation (deg)", "cases", "T min", "T max", "LUT max rel", "LUT lost",
+                 "LUT half max rel", "LUT half lost", "exact float32 max rel", "float32 underflow",
+                 "exact half max rel", "half underflow"});
+    for (const auto& r : h["rows"])
+      s += row({num(r["elevation_deg"]), text(r["cases"]), num(r["reference_min"]),
+                num(r["reference_max"]), num(r["lut"]["max_rel"]), text(r["lut"]["lost"]),
+                num(r["lut_half"]["max_rel"]), text(r["lut_half"]["lost"]),
+                num(r["exact_float"]["max_rel"]), text(r["exact_float"]["underflow"]),
+                num(r["exact_half"]["max_rel"]), text(r["exact_half"]["underflow"])});
+    s += "</table>\n";
+  }
+  s += "<h3>Each table stored as half</h3>\n<table>\n" +
+       header({"product", "float32 max rel", "half max rel", "float32 rms rel", "half rms rel",
+               "values", "flushed to 0", "subnormal", "overflow", "max round trip (normal)"});
+  for (const auto& p : precision["half"])
+    s += row({text(p["product"]), num(p["float"]["max_rel"]), num(p["half"]["max_rel"]),
+              num(p["float"]["rms_rel"]), num(p["half"]["rms_rel"]), text(p["storage"]["values"]),
+              text(p["storage"]["flushed_to_zero"]), text(p["storage"]["subnormal"]),
+              text(p["storage"]["overflow"]), num(p["storage"]["max_rel_round_trip_normal"])});
+  return s + "</table>\n";
+}
+
+std::string bruneton_section(const nlohmann::json& b) {
+  std::string s = "<h2 id=\"bruneton\">Hillaire vs Bruneton against the path tracer</h2>\n";
+  if (b.is_null() || b["status"] != "measured")
+    return s + "<p>" + (b.is_null() ? std::string("not run") : text(b.value("reason", ""))) +
+           "</p>\n";
+  const auto& t = b["bruneton"];
+  s += fmt::format(
+      "<p>Bruneton's 4D table ({}): shape {}, {} orders used (last residual {}), single Mie "
+      "{}, baked in {} s. Same views and path-traced references as the sky radiance "
+      "section.</p>\n",
+      text(t["source"]), text(t["shape"]), text(t["orders_used"]), num(t["last_residual"]),
+      t["mie"] == "alpha" ? "extrapolated from alpha" : "from its own table",
+      num(t["bake_seconds"]));
+  s += radiance_table("Hillaire 2020 (sky-view + Psi_ms)", b["hillaire"]);
+  s += target_paragraph("Bruneton's table as read", b["target"]);
+  s += target_paragraph("Bruneton's table with single Mie from its own texture",
+                        b["exact_mie_target"]);
+  s += target_paragraph("sky-view single + Bruneton orders >= 2", b["hybrid_target"]);
+  s += radiance_table("Bruneton 2017 (4D table of orders)", b["bruneton_vs_path_tracer"]);
+  s += radiance_table("Bruneton 2017, single Mie from its own texture (no alpha extrapolation)",
+                      b["bruneton_exact_mie_vs_path_tracer"]);
+  s += radiance_table("Sky-view single scattering + Bruneton orders &ge; 2",
+                      b["skyview_single_plus_bruneton_multiple_vs_path_tracer"]);
+  for (const auto& x : b["bruneton_by_sun"])
+    s += radiance_table(fmt::format("Bruneton, sun at {} deg", num(x["sun_elevation_deg"])),
+                        x["bruneton"]);
+  return s;
+}
+
+}  // namespace
+
+std::string report_html(const nlohmann::json& report) {
+  std::string s = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
+  s += "<title>skybake report: " + text(report["scene"]) + "</title>\n" + kStyle +
+       "</head>\n<body>\n";
+  s += "<h1>skybake report: " + text(report["scene"]) + "</h1>\n";
+  s += fmt::format("<p class=\"note\">Preset {}; {}; level {}; {} s.</p>\n", text(report["preset"]),
+                   text(report["tool"]), text(report["level"]), num(report["seconds"]));
+  s += "<p>Errors are measured the way an engine sees them: each table is read with its lookup "
+       "(interpolation included) at pseudo-random query points and compared with an independent "
+       "reference; relative errors divide by max(|reference|, 1e-3 x the largest reference). "
+       "Times are wall seconds of one bake. See docs/report.md.</p>\n";
+  s += summary_table(report);
+  for (const auto& p : report["products"])
+    if (p["kind"] == "lut") s += product_section(p);
+  s += sky_section(report["sky_radiance"]);
+  s += precision_section(report["precision"]);
+  s += bruneton_section(report["bruneton_comparison"]);
+  if (report["files"].contains("preview"))
+    s += "<h2>Sky previews</h2>\n<p>High sun, 10 deg, sunset, below the horizon, from space "
+         "(rendered from the operating-point tables).</p>\n<img src=\"" +
+         text(report["files"]["preview"]) + "\" alt=\"sky previews\">\n";
+  return s + "</body>\n</html>\n";
+}
+
+}  // namespace skybake

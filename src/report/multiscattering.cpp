@@ -1,0 +1,110 @@
+// Multiple-scattering ladder of `skybake report` (report_ladders.hpp):
+// directions x steps x sizes (the preset's size first), each table read with
+// lookup_multiscattering at pseudo-random (r, mu_s) against the same integral
+// (compute_multiscattering, Hillaire 2020 eq. 5-10) with many more directions
+// and steps, reading the fine reference transmittance table. The ladder's
+// bakes read the operating-point transmittance table, as a bake would, so
+// their error includes that table's (small) error.
+//
+// Queries: altitude uniform over the shell, sun zenith cosine uniform in
+// [-1, 1] (the table's axes, linear in both).
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include "atmosphere/multiscattering_lut.hpp"
+#include "pipeline/atmosphere_specs.hpp"
+#include "report/ladders.hpp"
+#include "report/stats.hpp"
+
+namespace skybake {
+
+namespace {
+
+struct MultiscatteringQuery {
+  double r = 0.0, mu_s = 0.0;
+  glm::dvec3 reference{0.0};
+};
+
+std::vector<MultiscatteringQuery> multiscattering_queries(const ReportInputs& in) {
+  const Atmosphere& atm = in.scene.atmosphere;
+  const std::vector<glm::dvec3> dirs =
+      fibonacci_sphere_directions(in.level.multiscattering_reference_directions);
+  std::vector<MultiscatteringQuery> q(size_t(in.level.multiscattering_queries));
+  tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
+    q[i].r = atm.bottom_radius_m + query_unit(i, 10) * (atm.top_radius_m - atm.bottom_radius_m);
+    q[i].mu_s = 2.0 * query_unit(i, 11) - 1.0;
+    q[i].reference = compute_multiscattering(atm, in.reference_transmittance, q[i].r, q[i].mu_s,
+                                             dirs, in.level.multiscattering_reference_steps)
+                         .psi_ms;
+  });
+  return q;
+}
+
+ErrorStats measure(const Texture& lut, const Atmosphere& atm,
+                   const std::vector<MultiscatteringQuery>& queries) {
+  ErrorTally tally;
+  for (const MultiscatteringQuery& q : queries) {
+    const glm::dvec3 psi = lookup_multiscattering(lut, atm, q.r, q.mu_s);
+    for (int c = 0; c < 3; ++c) tally.add(psi[c], q.reference[c]);
+  }
+  return tally.stats();
+}
+
+}  // namespace
+
+nlohmann::json multiscattering_report(const ReportInputs& in) {
+  const Atmosphere& atm = in.scene.atmosphere;
+  in.stage("multiscattering: reference integration");
+  const std::vector<MultiscatteringQuery> queries = multiscattering_queries(in);
+  const MultiscatteringLutSpec op =
+      multiscattering_spec(operating_spec(in.scene, "multiscattering"));
+  const nlohmann::json size = {op.width, op.height};
+  std::vector<nlohmann::json> sizes = {size};
+  for (const std::vector<int>& s : in.level.multiscattering_sizes)
+    if (nlohmann::json(s) != size) sizes.push_back(s);
+
+  std::vector<nlohmann::json> grid;
+  for (const nlohmann::json& s : sizes)
+    for (int directions : in.level.multiscattering_directions)
+      for (int steps : in.level.multiscattering_steps)
+        grid.push_back({{"size", s}, {"directions", directions}, {"steps", steps}});
+  const nlohmann::json axes = {{"directions", in.level.multiscattering_directions},
+                               {"steps", in.level.multiscattering_steps},
+                               {"size", sizes}};
+  const LadderMeasure bake_and_measure = [&](const nlohmann::json& s) {
+    MultiscatteringLutSpec spec = op;
+    spec.width = s["size"][0];
+    spec.height = s["size"][1];
+    spec.directions = s["directions"];
+    spec.steps = s["steps"];
+    Texture lut;
+    const double seconds = time_bake(
+        [&] { return bake_multiscattering_lut(atm, in.transmittance, spec, BakeContext{}); }, lut,
+        in.level.min_timing_seconds);
+    nlohmann::json point = measure(lut, atm, queries).json();
+    point["seconds"] = seconds;
+    point["fms_max"] = std::stod(lut.metadata.at("fms_max"));
+    return point;
+  };
+  const nlohmann::json op_settings = {
+      {"size", size}, {"directions", op.directions}, {"steps", op.steps}};
+  nlohmann::json out = run_ladder("multiscattering", axes, grid, op_settings, bake_and_measure, in);
+  out["product"] = "multiscattering";
+  out["kind"] = "lut";
+  out["reference"] = fmt::format(
+      "the same integral (Hillaire 2020 eq. 5-10) with {} directions and {} steps, reading a "
+      "{}x{} transmittance table baked with {} steps",
+      in.level.multiscattering_reference_directions, in.level.multiscattering_reference_steps,
+      in.level.reference_transmittance_size[0], in.level.reference_transmittance_size[1],
+      in.level.reference_transmittance_steps);
+  out["queries"] = fmt::format(
+      "{} points, altitude and sun zenith cosine uniform, 3 channels each; "
+      "lookup_multiscattering (bilinear)",
+      queries.size());
+  out["half"] = {{"float", measure(in.multiscattering, atm, queries).json()},
+                 {"half", measure(half_round_trip(in.multiscattering), atm, queries).json()},
+                 {"storage", half_storage_stats(in.multiscattering)}};
+  return out;
+}
+
+}  // namespace skybake

@@ -1,0 +1,311 @@
+#include "report/sky_radiance.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include "atmosphere/multiscattering_lut.hpp"
+#include "atmosphere/sky_render.hpp"
+#include "atmosphere/skyview_lut.hpp"
+#include "core/math.hpp"
+#include "pipeline/atmosphere_specs.hpp"
+#include "reference/atmosphere_quadrature.hpp"
+#include "reference/path_tracer.hpp"
+
+namespace skybake {
+
+namespace {
+
+constexpr double kDeg = kPi / 180.0;
+const char* const kChannels[3] = {"R", "G", "B"};
+constexpr double kVisibleFraction = 1e-3;
+
+nlohmann::json vec_json(glm::dvec3 v) {
+  return {v.x, v.y, v.z};
+}
+
+// The views of one sun elevation, in the camera's local frame (z up, the sun
+// at azimuth 0).
+std::vector<glm::dvec3> view_directions(const ReportLevel& level) {
+  std::vector<glm::dvec3> dirs;
+  for (double elevation : level.view_elevations_deg)
+    for (int k = 0; k < level.view_azimuths; ++k) {
+      const double phi = 2.0 * kPi * k / level.view_azimuths, e = elevation * kDeg;
+      dirs.push_back({std::cos(e) * std::cos(phi), std::cos(e) * std::sin(phi), std::sin(e)});
+    }
+  return dirs;
+}
+
+// Scattering orders the path tracer follows. A medium of optical depth tau
+// with little absorption needs ~tau^2 orders (path_tracer.hpp); 4 tau^2
+// leaves a margin, 64 covers Earth-like skies, 4096 bounds the cost.
+int max_bounces_for(const Atmosphere& atm) {
+  const glm::dvec3 tau = reference_optical_depth(atm, atm.bottom_radius_m, 1.0,
+                                                 atm.top_radius_m - atm.bottom_radius_m, 1e-6)
+                             .value;
+  const double t = std::max({tau.x, tau.y, tau.z});
+  return int(std::clamp(std::ceil(4.0 * t * t), 64.0, 4096.0));
+}
+
+// Hillaire's Psi_ms without its series of higher orders: the second order
+// L_2 alone (eq. 5-6), in the multiple-scattering table's layout. With it the
+// sky-view march gives orders 1 and 2, which the path tracer gives with
+// max_bounces = 2: the split shows whether an error comes from L_2's
+// assumptions (isotropic phase, the same light at every point) or from the
+// geometric series 1 / (1 - f_ms) that stands for orders >= 3.
+Texture second_order_table(const Atmosphere& atm, const Texture& transmittance,
+                           const MultiscatteringLutSpec& spec) {
+  Texture tex(spec.width, spec.height, 1, 1, {"R", "G", "B"});
+  const std::vector<glm::dvec3> dirs = fibonacci_sphere_directions(spec.directions);
+  tbb::parallel_for(0, spec.height, [&](int y) {
+    for (int x = 0; x < spec.width; ++x) {
+      const RadiusSunCosine p = r_mu_s_from_multiscattering_uv(
+          atm, {texel_center(x, spec.width), texel_center(y, spec.height)}, spec.width,
+          spec.height);
+      const glm::dvec3 l2 =
+          compute_multiscattering(atm, transmittance, p.r, p.mu_s, dirs, spec.steps).l2;
+      for (int c = 0; c < 3; ++c) tex.at(x, y, 0, 0, c) = float(l2[c]);
+    }
+  });
+  return tex;
+}
+
+// Everything measured for one view.
+struct ViewResult {
+  double sun_elevation_deg = 0, view_elevation_deg = 0, view_azimuth_deg = 0;
+  glm::dvec3 lut{0.0}, lut_second{0.0}, lut_single{0.0}, quadrature_single{0.0};
+  RadianceEstimate all, second, single;  // path tracer: every order, 2 vertices, 1 vertex
+};
+
+nlohmann::json view_json(const ViewResult& v) {
+  return {{"sun_elevation_deg", v.sun_elevation_deg},
+          {"view_elevation_deg", v.view_elevation_deg},
+          {"view_azimuth_deg", v.view_azimuth_deg},
+          {"lut", vec_json(v.lut)},
+          {"path_traced", vec_json(v.all.mean)},
+          {"path_traced_ci95", vec_json(v.all.ci95)},
+          {"lut_second_order", vec_json(v.lut_second)},
+          {"path_traced_2", vec_json(v.second.mean)},
+          {"path_traced_2_ci95", vec_json(v.second.ci95)},
+          {"lut_single", vec_json(v.lut_single)},
+          {"path_traced_single", vec_json(v.single.mean)},
+          {"path_traced_single_ci95", vec_json(v.single.ci95)},
+          {"quadrature_single", vec_json(v.quadrature_single)}};
+}
+
+// The path tracer's three modes: every order, two vertices, single scattering.
+struct PathSpecs {
+  PathTracerSpec all, second, single;
+};
+PathSpecs path_specs(const Atmosphere& atm, const ReportLevel& level) {
+  PathSpecs p;
+  p.all.samples = level.path_samples;
+  p.all.max_bounces = max_bounces_for(atm);
+  p.second = p.all;
+  p.second.samples = level.path_samples_single;
+  p.second.max_bounces = 2;
+  p.single = single_scattering_spec(p.all);
+  p.single.samples = level.path_samples_single;
+  return p;
+}
+
+// The path tracer's single scattering against the quadrature: how many
+// standard errors apart at most (|z| above ~4 would mean a biased
+// reference), where single scattering is visible at all.
+double path_tracer_max_z(const std::vector<ViewResult>& views) {
+  double max_z = 0.0;
+  for (const ViewResult& v : views)
+    for (int c = 0; c < 3; ++c) {
+      const double se = v.single.ci95[c] / 1.96;
+      if (se > 0.0 && v.quadrature_single[c] > kVisibleFraction * v.all.mean[c])
+        max_z = std::max(max_z, std::abs(v.single.mean[c] - v.quadrature_single[c]) / se);
+    }
+  return max_z;
+}
+
+// Statistics of one comparison over a set of views.
+template <typename Pick>
+nlohmann::json compare(const std::vector<ViewResult>& views, Pick pick) {
+  std::vector<RadiancePair> pairs;
+  for (const ViewResult& v : views) pairs.push_back(pick(v));
+  return radiance_stats(pairs);
+}
+
+// Share of the path-traced radiance that orders >= 2 carry, per channel,
+// averaged over the views: how much rides on the multiple-scattering model.
+nlohmann::json multiple_scattering_share(const std::vector<ViewResult>& views) {
+  glm::dvec3 sum(0.0);
+  for (const ViewResult& v : views)
+    for (int c = 0; c < 3; ++c)
+      if (v.all.mean[c] > 0.0) sum[c] += 1.0 - v.quadrature_single[c] / v.all.mean[c];
+  return vec_json(sum / double(std::max<size_t>(views.size(), 1)));
+}
+
+}  // namespace
+
+nlohmann::json target_json(const nlohmann::json& multiple) {
+  const double raw = multiple["worst"]["rel_rmse"];
+  const double denoised = multiple["worst"]["rel_rmse_denoised"];
+  std::string status = "undetermined";
+  if (raw < kDaytimeRelativeRmseTarget)
+    status = "met";
+  else if (denoised > kDaytimeRelativeRmseTarget)
+    status = "not met";
+  return {{"what",
+           "Earth daytime: relative RMSE < 1% for the model with multiple scattering, worst "
+           "channel, all sun elevations"},
+          {"threshold", kDaytimeRelativeRmseTarget},
+          {"rel_rmse", raw},
+          {"rel_rmse_denoised", denoised},
+          {"status", status}};
+}
+
+nlohmann::json radiance_stats(const std::vector<RadiancePair>& rows) {
+  nlohmann::json channels = nlohmann::json::array();
+  double worst_rmse = 0.0, worst_denoised = 0.0, worst_noise = 0.0, worst_max = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    double sq = 0.0, rel_sq = 0.0, noise_sq = 0.0, bias = 0.0, max_rel = 0.0, max_ci = 0.0;
+    size_t n = 0;
+    for (const RadiancePair& p : rows) {
+      sq += (p.lut[c] - p.mean[c]) * (p.lut[c] - p.mean[c]);
+      const double denominator = std::max(p.mean[c], kVisibleFraction * p.scale[c]);
+      if (!(denominator > 0.0)) continue;  // no relative error against a black sky
+      const double rel = (p.lut[c] - p.mean[c]) / denominator;
+      const double se_rel = p.ci95[c] / 1.96 / denominator;
+      rel_sq += rel * rel;
+      noise_sq += se_rel * se_rel;
+      bias += rel;
+      max_rel = std::max(max_rel, std::abs(rel));
+      max_ci = std::max(max_ci, p.ci95[c] / denominator);
+      ++n;
+    }
+    const double count = double(std::max<size_t>(n, 1));
+    const double rel_rmse = std::sqrt(rel_sq / count), noise = std::sqrt(noise_sq / count);
+    const double denoised = std::sqrt(std::max(rel_rmse * rel_rmse - noise * noise, 0.0));
+    channels.push_back({{"channel", kChannels[c]},
+                        {"views", n},
+                        {"rmse", std::sqrt(sq / double(std::max<size_t>(rows.size(), 1)))},
+                        {"rel_rmse", rel_rmse},
+                        {"noise_rel_rms", noise},
+                        {"rel_rmse_denoised", denoised},
+                        {"rel_bias", bias / count},
+                        {"max_rel", max_rel},
+                        {"max_ci95_rel", max_ci}});
+    worst_rmse = std::max(worst_rmse, rel_rmse);
+    worst_denoised = std::max(worst_denoised, denoised);
+    worst_noise = std::max(worst_noise, noise);
+    worst_max = std::max(worst_max, max_rel);
+  }
+  return {{"channels", channels},
+          {"worst",
+           {{"rel_rmse", worst_rmse},
+            {"rel_rmse_denoised", worst_denoised},
+            {"noise_rel_rms", worst_noise},
+            {"max_rel", worst_max}}}};
+}
+
+nlohmann::json sky_radiance_report(const ReportInputs& in) {
+  const Atmosphere& atm = in.scene.atmosphere;
+  const ReportLevel& level = in.level;
+  const double altitude_m = std::min(200.0, 0.5 * (atm.top_radius_m - atm.bottom_radius_m));
+  const glm::dvec3 position(0.0, 0.0, atm.bottom_radius_m + altitude_m);
+  const std::vector<glm::dvec3> dirs = view_directions(level);
+  Texture no_multiscattering = in.multiscattering;
+  std::fill(no_multiscattering.data.begin(), no_multiscattering.data.end(), 0.0f);
+  const Texture second_order = second_order_table(
+      atm, in.transmittance, multiscattering_spec(operating_spec(in.scene, "multiscattering")));
+
+  SkyviewLutSpec sky = skyview_spec(operating_spec(in.scene, "skyview"));
+  PathSpecs paths = path_specs(atm, level);
+  const SkyPathTracer tracer(atm);
+  SkyRenderOptions render;
+  render.sun_disk = false;
+  render.ground = false;
+
+  std::vector<ViewResult> views;
+  nlohmann::json by_sun = nlohmann::json::array();
+  for (double sun_elevation : level.sun_elevations_deg) {
+    in.stage(fmt::format("sky radiance: sun at {:g} deg, {} views, {} paths", sun_elevation,
+                         dirs.size(), level.path_samples));
+    const double e = sun_elevation * kDeg;
+    const glm::dvec3 sun_dir(std::cos(e), 0.0, std::sin(e));
+    sky.views = {{altitude_m, kPi / 2 - e}};
+    auto layer = [&](const Texture& ms) {
+      return bake_skyview_lut(atm, in.transmittance, ms, sky, BakeContext{});
+    };
+    const Texture full = layer(in.multiscattering), second = layer(second_order),
+                  single = layer(no_multiscattering);
+    auto render_with = [&](const Texture& ms, const Texture& skyview, glm::dvec3 dir) {
+      const SkyLuts luts{&in.transmittance, &ms, &skyview, 0};
+      return render_sky_luminance(atm, luts, position, dir, sun_dir, render);
+    };
+    const size_t first = views.size();
+    for (size_t v = 0; v < dirs.size(); ++v) {
+      ViewResult r;
+      r.sun_elevation_deg = sun_elevation;
+      r.view_elevation_deg = std::asin(dirs[v].z) / kDeg;
+      r.view_azimuth_deg = 360.0 * double(v % size_t(level.view_azimuths)) / level.view_azimuths;
+      r.lut = render_with(in.multiscattering, full, dirs[v]);
+      r.lut_second = render_with(second_order, second, dirs[v]);
+      r.lut_single = render_with(no_multiscattering, single, dirs[v]);
+      r.quadrature_single = reference_single_scattering(atm, position, dirs[v], sun_dir,
+                                                        level.single_scattering_tolerance)
+                                .value;
+      // Every view and mode draws its own paths.
+      const uint64_t seed = 3 * views.size();
+      paths.all.seed = seed + 1, paths.second.seed = seed + 2, paths.single.seed = seed + 3;
+      r.all = tracer.trace(position, dirs[v], sun_dir, paths.all);
+      r.second = tracer.trace(position, dirs[v], sun_dir, paths.second);
+      r.single = tracer.trace(position, dirs[v], sun_dir, paths.single);
+      views.push_back(r);
+    }
+    const std::vector<ViewResult> these(views.begin() + long(first), views.end());
+    by_sun.push_back({{"sun_elevation_deg", sun_elevation},
+                      {"multiple", compare(these, [](const ViewResult& v) {
+                         return RadiancePair{v.lut, v.all.mean, v.all.ci95, v.all.mean};
+                       })}});
+  }
+
+  const nlohmann::json multiple = compare(views, [](const ViewResult& v) {
+    return RadiancePair{v.lut, v.all.mean, v.all.ci95, v.all.mean};
+  });
+  nlohmann::json rows = nlohmann::json::array();
+  for (const ViewResult& v : views) rows.push_back(view_json(v));
+  return {
+      {"camera_altitude_m", altitude_m},
+      {"sun_elevations_deg", level.sun_elevations_deg},
+      {"view_elevations_deg", level.view_elevations_deg},
+      {"view_azimuths", level.view_azimuths},
+      {"skyview", {{"size", {sky.width, sky.height}}, {"steps", sky.steps}}},
+      {"path_tracer",
+       {{"samples", level.path_samples},
+        {"samples_single_and_second_order", level.path_samples_single},
+        {"max_bounces", paths.all.max_bounces},
+        {"ground_albedo", vec_json(atm.ground_albedo)},
+        {"single_scattering_max_z_vs_quadrature", path_tracer_max_z(views)}}},
+      {"multiple_scattering_share", multiple_scattering_share(views)},
+      {"multiple", multiple},
+      {"multiple_by_sun", by_sun},
+      {"second_order_vs_path_tracer",
+       compare(views,
+               [](const ViewResult& v) {
+                 return RadiancePair{v.lut_second, v.second.mean, v.second.ci95, v.all.mean};
+               })},
+      {"single_vs_path_tracer",
+       compare(views,
+               [](const ViewResult& v) {
+                 return RadiancePair{v.lut_single, v.single.mean, v.single.ci95, v.all.mean};
+               })},
+      {"single_vs_quadrature",
+       compare(
+           views,
+           [](const ViewResult& v) {
+             return RadiancePair{v.lut_single, v.quadrature_single, glm::dvec3(0.0), v.all.mean};
+           })},
+      {"target", target_json(multiple)},
+      {"views", rows}};
+}
+
+}  // namespace skybake

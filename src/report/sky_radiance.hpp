@@ -1,0 +1,78 @@
+// Sky radiance of `skybake report` (issue 7): what a viewer sees, rendered
+// from the LUTs the way an engine renders it, against the Monte Carlo path
+// tracer (reference/path_tracer.hpp), which solves the full radiative
+// transfer: every scattering order, the ground's bounce with the scene's
+// albedo, the planet's shadow.
+//
+// Views: a camera near the ground (200 m, at most half the atmosphere's
+// thickness) looking at view_azimuths azimuths (from the sun's) x the level's
+// elevations above the horizon, under each sun elevation of the level.
+// LUT side: per sun elevation one sky-view layer is baked for the camera's
+// altitude with the preset's sky-view settings, reading the operating-point
+// transmittance and multiple-scattering tables, and read through
+// render_sky_luminance (sky_render.hpp) without the sun disk (the path
+// tracer's radiance has no sun disk either).
+//
+// Comparisons:
+// - "multiple": the model an engine ships (single + Hillaire's Psi_ms) against
+//   the path tracer with every order (max_bounces grows with the optical
+//   depth, see the code) and the ground bounce;
+// - "second_order_vs_path_tracer": the model with Psi_ms replaced by its
+//   second order L_2 alone against the path tracer limited to two vertices:
+//   whether a multiple-scattering error comes from L_2's assumptions
+//   (isotropic phase, the same light everywhere) or from the series
+//   1 / (1 - f_ms) standing for the orders >= 3;
+// - "single": the sky-view layer baked with Psi_ms = 0 against the path tracer
+//   limited to one vertex and a black ground, and against adaptive
+//   quadrature (reference_single_scattering, noise free). Single scattering
+//   separates the tables' own error from the multiple-scattering
+//   approximation's; the quadrature also checks the path tracer.
+// "multiple_scattering_share": the fraction of the path-traced radiance that
+// orders >= 2 carry, per channel (1 - quadrature single / path traced).
+//
+// Statistics per channel over the views (X the path tracer's mean, se its
+// standard error = ci95 / 1.96, L the LUT's value; every "/ X" below divides
+// by max(X, 1e-3 x the view's all-orders radiance), so that a partial
+// quantity too faint to see, such as single scattering under an optical
+// depth of 26, cannot dominate):
+//   rel_rmse          sqrt(mean(((L - X) / X)^2))        includes the reference noise
+//   noise_rel_rms     sqrt(mean((se / X)^2))             the reference noise alone
+//   rel_rmse_denoised sqrt(max(rel_rmse^2 - noise^2, 0)) E[(L - X)^2] = (L - E X)^2 + se^2
+//   rel_bias          mean((L - X) / X)                  the sign of a systematic error
+//   max_rel, rmse (absolute, units of the sun's illuminance), max_ci95_rel.
+// Target (stated for Earth's daytime sky): relative RMSE < 1% for the model
+// with multiple scattering, worst channel, over every sun elevation (all are
+// above the horizon). "met" when even the noisy rel_rmse is below it, "not
+// met" when the denoised one is above it, else "undetermined" (the reference
+// is too noisy to tell; raise the path count).
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include "report/setup.hpp"
+
+namespace skybake {
+
+nlohmann::json sky_radiance_report(const ReportInputs& in);
+
+// One view's values: the LUTs', and a reference with its 95% half-width (0
+// for the quadrature). `scale` is the view's path-traced radiance with every
+// order: relative errors divide by max(reference, 1e-3 scale) (above).
+struct RadiancePair {
+  glm::dvec3 lut{0.0}, mean{0.0}, ci95{0.0}, scale{0.0};
+};
+
+// The statistics above, per channel ("channels") and the worst channel ("worst").
+nlohmann::json radiance_stats(const std::vector<RadiancePair>& rows);
+
+constexpr double kDaytimeRelativeRmseTarget = 0.01;
+
+// The daytime target judged on radiance statistics (radiance_stats): "met"
+// when even the noisy worst-channel rel_rmse is below it, "not met" when the
+// denoised one is above it, else "undetermined".
+nlohmann::json target_json(const nlohmann::json& stats);
+
+}  // namespace skybake
