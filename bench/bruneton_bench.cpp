@@ -1,4 +1,5 @@
-// Benchmarks of the precomputed-scattering bakes (issue 4): Earth at the
+// Benchmarks of the precomputed-scattering bakes (docs/reference.md
+// "Precomputed scattering"): Earth at the
 // default sizes with 4 orders, on 1 and 2 TBB threads. The transmittance LUT
 // (their input) is baked once outside the timed loop.
 //   BM_BakeBrunetonEarth     4D scattering 32x128x32x8 + irradiance 64x16

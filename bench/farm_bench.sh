@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Whole-command timings of the build-farm paths (issue 8, docs/farm.md):
+# Whole-command timings of the build-farm paths (docs/farm.md, "Figures"):
 #
 #  A. a catalog of PRESETS (100) generated presets, from an empty output folder:
 #     local `ninja -j 2` over `plan --emit ninja` (one skybake process per

@@ -1,4 +1,4 @@
-// Bake times of the cloud noise set (issue 5 "Speed"): the shape volume
+// Bake times of the cloud noise set (docs/reference.md "Cloud noise"): the shape volume
 // (128^3 RGBA), the detail volume (32^3 RGB), the curl texture (128^2 RGB) and
 // the three together, each at 1 and 2 threads (tbb::global_control inside the
 // benchmark), plus the cost of one pure Worley call for comparison with the

@@ -1,4 +1,4 @@
-// Bake times of the Hillaire 2020 sky LUTs for Earth (issue 3 "Speed"): the
+// Bake times of the Hillaire 2020 sky LUTs for Earth: the
 // multiple-scattering LUT (32 x 32, 64 directions x 20 steps), 8 sky-view
 // layers (192 x 108, 30 steps), the aerial-perspective volume (32^3, 2 steps
 // per slice) and the full set with the transmittance LUT (256 x 64) in

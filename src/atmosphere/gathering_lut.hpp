@@ -1,9 +1,10 @@
-// The gathering LUT of Bodare & Sandberg 2014 (seed 002 sec. 4.7.3): the
+// The gathering LUT of Bodare & Sandberg 2014 (sec. 4.7.3): the
 // light of one scattering order arriving at a point from all directions,
 //   G_k(h, mu_s) = int_{4 pi} L_k(h, omega) d omega,
 // parameterized by altitude and sun only, so that the next order of the
 // azimuth-free table (scattering3d_lut.hpp) reads one value per ray node
-// instead of integrating over the sphere there (seed 002 Algorithms 3 and 7).
+// instead of integrating over the sphere there (Bodare & Sandberg Algorithms
+// 3 and 7).
 //
 // Shape: width height_size x height sun_size of the 3D table (default
 // 32 x 32), the same h and mu_s mappings, RGB float32, radiance x sr.
@@ -24,8 +25,8 @@
 // int p_c cos(theta) d omega, same fine quadrature, not normalized), on the
 // sun texels: it lights the ground for the next order.
 // The product `gathering_sum` is sum_{k=1}^{N-1} G_k: what orders 2..N
-// re-scatter, used to add multiple scattering to aerial perspective (seed
-// 002 sec. 6.4): p_c(nu) int sigma_s,c T G_sum ds.
+// re-scatter, used to add multiple scattering to aerial perspective (Bodare
+// & Sandberg sec. 6.4): p_c(nu) int sigma_s,c T G_sum ds.
 // Reads: the transmittance LUT (ground term).
 #pragma once
 

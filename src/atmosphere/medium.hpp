@@ -46,7 +46,7 @@ DensityProfile uniform_profile(double bottom_m, double top_m);
 enum class PhaseKind {
   none,               // absorbs only (ozone)
   rayleigh,           // 3 (1 + c^2) / (16 pi)
-  cornette_shanks,    // Mie, REFERENCE.md
+  cornette_shanks,    // Mie, Hillaire 2020 sec. 4 (docs/reference.md)
   henyey_greenstein,  // Mie option
 };
 

@@ -4,8 +4,8 @@
 // the first bounce.
 //
 // Shape: width x height (default 32 x 32), channels R, G, B, float32.
-// Axes (texel centres, DESIGN.md "Numerics"): the first and last texel of each
-// axis sit exactly on the ends of its range,
+// Axes (texel centres, docs/architecture.md "Texel centres"): the first and
+// last texel of each axis sit exactly on the ends of its range,
 //   u = texel_coord_from_unit(0.5 + 0.5 mu_s, width)       mu_s: sun zenith cosine
 //   v = texel_coord_from_unit((r - Rb) / (Rt - Rb), height) r: radius
 // Per texel, eq. 5-10: over `directions` unit vectors spread uniformly on the

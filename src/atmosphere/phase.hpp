@@ -1,4 +1,4 @@
-// Phase functions of the atmosphere's media (REFERENCE.md "Atmosphere model"),
+// Phase functions of the atmosphere's media (docs/reference.md "Atmosphere model"),
 // as pure functions of the scattering cosine. Each is a probability density
 // over the sphere of directions: it integrates to 1 over 4 pi sr (tested).
 //

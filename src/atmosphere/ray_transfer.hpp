@@ -1,4 +1,5 @@
-// Energy-conserving quadrature along a view ray (DESIGN.md "Numerics"): the
+// Energy-conserving quadrature along a view ray (docs/reference.md
+// "Integrating along a ray"): the
 // weights of the in-scattering integrals
 //   S = int_0^d T(0, s) sigma_s(s) f(s) ds,   T(0, s) = exp(-int_0^s sigma_t),
 // f the light scattered toward the viewer per unit sigma_s (sun times phase

@@ -1,5 +1,6 @@
 // The azimuth-free 3D table: mappings, single scattering, orders through the
-// gathering LUT. See the header (seed 000 Appendix A, seed 002 ch. 4).
+// gathering LUT. See the header (Hillaire 2016 Appendix A, Bodare & Sandberg
+// 2014 ch. 4).
 #include "atmosphere/scattering3d_lut.hpp"
 
 #include <algorithm>

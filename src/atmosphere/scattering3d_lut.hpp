@@ -1,15 +1,15 @@
 // Azimuth-free precomputed scattering: the 3D table of Elek 2009 as used in
-// Frostbite (Hillaire 2016, seed 000 sec. 3.5 and Appendix A) and by Bodare
-// & Sandberg 2014 (seed 002 ch. 4), with orders through a gathering LUT
-// (seed 002 sec. 4.7.3, gathering_lut.hpp).
+// Frostbite (Hillaire 2016 sec. 3.5 and Appendix A) and by Bodare & Sandberg
+// 2014 (ch. 4), with orders through a gathering LUT (Bodare & Sandberg
+// sec. 4.7.3, gathering_lut.hpp; docs/reference.md "The azimuth-free 3D table").
 //
 // Shape: width height_size x height view_size x depth sun_size (default
 // 32 x 128 x 32), float32; x = altitude h, y = view zenith cosine mu, z = sun
 // zenith cosine mu_s. Channels R G B (+ A with combined_mie_alpha):
 //   RGB = S_R, A = S_M.r (Bodare & Sandberg eq. 19), or a separate RGB `mie`
 //   texture = S_M; radiance at run time = p_R(nu) S_R + p_M(nu) S_M, the
-//   phases deferred to the pixel shader (seed 002 sec. 4.1).
-// Mappings (seed 000 Appendix A, Yusov 2013; coord(x, n) = 0.5/n + x (1 - 1/n)):
+//   phases deferred to the pixel shader (Bodare & Sandberg sec. 4.1).
+// Mappings (Hillaire 2016 Appendix A, Yusov 2013; coord(x, n) = 0.5/n + x (1 - 1/n)):
 //   u_h  = coord(sqrt(h / H_atm), height_size)                        (eq. 16)
 //   u_mu = view cosine against the horizon mu_h = -sqrt(h (2 Rb + h)) / (Rb + h),
 //          two halves like Bruneton's (eq. 17, Appendix A Listing 4):

@@ -30,7 +30,7 @@
 // halves keep the ground's discontinuity between texels; mu_s stops at
 // mu_s_min (default cos 102 deg, Bruneton's Earth value), below which the sky
 // is dark. Texel centres sample the boundaries instead of rays past them
-// (REFERENCE.md pitfalls: d < 0 at i / N).
+// (docs/reference.md "Pitfalls": d < 0 at i / N).
 //
 // Stored quantities (Bruneton's convention): single scattering is stored
 // without its phase function, per group, in units of the sun's irradiance:

@@ -24,8 +24,8 @@
 //                   with the energy-conserving weights of ray_transfer.hpp and J
 //                   interpolated as J / sigma_s (density_per_scattering).
 //
-// How it is made fast (the 10 s budget; Bruneton evaluates 512
-// incident directions with a 4D lookup each, per texel): the incident
+// How it is made fast (Bruneton evaluates 512 incident directions with a 4D
+// lookup each, per texel): the incident
 // radiance at (r, mu_s) does not depend on the view direction once the
 // direction grid is fixed in the frame of the sun (azimuth measured from the
 // sun's vertical plane, not from the view's as in Bruneton), so it is read
@@ -41,13 +41,12 @@
 // p_R(nu). The divisor is p_R at the nu of the texel's slice *before* the
 // clamp to the range its mu and mu_s allow, while DeltaS itself is computed
 // at the clamped nu. A read lerps slices across neighbouring (mu, mu_s)
-// texels with different clamps; dividing by p_R at the clamped nu made the
-// stored DeltaS / p_R of such taps too large, and reads in the sun's
+// texels with different clamps; dividing by p_R at the clamped nu would make
+// the stored DeltaS / p_R of such taps too large, and reads in the sun's
 // vertical plane (where nu sits at its bound) up to 18% too bright toward
 // the sun (tests/atmosphere/scattering_orders_test.cpp,
-// OrdersAboveOneReadBackAsTheOrdersOwnTable; Earth's daytime sky against
-// the path tracer: 3.0% -> 2.0% relative RMSE). With the unclamped divisor
-// every (mu, mu_s) texel divides a slice by the same p_R, and the read
+// OrdersAboveOneReadBackAsTheOrdersOwnTable; docs/decisions.md). With the
+// unclamped divisor every (mu, mu_s) texel divides a slice by the same p_R, and the read
 // returns lerp(DeltaS) to the curvature of 1 / p_R between slices.
 //
 // Phase quadrature: each phase's weights over the direction grid are

@@ -9,8 +9,8 @@
 // comes from the transmittance LUT, Vis is the planet's shadow (0 when the
 // sun ray from the sample meets the ground) and Psi_ms from the
 // multiple-scattering LUT (section 5.5; omitted when no LUT is given).
-// Segments are integrated in closed form with constant medium (Hillaire 2015,
-// DESIGN.md "Numerics"): the integral of S exp(-sigma_t t) over [0, dt] is
+// Segments are integrated in closed form with constant medium (Hillaire 2015;
+// Hillaire 2016 eq. 17): the integral of S exp(-sigma_t t) over [0, dt] is
 // S (1 - exp(-sigma_t dt)) / sigma_t, which never exceeds S / sigma_t however
 // stiff the medium is; the medium of a segment is sampled at its midpoint.
 //
@@ -20,7 +20,8 @@
 // nu = dot(view_dir, sun_dir): light travels along -sun_dir and reaches the
 // eye travelling along -view_dir, and the cosine between those two travel
 // directions is dot(sun_dir, view_dir). Looking at the sun gives nu = 1, the
-// forward peak of Mie (REFERENCE.md; phase.hpp uses the same convention).
+// forward peak of Mie (docs/reference.md "Atmosphere model"; phase.hpp uses
+// the same convention).
 //
 // A viewer above the atmosphere is first moved to where the ray enters it
 // (Hillaire's demo, MoveToTopAtmosphere); a viewer a rounding error below the

@@ -15,7 +15,8 @@
 // the sun only (albedo / pi E T_sun max(mu_s, 0); no sky irradiance), the
 // sun a uniform disk of angular radius Atmosphere::sun_angular_radius_rad and
 // luminance E / (2 pi (1 - cos(radius))), attenuated by the transmittance
-// to the top (REFERENCE.md: solid angle of a disk).
+// to the top (docs/reference.md "Sun disk and previews": the solid angle of a
+// disk, Hillaire 2016 eq. 14).
 #pragma once
 
 #include <glm/glm.hpp>

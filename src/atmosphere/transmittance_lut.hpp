@@ -13,7 +13,7 @@
 // the ground is obtained from two lookups of reversed rays, which point up
 // and so are in the domain (lookup_transmittance, Bruneton's GetTransmittance).
 //
-// Mapping (REFERENCE.md "Transmittance"), u along mu (width), v along r:
+// Mapping (docs/reference.md "Transmittance"), u along mu (width), v along r:
 //   H = sqrt(Rt^2 - Rb^2)  (distance to the top along the horizon ray at the ground)
 //   rho = sqrt(r^2 - Rb^2) (same at radius r), x_r = rho / H
 //   d_min = Rt - r, d_max = rho + H, x_mu = (d - d_min) / (d_max - d_min)
@@ -21,8 +21,8 @@
 // x_mu = 0 is the zenith, x_mu = 1 the horizon; x_r puts more texels near the
 // ground, where transmittance varies fastest. Texel centres map to x in
 // [0, 1] exactly, so the first and last texels sample the boundaries instead
-// of rays past them (sampling at i / N gives d < 0 there, REFERENCE.md
-// "Known pitfalls").
+// of rays past them (sampling at i / N gives d < 0 there, docs/reference.md
+// "Pitfalls").
 #pragma once
 
 #include <glm/glm.hpp>

@@ -7,7 +7,7 @@
 //
 //   density(h) = smoothstep(a, b, h) - smoothstep(c, d, h)
 //
-// (REFERENCE.md "Weather and cloud-type textures"): density rises from 0 at
+// (docs/reference.md "Weather and cloud-type textures"): density rises from 0 at
 // h = a to 1 at h = b, stays 1 up to c and falls back to 0 at d. With
 // 0 <= a < b <= c < d <= 1 (ramp_problems) the value lies in [0, 1] and is
 // exactly 0 for h <= a and h >= d: both smoothsteps are then exactly 0 or
@@ -38,7 +38,8 @@ struct CloudTypeProfile {
 };
 
 // The four standard types in texture order (x): stratus, stratocumulus,
-// cumulus, cumulonimbus. Density ramps: REFERENCE.md for the first three;
+// cumulus, cumulonimbus. Density ramps: the public ports of Schneider's
+// gradients for the first three (docs/reference.md);
 // cumulonimbus (0.01, 0.04, 0.9, 1.0) is ours: a column that fills the whole
 // layer and is dense from near its base. Erosion: stratus 0.2 -> 0.4 (smooth
 // sheets), stratocumulus 0.5 -> 0.6, cumulus 0.8 -> 0.6 (wispy bases,

@@ -13,7 +13,7 @@ constexpr double kPi = 3.14159265358979323846;
 inline double clamp_cosine(double mu) { return std::clamp(mu, -1.0, 1.0); }
 inline double safe_sqrt(double a) { return std::sqrt(std::max(a, 0.0)); }
 
-// Texel-centre mapping (DESIGN.md "Numerics"): x in [0, 1] covers the texel
+// Texel-centre mapping (docs/architecture.md "Texel centres"): x in [0, 1] covers the texel
 // centres of an n-texel axis exactly, so x = 0 and x = 1 land on the first and
 // last texel centres. Bruneton 2017 GetTextureCoordFromUnitRange.
 inline double texel_coord_from_unit(double x, int n) { return 0.5 / n + x * (1.0 - 1.0 / n); }

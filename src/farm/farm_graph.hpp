@@ -1,4 +1,4 @@
-// The engine-neutral task graph of a whole catalog (issue 8): one node per
+// The engine-neutral task graph of a whole catalog (docs/farm.md): one node per
 // requested product of each scene, edges for dependencies between requested
 // products of the same scene. A dependency a scene does not request is not a
 // node: the dependent's task computes it in memory. Any engine (ninja,

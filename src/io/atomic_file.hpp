@@ -1,7 +1,8 @@
 // Temporary-name-then-rename output, so a bake killed at any moment leaves no
-// partial file under a final name (DESIGN.md "Errors"). The temporary lives
-// in the same folder (rename is atomic within one file system) and keeps the
-// extension, because OpenImageIO picks the format from it:
+// partial file under a final name (docs/architecture.md "Files on disk"). The
+// temporary lives in the same folder (rename is atomic within one file
+// system) and keeps the extension, because OpenImageIO picks the format from
+// it:
 //   out/earth/transmittance.exr  <-  out/earth/.transmittance.tmp-<pid>.exr
 #pragma once
 

@@ -14,9 +14,9 @@
 // 1; more channels than the format has is an error (nothing is dropped
 // silently). Conversions: UNORM clamps to [0, 1] and stores round(v * 255);
 // half rounds to nearest even and clamps finite values beyond +-65504 to
-// +-65504, since no Inf may reach a file (DESIGN.md "Numerics"); R11G11B10
-// rounds to nearest even, stores negatives as 0 and clamps to the largest
-// finite value (65024 for R and G, 64512 for B).
+// +-65504, since no Inf may reach a file (docs/architecture.md "Files on
+// disk"); R11G11B10 rounds to nearest even, stores negatives as 0 and clamps
+// to the largest finite value (65024 for R and G, 64512 for B).
 //
 // miscFlags2 (alpha mode) is DDS_ALPHA_MODE_UNKNOWN (0): our alpha channels
 // hold data (a fourth LUT component), not coverage, so we do not claim

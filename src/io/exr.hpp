@@ -1,7 +1,6 @@
-// OpenEXR output and input for Textures, through OpenImageIO (DESIGN.md
-// "Texture container and formats": half or float, channel names, metadata as
-// header attributes, 3D as one part per slice or as a slice atlas with the
-// layout recorded in the header).
+// OpenEXR output and input for Textures, through OpenImageIO: half or float,
+// channel names, metadata as header attributes, 3D as one part per slice or
+// as a slice atlas with the layout recorded in the header.
 //
 // File shapes:
 //   2D (depth 1, layers 1)  one single-part image, width x height.
@@ -25,7 +24,8 @@
 //   skybake:slice_height, skybake:slice_depth
 //                          ints, atlas layout only.
 //   DateTime (capDate)     fixed "1970:01:01 00:00:00": OpenImageIO stamps the
-//                          current time otherwise (DESIGN.md "Determinism").
+//                          current time otherwise (docs/architecture.md
+//                          "Determinism").
 // Metadata keys may therefore not be one of the structural names above
 // (shape, channels, layout, atlas_*, slice_*); the writer refuses them.
 #pragma once

@@ -1,6 +1,6 @@
-// 8-bit sRGB PNG previews of any Texture, for people to look at (DESIGN.md
-// "Texture container and formats": tone-mapped, slices side by side). Not a
-// data format: nothing reads these back into a Texture.
+// 8-bit sRGB PNG previews of any Texture, for people to look at: tone-mapped,
+// slices side by side. Not a data format: nothing reads these back into a
+// Texture.
 //
 // Layout: the preview is a grid of panels, one per shown slice (volume) or
 // layer (array), or a single panel (2D); panel k sits at column k % columns,

@@ -1,6 +1,6 @@
 // VDB writer and reader: one dense FloatGrid per channel (layout in vdb.hpp).
-// The only translation unit of src/ that includes OpenVDB (STACK.md: its
-// headers cost 4-12 s per file).
+// The only translation unit of src/ that includes OpenVDB (its headers cost
+// 4-12 s per file; docs/architecture.md "Build").
 #include "io/vdb.hpp"
 
 #include <algorithm>
@@ -75,7 +75,8 @@ openvdb::FloatGrid::Ptr make_grid(const Texture& tex, int c,
   openvdb::tools::copyFromDense(DenseXYZ(box, plane.data()), *grid, 0.0f);
   // copyFromDense leaves voxels equal to the background inactive; the union
   // with an all-active box activates them without changing any value, so the
-  // grid is dense (DESIGN.md) and viewers see the whole domain.
+  // grid is dense (vdb.hpp: every voxel of the domain is active) and viewers
+  // see the whole domain.
   openvdb::MaskTree box_mask;
   box_mask.fill(box, true, true);
   grid->tree().topologyUnion(box_mask);

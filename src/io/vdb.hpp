@@ -1,6 +1,6 @@
-// OpenVDB output and input for Textures (DESIGN.md "Texture container and
-// formats": one grid per channel, with the voxel transform and metadata;
-// dense grids, background 0). Only vdb.cpp includes OpenVDB (slow headers).
+// OpenVDB output and input for Textures: one grid per channel, with the voxel
+// transform and metadata; dense grids, background 0. Only vdb.cpp includes
+// OpenVDB (slow headers, docs/architecture.md "Build").
 //
 // File shape:
 //   One openvdb::FloatGrid per channel, named after the channel (OpenVDB
@@ -10,8 +10,8 @@
 //   (constant regions may be stored as active tiles), background 0.
 //   Transform: linear, voxel size s, translated by s/2, so voxel i covers
 //   world [i s, (i + 1) s] and its centre is (i + 0.5) s, the texel-centre
-//   convention of DESIGN.md "Numerics"; with s = 1/N an N^3 volume spans
-//   exactly [0, 1]^3.
+//   convention of docs/architecture.md "Texel centres"; with s = 1/N an N^3
+//   volume spans exactly [0, 1]^3.
 //   Grid metadata (on every grid): "skybake:<key>" string per
 //   Texture::metadata entry, "skybake:shape" string "WxHxDxL" and
 //   "skybake:channels", the channel names in texture order, comma separated;

@@ -1,5 +1,6 @@
-// The tileable curl noise texture (issue 5): 128^2 RGB, the size and channel
-// count of Schneider & Vos's SIGGRAPH 2015 slides, used by the GPU Pro 7
+// The tileable curl noise texture (docs/reference.md "Cloud noise"): 128^2
+// RGB, the size and channel count of Schneider & Vos's SIGGRAPH 2015 slides,
+// used by the GPU Pro 7
 // sampler (sec. 4.3.4) to distort the detail-noise lookups
 // ("p.xy += curl_noise.xy * (1.0 - height_fraction)").
 //

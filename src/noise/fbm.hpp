@@ -4,9 +4,10 @@
 //
 // Octave o has frequency 2^o times the base, so its period is period * 2^o
 // lattice cells over the same domain: every octave repeats exactly where the
-// base does and the sum tiles (REFERENCE.md: every octave's frequency an
-// integer multiple of the base). Each octave is its own field, seeded by
-// field_seed(seed, kind, period * 2^o) (lattice_hash.hpp).
+// base does and the sum tiles (docs/reference.md "Cloud noise": every
+// octave's frequency an integer multiple of the base). Each octave is its
+// own field, seeded by field_seed(seed, kind, period * 2^o)
+// (lattice_hash.hpp).
 //
 // - Perlin fBm: amplitudes gain^o, divided by their sum so the range stays
 //   about [-1, 1] whatever the octave count.

@@ -1,8 +1,8 @@
-// Integer lattice hashing for the periodic noises (issue 5; REFERENCE.md "Cloud
+// Integer lattice hashing for the periodic noises (docs/reference.md "Cloud
 // noise"). Every random quantity of a noise (a Perlin gradient, a Worley feature
 // point) is a pure function of (wrapped lattice coordinates, seed): no RNG state,
-// so any texel can be computed alone, by any thread, in any order (DESIGN.md
-// "Determinism").
+// so any texel can be computed alone, by any thread, in any order
+// (docs/architecture.md "Determinism").
 //
 // The mixer is Chris Wellons' "lowbias32" integer hash (hash-prospector, 2020),
 // an avalanche of two multiply/xorshift rounds with a measured bias of ~0.17,

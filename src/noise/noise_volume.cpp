@@ -15,7 +15,8 @@
 namespace skybake {
 namespace {
 
-// Refused before anything is allocated (DESIGN.md "Errors": resource bombs):
+// Refused before anything is allocated (resource bombs, docs/architecture.md
+// "Errors and exit codes"):
 // a Worley field holds period^3 feature points (256^3 * 12 bytes = 200 MB),
 // the volume size^3 * channels floats.
 constexpr int kMaxPeriod = 256;

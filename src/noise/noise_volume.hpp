@@ -1,5 +1,5 @@
 // The two tileable cloud noise volumes of Schneider's cloud system and their
-// packed single-channel variants (issue 5).
+// packed single-channel variants (docs/reference.md "Cloud noise").
 //
 //   noise_shape   128^3 RGBA (Schneider, GPU Pro 7 sec. 4.3.1 figure 4.8; SIGGRAPH
 //                 2015 slides): R = Perlin-Worley, G, B, A = inverted-Worley fBm

@@ -3,7 +3,7 @@
 // Perlin 1985 gradient noise with the quintic fade s(t) = 6t^5 - 15t^4 + 10t^3 of
 // Perlin 2002 ("Improving Noise"), which makes the noise C2 so that its
 // gradient, and the curl built from it (curl.hpp), is continuous. Tileable
-// (REFERENCE.md "Cloud noise"): the lattice coordinates are wrapped with a
+// (docs/reference.md "Cloud noise"): the lattice coordinates are wrapped with a
 // floor-based modulo by an integer period per axis before hashing, so
 // n(p + period) = n(p) for value and gradient, also for negative p.
 //

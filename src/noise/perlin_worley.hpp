@@ -3,7 +3,7 @@
 // figure 4.7; Frostbite 2016 sec. 5.4 and Appendix D).
 //
 // The papers disagree on the remap, so the variant is a named option
-// (REFERENCE.md "Cloud noise"). With perlin01 = Perlin fBm * 0.5 + 0.5 clamped
+// (docs/reference.md "Cloud noise"). With perlin01 = Perlin fBm * 0.5 + 0.5 clamped
 // to [0, 1], w = the Worley fBm in [0, 1], and
 // remap(v, lo, hi, new_lo, new_hi) = new_lo + (v - lo) / (hi - lo) * (new_hi - new_lo):
 //

@@ -4,7 +4,7 @@
 // One feature point per cell, its offset inside the cell a pure hash of the
 // wrapped cell coordinates; the cell coordinates of the 27 (3D) or 9 (2D)
 // neighbour cells are wrapped with a floor-based modulo by the period, so
-// F1(p + period) = F1(p), also for negative p (REFERENCE.md "Cloud noise").
+// F1(p + period) = F1(p), also for negative p (docs/reference.md "Cloud noise").
 //
 // Normalisation: F1 is the Euclidean distance in cells to the nearest feature
 // point, divided by the bound 1 cell and clamped to [0, 1]. The bound 1 is the

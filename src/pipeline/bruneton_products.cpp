@@ -1,4 +1,5 @@
-// Precomputed scattering products (issue 4): Bruneton's 4D scattering with
+// Precomputed scattering products (docs/reference.md, "Precomputed
+// scattering"): Bruneton's 4D scattering with
 // its irradiance and single-Mie companions, and the azimuth-free 3D variant
 // with its gathering LUT. One bake_bruneton() / bake_scattering3d() call makes
 // all the textures of its family; the companions depend on the main product

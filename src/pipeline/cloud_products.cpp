@@ -1,4 +1,4 @@
-// Cloud texture products (issue 6): the weather map, the cloud-type profiles
+// Cloud texture products (docs/clouds.md): the weather map, the cloud-type profiles
 // and their height-gradient table, the high-altitude templates. What they
 // contain comes from the scene's "clouds" section (schemas/clouds.schema.json,
 // inline or a presets/clouds/ file, defaults filled in by the loader); the

@@ -1,5 +1,5 @@
-// Error estimates recorded by every bake (issue 7: "a normal bake records
-// each product's estimated error and time in the manifest"). Each estimator
+// Error estimates recorded by every bake: the manifest holds each output's
+// estimated error and the time it took (`estimated_error`). Each estimator
 // recomputes a fixed, deterministic sample of texels with a much finer
 // integration (the same integrand, 8-16x the steps or directions) and reports
 // how far the baked texels are from it. This measures the discretisation

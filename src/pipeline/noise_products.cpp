@@ -1,5 +1,6 @@
-// Cloud noise products (issue 5): the Perlin-Worley shape volume, the Worley
-// detail volume and curl noise, with their parameters in the output object
+// Cloud noise products (docs/reference.md, "Cloud noise"): the Perlin-Worley
+// shape volume, the Worley detail volume and curl noise, with their
+// parameters in the output object
 // (schemas/products/noise_*.schema.json, curl.schema.json). Their spec
 // validation (noise/noise_volume.hpp spec_problems) runs at preset load.
 #include <fmt/format.h>

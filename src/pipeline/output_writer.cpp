@@ -18,7 +18,8 @@ namespace skybake {
 namespace {
 
 // DDS format when the output does not name one: float32 RGBA keeps every bit
-// (transmittance must stay float32, REFERENCE.md); half asks for 16-bit floats.
+// (transmittance stays float32, docs/reference.md "Transmittance"); half asks
+// for 16-bit floats.
 DdsFormat choose_dds_format(const Texture& tex, const ProductInfo& info, const OutputSpec& spec) {
   std::string name = option_string(spec, "dds_format", info.default_dds_format);
   if (name == "unorm8")

@@ -49,7 +49,8 @@ struct ProductInfo {
   std::string default_dds_format;
   BakeFn bake;
   // Rough cost for farm scheduling: single-thread nanoseconds per output
-  // texel at default settings (measured with bench/, see the issue notes).
+  // texel at default settings (measured with bench/); `plan` sums it into
+  // each farm node's estimated_seconds (docs/farm.md).
   double ns_per_texel = 1000.0;
   // Semantic checks at load time beyond the schema; empty = none.
   CheckFn check;

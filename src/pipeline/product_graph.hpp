@@ -1,7 +1,7 @@
 // The product graph of one scene (after ninja's Node/Edge): the requested
 // products plus everything they depend on, in dependency order, each with the
 // hashes that decide whether its files are current. Nothing outside this
-// closure is ever computed (issue 2 "Pipeline").
+// closure is ever computed (docs/architecture.md, "Data flow").
 #pragma once
 
 #include <string>

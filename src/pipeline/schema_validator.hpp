@@ -1,5 +1,5 @@
 // Strict JSON parsing and JSON Schema (draft-04) validation of presets, with
-// rapidjson (the only validator packaged in Debian; see shared/STACK.md), and
+// rapidjson (the only JSON Schema validator packaged in Debian), and
 // the translation of its first error into one readable rule ("must be >= 0,
 // got -1", "unknown key 'x' (did you mean 'y'?)"). rapidjson 1.1.0 only
 // reports the failing keyword and document pointer, so the rule is rebuilt

@@ -1,4 +1,4 @@
-// Aerial-perspective ladder of `skybake report` (report_ladders.hpp):
+// Aerial-perspective ladder of `skybake report` (ladders.hpp):
 // steps_per_slice x slice counts at the preset's screen size, camera, sun
 // and depth range, each volume read with lookup_aerial_perspective at
 // pseudo-random (screen position, distance) and compared with the same march

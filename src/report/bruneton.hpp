@@ -1,9 +1,8 @@
 // Hillaire's multiple-scattering approximation against Bruneton's
 // precomputed scattering orders, both against the path tracer, on the views,
 // sun elevations and camera of the sky radiance section
-// (report_sky_radiance.hpp; issue 7: "Compare Hillaire's multi-scattering
-// approximation and Bruneton's orders on Earth, Mars, the tiny planet and a
-// dense atmosphere").
+// (sky_radiance.hpp), on any scene: Earth, Mars, the tiny planet and a dense
+// atmosphere are the cases docs/report.md discusses.
 //
 // Bruneton side: the scene's own `scattering` output when it has one (its
 // shape, orders or tolerance, Mie storage), else the level's table (full:

@@ -1,5 +1,5 @@
 // Gathering sum (the 3D family's gathering LUT summed over orders,
-// gathering_lut.hpp) ladder of `skybake report` (report_ladders.hpp): 3D
+// gathering_lut.hpp) ladder of `skybake report` (ladders.hpp): 3D
 // table shapes (h, mu, mu_s) x gathering directions, each point one whole
 // bake_scattering3d at the preset's orders (one bake makes both products,
 // so its time is the product's cost), the table read with

@@ -123,7 +123,7 @@ std::string radiance_table(const std::string& title, const nlohmann::json& stats
   return s + "</table>\n";
 }
 
-// One target verdict (target_json, report_sky_radiance.hpp) as a paragraph.
+// One target verdict (target_json, sky_radiance.hpp) as a paragraph.
 std::string target_paragraph(const std::string& model, const nlohmann::json& target) {
   const std::string status = target["status"];
   return fmt::format(

@@ -1,5 +1,5 @@
 // Irradiance (Bruneton's ground irradiance) ladder of `skybake report`
-// (report_ladders.hpp): table sizes (mu_s, r) x hemisphere directions. Each
+// (ladders.hpp): table sizes (mu_s, r) x hemisphere directions. Each
 // table is baked from one scattering order, the single scattering of a 4D
 // table at the preset's scattering shape and ray nodes (baked once, as a
 // bake reads the operating-point tables), plus direct sunlight when the

@@ -1,4 +1,4 @@
-// Error against run time of the atmosphere LUTs (`skybake report`, issue 7):
+// Error against run time of the atmosphere LUTs (`skybake report`, docs/report.md):
 // each product is baked at a ladder of sample counts and resolutions, every
 // bake is timed, and every table is read the way an engine reads it (its
 // lookup_* function, interpolation included) at a fixed set of

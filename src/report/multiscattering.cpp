@@ -1,4 +1,4 @@
-// Multiple-scattering ladder of `skybake report` (report_ladders.hpp):
+// Multiple-scattering ladder of `skybake report` (ladders.hpp):
 // directions x steps x sizes (the preset's size first), each table read with
 // lookup_multiscattering at pseudo-random (r, mu_s) against the same integral
 // (compute_multiscattering, Hillaire 2020 eq. 5-10) with many more directions

@@ -1,4 +1,4 @@
-// Where float32 and half lose (`skybake report`, issue 7): the transmittance
+// Where float32 and half lose (`skybake report`, docs/report.md): the transmittance
 // between two points, which engines take as the ratio of two lookups of the
 // transmittance table (lookup_transmittance, Bruneton's GetTransmittance):
 //   T(p, q) = T(p -> top) / T(q -> top)   (or of the reversed rays toward the ground).

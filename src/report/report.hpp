@@ -1,23 +1,23 @@
 // `skybake report`: how exact every product of a scene is, and at what cost
-// (issue 7). For each atmosphere table the scene requests, a ladder of
+// (docs/report.md). For each atmosphere table the scene requests, a ladder of
 // sample counts and resolutions measured against independent references with
-// the run time of each bake (report_ladders.hpp); the sky's radiance rendered
-// from the tables against a path tracer (report_sky_radiance.hpp); where
-// float32 and half storage lose (report_precision.hpp and each product's
+// the run time of each bake (ladders.hpp); the sky's radiance rendered
+// from the tables against a path tracer (sky_radiance.hpp); where
+// float32 and half storage lose (precision.hpp and each product's
 // half round trip); sky previews. Noise and cloud products are exact
 // evaluations of their functions and are listed as such.
 //
 // Writes DIR/<scene>/report/report.json, report.html (self-contained but for
-// the preview PNG beside it, report_html.hpp) and sky_preview.png, each
+// the preview PNG beside it, html.hpp) and sky_preview.png, each
 // atomically. Never fails on accuracy: the numbers are reported, not judged;
 // errors (a product the scene does not request, an unwritable folder) throw.
 // Nothing else of DIR/<scene>/ is touched (no manifest, no baked outputs).
 //
 // report.json: {"tool", "scene", "preset", "level", "level_settings",
-//   "seconds", "products": [per product, report_ladders.hpp or
+//   "seconds", "products": [per product, ladders.hpp or
 //   {"product", "kind": "exact" | "preview" | "not_measured", "note"}],
-//   "sky_radiance": report_sky_radiance.hpp or null,
-//   "precision": {"horizon_transmittance": report_precision.hpp or null,
+//   "sky_radiance": sky_radiance.hpp or null,
+//   "precision": {"horizon_transmittance": precision.hpp or null,
 //                 "half": [{"product", "float", "half", "storage"}]},
 //   "bruneton_comparison": {"status", ...}, "files": {...}}
 #pragma once

@@ -1,4 +1,4 @@
-// Scattering (Bruneton 4D) ladder of `skybake report` (report_ladders.hpp):
+// Scattering (Bruneton 4D) ladder of `skybake report` (ladders.hpp):
 // table shapes x ray nodes, each baked with one order (single scattering,
 // the part of the table an independent quadrature can check to 1e-6) in the
 // preset's Mie storage, read with lookup_scattering at pseudo-random

@@ -1,5 +1,5 @@
 // Scattering3d (the azimuth-free Elek / Frostbite table) ladder of `skybake
-// report` (report_ladders.hpp): table shapes (h, mu, mu_s) x ray nodes,
+// report` (ladders.hpp): table shapes (h, mu, mu_s) x ray nodes,
 // each baked with one order (single scattering: the part an independent
 // quadrature checks) in the preset's Mie storage, read with
 // lookup_scattering3d (trilinear, the phases applied at the read, Mie from

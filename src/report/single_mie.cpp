@@ -1,5 +1,5 @@
 // Single Mie (the 4D family's separate single-Mie texture) ladder of
-// `skybake report` (report_ladders.hpp): table shapes x ray nodes, each
+// `skybake report` (ladders.hpp): table shapes x ray nodes, each
 // texture made by the single-scattering pass of the bake
 // (bake_single_scattering, the same pass and texture bake_bruneton returns
 // as single_mie), read with lookup_scattering_rgb (quadrilinear, nu slices

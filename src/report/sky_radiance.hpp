@@ -1,4 +1,4 @@
-// Sky radiance of `skybake report` (issue 7): what a viewer sees, rendered
+// Sky radiance of `skybake report` (docs/report.md): what a viewer sees, rendered
 // from the LUTs the way an engine renders it, against the Monte Carlo path
 // tracer (reference/path_tracer.hpp), which solves the full radiative
 // transfer: every scattering order, the ground's bounce with the scene's

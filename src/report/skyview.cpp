@@ -1,4 +1,4 @@
-// Sky-view ladder of `skybake report` (report_ladders.hpp): steps x sizes
+// Sky-view ladder of `skybake report` (ladders.hpp): steps x sizes
 // over the preset's layers (viewer altitude, sun zenith), each table read
 // with lookup_skyview at pseudo-random (layer, view direction) and compared
 // two ways:

@@ -1,4 +1,4 @@
-// The log-log chart of the report page (report_html.hpp).
+// The log-log chart of the report page (html.hpp).
 #include <algorithm>
 #include <cmath>
 

@@ -1,4 +1,4 @@
-// Transmittance ladder of `skybake report` (report_ladders.hpp): steps x
+// Transmittance ladder of `skybake report` (ladders.hpp): steps x
 // sizes, each table read with lookup_transmittance_to_top at pseudo-random
 // (r, mu) against adaptive quadrature of the optical depth.
 //

@@ -142,7 +142,7 @@ TEST(SampleMedium, ComponentWithoutLayersContributesNothing) {
 }
 
 TEST(ProfileHelpers, EarthFixtureMatchesReference) {
-  // REFERENCE.md Earth: Mie extinction 4.44e-6 /m at the ground; ozone
+  // Earth of docs/reference.md: Mie extinction 4.44e-6 /m at the ground; ozone
   // absorbs only; Rayleigh scatters only.
   const Atmosphere atm = fixtures::earth_atmosphere();
   const MediumSample ground = sample_medium(atm, 0.0);

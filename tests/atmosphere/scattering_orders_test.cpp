@@ -132,9 +132,9 @@ TEST(ScatteringDensity, SixteenBandsMatchAFineSphereQuadrature) {
   // J_2 of Earth's Rayleigh (black ground) with the default 16 bands
   // against sigma_s int p_R L_1 d omega over a 256 x 96 grid of the same
   // single-scattering field: within 1% at every altitude, view and channel.
-  // With one sample of the field per band, the bright sky between the
-  // horizontal and the horizon was read as dark ground: 2.7% low at 3 km,
-  // 2.2% at 8 km (header, compute_incident_radiance).
+  // One sample of the field per band would read the bright sky between the
+  // horizontal and the horizon as dark ground: 2.7% low at 3 km, 2.2% at
+  // 8 km (header, band_parts and compute_incident_radiance).
   Atmosphere atm = fixtures::earth_atmosphere();
   atm.ground_albedo = glm::dvec3(0.0);
   atm.components.erase(atm.components.begin() + 1);  // Mie's peak would need a finer grid
@@ -411,7 +411,8 @@ TEST(ScatteringOrdersEnergy, GeometricTailApproachesTheConvergedTableFromBelow) 
 }
 
 TEST(ScatteringOrdersEnergy, ExtremeMediaStayFiniteAndNonNegative) {
-  // DESIGN.md extreme cases: a 1 km planet under a dense 200 m sky, and
+  // Extreme cases of the domain (docs/reference.md "Atmosphere model"): a
+  // 1 km planet under a dense 200 m sky, and
   // Earth with a Mie phase of g = 0.999 (forward peak 1e-3 rad wide, far
   // below the direction grid).
   Atmosphere sharp = fixtures::earth_atmosphere();
@@ -513,9 +514,9 @@ TEST(BakeBruneton, OrdersAboveOneReadBackAsTheOrdersOwnTable) {
   // sun's vertical plane has the largest or smallest nu its mu and mu_s
   // allow, so its taps at the neighbouring mu, mu_s texels hold slices whose
   // nu those texels had to clamp. Divided by p_R at the clamped nu, the
-  // read gave orders >= 2 up to 18% too bright toward the sun's azimuth
-  // (Rayleigh only, sun 30 degrees from the zenith; the path tracer had them
-  // flat across azimuths within 3%). Here order 2 read through the table
+  // read would give orders >= 2 up to 18% too bright toward the sun's
+  // azimuth (Rayleigh only, sun 30 degrees from the zenith; the path tracer
+  // has them flat across azimuths within 3%). Here order 2 read through the table
   // (table minus the single-scattering tables, same taps) must match the
   // order's own DeltaS table read directly, within 2.5%, in and out of the
   // sun's plane. Default shape: the one engines ship.

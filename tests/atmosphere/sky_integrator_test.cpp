@@ -208,7 +208,7 @@ TEST(Integrator, ProfileStopsAtTheGround) {
   EXPECT_EQ(prof[1].transmittance, prof[2].transmittance);
 }
 
-// Stiff media of DESIGN.md: finite, non-negative, transmittance in [0, 1].
+// Stiff media (presets/extreme/): finite, non-negative, transmittance in [0, 1].
 void expect_sane_everywhere(const Atmosphere& atm) {
   const Texture t = small_transmittance(atm);
   const Texture ms = bake_multiscattering_lut(atm, t, {8, 8, 16, 10}, {});

@@ -186,7 +186,7 @@ TEST(SkyviewLut, DefaultStepsMatchATenTimesFinerMarch) {
 }
 
 Atmosphere mars_atmosphere() {
-  // REFERENCE.md (OpenSpace's Bruneton-based set).
+  // docs/reference.md "Atmosphere model" (OpenSpace's Bruneton-based set).
   Atmosphere atm;
   atm.bottom_radius_m = 3386.19e3;
   atm.top_radius_m = atm.bottom_radius_m + 76.98e3;

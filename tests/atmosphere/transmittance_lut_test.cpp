@@ -88,7 +88,7 @@ TEST(TransmittanceMapping, UvRoundTripAtEveryTexelCentre) {
 
 TEST(TransmittanceMapping, TexelCentresStayInTheDomain) {
   // Sampling at i / N instead of texel centres puts the first texel before
-  // x = 0: d < d_min, which is d < 0 at the top (REFERENCE.md pitfalls).
+  // x = 0: d < d_min, which is d < 0 at the top (docs/reference.md "Pitfalls").
   const int W = 256, H = 64;
   const Atmosphere atm = fixtures::earth_atmosphere();
   const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;

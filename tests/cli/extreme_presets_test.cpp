@@ -1,4 +1,4 @@
-// The stiff and extreme suite of presets/extreme/ (issue 7): every preset
+// The stiff and extreme suite of presets/extreme/: every preset
 // bakes (so no NaN or Inf reached a file: the writers refuse them), read back
 // with the real EXR reader: transmittance within [0, 1], luminance >= 0,
 // f_ms < 1 (the manifest's fms_max), and the exact answers of the degenerate

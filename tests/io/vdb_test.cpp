@@ -51,7 +51,7 @@ TEST(Vdb, GridsReadWithPlainOpenVdbMatchTheTexture) {
     ASSERT_TRUE(grid) << tex.channels[c];
     EXPECT_EQ(grid->background(), 0.0f);
     EXPECT_EQ(grid->voxelSize(), openvdb::Vec3d(0.25));
-    // Texel centres at (i + 0.5) * voxel size (DESIGN.md "Numerics").
+    // Texel centres at (i + 0.5) * voxel size (docs/architecture.md "Texel centres").
     EXPECT_EQ(grid->indexToWorld(openvdb::Coord(0, 0, 0)), openvdb::Vec3d(0.125));
     EXPECT_EQ(grid->indexToWorld(openvdb::Coord(4, 3, 2)), openvdb::Vec3d(1.125, 0.875, 0.625));
     EXPECT_EQ(grid->metaValue<std::string>("skybake:product"), "noise_shape");

@@ -1,4 +1,4 @@
-// Precomputed scattering products end to end (issue 4): one bake makes the
+// Precomputed scattering products end to end: one bake makes the
 // 4D table and its irradiance, the manifest records the orders used and the
 // last residual, convergence mode iterates until the tolerance, companions
 // are computed from their family without being written when not requested.

@@ -1,4 +1,4 @@
-// Cloud texture products end to end (issue 6): the shipped storm scene bakes
+// Cloud texture products end to end: the shipped storm scene bakes
 // every file, the weather map and cirrus DDS tile (check-tiling), the rain
 // rule and the mean coverage hold on the written files, the schema defaults
 // are the documented profiles, the Frostbite layout indexes the cumulonimbus

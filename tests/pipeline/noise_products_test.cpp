@@ -1,4 +1,4 @@
-// Cloud noise products end to end (issue 5): the shipped Horizon Zero Dawn
+// Cloud noise products end to end: the shipped Horizon Zero Dawn
 // set bakes, every written file tiles (check-tiling, read back with the real
 // readers), every DDS mip level tiles, VDB carries the voxel size and period,
 // check-tiling fails on a volume that does not tile, and threads do not

@@ -272,7 +272,7 @@ TEST(ReferenceSingleScattering, ErrorEstimateIsHonestOnEarth) {
   }
 }
 
-// Extreme cases (DESIGN.md): finite, non-negative, converged.
+// Extreme cases (presets/extreme/): finite, non-negative, converged.
 TEST(ReferenceSingleScattering, StiffCasesConverge) {
   Atmosphere dense = earth_atmosphere();
   dense.components[0].scattering_per_m *= 1000.0;

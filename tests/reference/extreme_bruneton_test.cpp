@@ -1,7 +1,8 @@
 // Bruneton's scattering orders on the stiff and extreme suite (presets/
-// extreme/, issue 7): for every preset, the orders converge, the outputs are
-// finite and non-negative, energy is conserved (what leaves the atmosphere
-// and what the ground absorbs never exceeds what the sun brings in), and
+// extreme/; docs/report.md "Dense media need larger tables"): for every
+// preset, the orders converge, the outputs are finite and non-negative,
+// energy is conserved (what leaves the atmosphere and what the ground
+// absorbs never exceeds what the sun brings in), and
 // the table never shows more light than the path tracer with the same
 // number of orders.
 #include <gtest/gtest.h>

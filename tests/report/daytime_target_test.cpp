@@ -1,14 +1,16 @@
-// Issue 7's accuracy target, as a test: Earth's daytime sky rendered from
+// The report's accuracy target (docs/report.md, "Sky radiance against the
+// path tracer"), as a test: Earth's daytime sky rendered from
 // Bruneton's 4D table the way an engine reads it (lookup_scattering, single
 // Mie from its own texture, the table iterated until an order changes it by
 // less than 1e-3: presets/earth_precomputed.json's settings) is within 1%
 // relative RMSE of the path tracer with every order, worst channel, over
 // the views of `skybake report` (camera 200 m up, 8 azimuths x elevations
-// {5, 20, 60} degrees, suns at {60, 20, 5} degrees: report_sky_radiance.cpp).
-// Measured after the p_R and horizon fixes (docs/decisions.md): 0.80%
-// (report, 65536 paths); before them 2.5%. The path tracer's noise is taken
-// out as the report does (rel_rmse_denoised, E[(L - X)^2] = (L - E X)^2 +
-// se^2), so the test asks the table, not the noise.
+// {5, 20, 60} degrees, suns at {60, 20, 5} degrees: report/sky_radiance.cpp).
+// The report measures 0.80% with 65536 paths; what the table needs to get
+// there is in docs/decisions.md (p_R divisor, horizon sub-steps). The path
+// tracer's noise is taken out as the report does (rel_rmse_denoised,
+// E[(L - X)^2] = (L - E X)^2 + se^2), so the test asks the table, not the
+// noise.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -37,7 +39,7 @@ TEST(DaytimeTarget, BrunetonTableWithinOnePercentOfThePathTracerOnEarth) {
 
   PathTracerSpec paths;
   paths.samples = 32768;
-  paths.max_bounces = 64;  // report_sky_radiance.cpp's max_bounces_for on Earth
+  paths.max_bounces = 64;  // report/sky_radiance.cpp's max_bounces_for on Earth
   const SkyPathTracer tracer(atm);
   const double rb = atm.bottom_radius_m, r = rb + 200.0, deg = kPi / 180.0;
   std::vector<RadiancePair> pairs;

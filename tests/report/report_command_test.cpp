@@ -1,4 +1,4 @@
-// skybake report end to end (issue 7): one quick Earth report (a few
+// skybake report end to end (docs/report.md): one quick Earth report (a few
 // seconds), checked through report.json, the --json summary, report.html and
 // the preview; plus the usage error and a noise-only scene. ctest runs every
 // TEST in its own process, so the checks of the one report are functions

@@ -1,5 +1,5 @@
 // Atmospheres for the atmosphere tests, built with the medium.hpp helpers:
-// Earth with the constants of REFERENCE.md (Hillaire 2020 and its demo), a
+// Earth with the constants of docs/reference.md (Hillaire 2020 and its demo), a
 // small fake planet, and media simple enough to have closed forms (empty, a
 // uniform slab, a single exponential or tent layer); and the small input
 // LUTs of the sky-view and aerial-perspective tests. Header only; every test
@@ -44,7 +44,7 @@ inline MediumComponent earth_ozone() {
                         tent_profile(10e3, 25e3, 40e3));
 }
 
-// Earth: Rb 6360 km, Rt 6460 km, Rayleigh + Mie + ozone (REFERENCE.md).
+// Earth: Rb 6360 km, Rt 6460 km, Rayleigh + Mie + ozone (docs/reference.md).
 inline Atmosphere earth_atmosphere() {
   Atmosphere atm;
   atm.bottom_radius_m = 6360e3;
@@ -54,8 +54,9 @@ inline Atmosphere earth_atmosphere() {
   return atm;
 }
 
-// A tiny planet (DESIGN.md extreme cases): 1 km radius under a 200 m thick
-// dense sky, an exponential of 50 m scale height 1000x Earth's Rayleigh.
+// A tiny planet (an extreme case of the domain, docs/reference.md "Atmosphere
+// model"): 1 km radius under a 200 m thick dense sky, an exponential of
+// 50 m scale height 1000x Earth's Rayleigh.
 inline Atmosphere tiny_planet_atmosphere() {
   Atmosphere atm;
   atm.bottom_radius_m = 1e3;
