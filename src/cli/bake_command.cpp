@@ -43,6 +43,7 @@ nlohmann::json record_json(const OutputRecord& r, const std::string& scene_dir) 
           {"files", files},             {"dimensions", r.entry.dimensions},
           {"layers", r.entry.layers},   {"channels", r.entry.channels},
           {"input_hash", r.entry.input_hash}, {"bake_seconds", r.entry.bake_seconds},
+          {"error_seconds", r.entry.error_seconds},
           {"estimated_error", r.entry.estimated_error}};
 }
 

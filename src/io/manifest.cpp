@@ -9,12 +9,16 @@ namespace skybake {
 nlohmann::json to_json(const ManifestEntry& e) {
   nlohmann::json files = nlohmann::json::array();
   for (const ManifestFile& f : e.files)
-    files.push_back({{"path", f.path}, {"format", f.format}, {"encoding", f.encoding}});
+    files.push_back({{"path", f.path},
+                     {"format", f.format},
+                     {"encoding", f.encoding},
+                     {"size", f.size},
+                     {"hash", f.hash}});
   return {{"product", e.product},       {"name", e.name},
           {"files", files},             {"dimensions", e.dimensions},
           {"layers", e.layers},         {"channels", e.channels},
           {"metadata", e.metadata},     {"input_hash", e.input_hash},
-          {"bake_seconds", e.bake_seconds},     {"estimated_error", e.estimated_error}};
+          {"estimated_error", e.estimated_error}};
 }
 
 ManifestEntry manifest_entry_from_json(const nlohmann::json& j) {
@@ -22,13 +26,13 @@ ManifestEntry manifest_entry_from_json(const nlohmann::json& j) {
   e.product = j.value("product", "");
   e.name = j.value("name", "");
   for (const auto& f : j.value("files", nlohmann::json::array()))
-    e.files.push_back({f.value("path", ""), f.value("format", ""), f.value("encoding", "")});
+    e.files.push_back({f.value("path", ""), f.value("format", ""), f.value("encoding", ""),
+                       f.value("size", uint64_t(0)), f.value("hash", "")});
   e.dimensions = j.value("dimensions", std::vector<int>{});
   e.layers = j.value("layers", 1);
   e.channels = j.value("channels", std::vector<std::string>{});
   e.metadata = j.value("metadata", nlohmann::json::object());
   e.input_hash = j.value("input_hash", "");
-  e.bake_seconds = j.value("bake_seconds", 0.0);
   e.estimated_error = j.value("estimated_error", nlohmann::json());
   return e;
 }

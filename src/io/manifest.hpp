@@ -5,6 +5,7 @@
 // its entries into the existing manifest under the folder lock.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -18,6 +19,8 @@ struct ManifestFile {
   std::string path;    // relative to the manifest's folder
   std::string format;  // exr, dds, vdb, png
   std::string encoding;  // e.g. "float", "half", "R16G16B16A16_FLOAT"
+  uint64_t size = 0;     // bytes, as written
+  std::string hash;      // content hash as written (io/file_record.hpp); "" = not recorded
 };
 
 struct ManifestEntry {
@@ -29,8 +32,11 @@ struct ManifestEntry {
   std::vector<std::string> channels;
   nlohmann::json metadata = nlohmann::json::object();  // parameterization name and constants...
   std::string input_hash;
-  double bake_seconds = 0.0;
   nlohmann::json estimated_error;  // null when exact; see pipeline/error_estimates.hpp
+  // Times vary from run to run: they go to the bake log (io/bake_log.hpp) and
+  // to `bake --json`, never into manifest.json.
+  double bake_seconds = 0.0;
+  double error_seconds = 0.0;
 };
 
 struct Manifest {

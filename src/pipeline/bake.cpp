@@ -3,11 +3,14 @@
 #include <chrono>
 #include <exception>
 #include <optional>
+#include <set>
 
 #include <fmt/format.h>
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/bake_log.hpp"
+#include "io/file_record.hpp"
 #include "io/output_readback.hpp"
 #include "pipeline/freshness.hpp"
 #include "pipeline/output_writer.hpp"
@@ -56,6 +59,7 @@ class SceneBake {
     const auto t0 = Clock::now();
     create_scene_dir();
     before_ = read_manifest(manifest_path());
+    log_ = read_bake_log(log_path());
     mark_stale();
     std::exception_ptr failure;  // what was written before a failure stays recorded
     for (size_t i = 0; i < graph_.nodes.size() && !failure; ++i) try {
@@ -71,6 +75,16 @@ class SceneBake {
 
  private:
   fs::path manifest_path() const { return summary_.scene_dir / "manifest.json"; }
+  fs::path log_path() const { return summary_.scene_dir / "bake_log.json"; }
+
+  // Checked once per node: a check may hash the node's files.
+  const Freshness& freshness(size_t i) {
+    if (!freshness_[i]) {
+      const FreshnessOptions how{&log_, options_.verify};
+      freshness_[i] = check_freshness(graph_.nodes[i], before_, summary_.scene_dir, how);
+    }
+    return *freshness_[i];
+  }
 
   void create_scene_dir() const {
     std::error_code ec;
@@ -87,10 +101,11 @@ class SceneBake {
     needed_.assign(n, 0);
     reasons_.assign(n, "");
     textures_.resize(n);
+    freshness_.resize(n);
     for (size_t i = 0; i < n; ++i) {
       const GraphNode& node = graph_.nodes[i];
       if (!node.requested) continue;
-      const Freshness f = check_freshness(node, before_, summary_.scene_dir);
+      const Freshness& f = freshness(i);
       stale_[i] = options_.force || !f.current;
       reasons_[i] = options_.force && f.current ? "forced" : f.reason;
       needed_[i] = stale_[i];
@@ -119,8 +134,9 @@ class SceneBake {
     const GraphNode& node = graph_.nodes[i];
     if (options_.on_recorded)
       options_.on_recorded(summary_.scene_dir, node.spec.name, node.input_hash);
-    OutputRecord rec{node.info->name, "up to date", reasons_[i],
-                     before_.entries.at(node.spec.name)};
+    const ManifestEntry& entry = before_.entries.at(node.spec.name);
+    log_current_files(entry);
+    OutputRecord rec{node.info->name, "up to date", reasons_[i], entry};
     if (options_.on_output) options_.on_output(rec);
     summary_.outputs.push_back(std::move(rec));
   }
@@ -129,9 +145,7 @@ class SceneBake {
   // (also under --only, where it is not requested in this run).
   bool read_back(size_t i) {
     const GraphNode& node = graph_.nodes[i];
-    if (stale_[i] || !scene_.find_output(node.info->name) ||
-        !check_freshness(node, before_, summary_.scene_dir).current)
-      return false;
+    if (stale_[i] || !scene_.find_output(node.info->name) || !freshness(i).current) return false;
     textures_[i] = read_lossless_output(before_.entries.at(node.spec.name), summary_.scene_dir);
     if (textures_[i]) summary_.loaded.push_back(node.info->name);
     return textures_[i].has_value();
@@ -173,11 +187,29 @@ class SceneBake {
     if (node.info->estimate_error) {
       const auto t_estimate = Clock::now();
       rec.entry.estimated_error = node.info->estimate_error(scene_, node.spec, inputs_of(node), tex);
-      rec.entry.estimated_error["seconds"] = seconds_since(t_estimate);
+      rec.entry.error_seconds = seconds_since(t_estimate);
     }
     written_.push_back(rec.entry);
     if (options_.on_output) options_.on_output(rec);
     summary_.outputs.push_back(std::move(rec));
+  }
+
+  // A current output's files were found as recorded: remember their times
+  // so the next check need not hash them again.
+  void log_current_files(const ManifestEntry& entry) {
+    BakeLogEntry& logged = log_.entries[entry.name];
+    const BakeLogEntry old = logged;
+    for (const ManifestFile& f : entry.files)
+      logged.mtime_ns[f.path] = stat_file(summary_.scene_dir / f.path).mtime_ns;
+    if (!(old == logged)) log_touched_.insert(entry.name);
+  }
+
+  void log_written(const ManifestEntry& entry) {
+    BakeLogEntry logged{entry.bake_seconds, entry.error_seconds, {}};
+    for (const ManifestFile& f : entry.files)
+      logged.mtime_ns[f.path] = stat_file(summary_.scene_dir / f.path).mtime_ns;
+    log_.entries[entry.name] = logged;
+    log_touched_.insert(entry.name);
   }
 
   // Merges the written entries under the folder lock (another bake may have
@@ -185,15 +217,21 @@ class SceneBake {
   // an output the manifest does not list (a process killed in between leaves
   // the stamp old, so ninja runs the edge again and finds the output current).
   void record_written() {
-    if (written_.empty()) return;
+    for (const ManifestEntry& e : written_) log_written(e);
+    if (written_.empty() && log_touched_.empty()) return;
     {
       DirectoryLock lock(summary_.scene_dir);
-      Manifest m = read_manifest(manifest_path());
-      m.scene = scene_.name;
-      m.preset = scene_.file.string();
-      m.tool_version = SKYBAKE_VERSION;
-      for (const ManifestEntry& e : written_) m.entries[e.name] = e;
-      write_manifest(manifest_path(), m);
+      if (!written_.empty()) {
+        Manifest m = read_manifest(manifest_path());
+        m.scene = scene_.name;
+        m.preset = scene_.file.string();
+        m.tool_version = SKYBAKE_VERSION;
+        for (const ManifestEntry& e : written_) m.entries[e.name] = e;
+        write_manifest(manifest_path(), m);
+      }
+      BakeLog merged = read_bake_log(log_path());
+      for (const std::string& name : log_touched_) merged.entries[name] = log_.entries[name];
+      write_bake_log(log_path(), merged);
     }
     if (options_.on_recorded)
       for (const ManifestEntry& e : written_)
@@ -208,6 +246,9 @@ class SceneBake {
   std::vector<char> stale_, needed_;
   std::vector<std::string> reasons_;
   std::vector<std::optional<Texture>> textures_;
+  std::vector<std::optional<Freshness>> freshness_;
+  BakeLog log_;
+  std::set<std::string> log_touched_;  // entries this bake changed
   std::vector<ManifestEntry> written_;
   double bake_seconds_ = 0.0;
 };

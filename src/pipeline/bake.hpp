@@ -17,6 +17,7 @@ struct BakeOptions {
   std::filesystem::path out_dir = "out";
   std::vector<std::string> only;  // empty: everything the scene requests
   bool force = false;             // bake even what is current
+  bool verify = false;            // hash every recorded file (pipeline/freshness.hpp)
   // Progress of one product: (product, fraction in [0, 1]); thread-safe.
   std::function<void(const std::string&, double)> on_progress;
   // Called when an output is finished (baked or found current).
@@ -41,6 +42,9 @@ struct BakeSummary {
   std::vector<OutputRecord> outputs;
   std::vector<std::string> computed;  // products computed in memory, in order
   std::vector<std::string> loaded;    // current dependencies read back from disk
+  // Worth telling but not failing the bake; the CLI prints them and counts
+  // them on its summary line.
+  std::vector<std::string> warnings;
   double seconds = 0.0;
 };
 

@@ -9,6 +9,7 @@
 #include "io/atomic_file.hpp"
 #include "io/dds.hpp"
 #include "io/exr.hpp"
+#include "io/file_record.hpp"
 #include "io/png_preview.hpp"
 #include "io/vdb.hpp"
 #include "pipeline/product_options.hpp"
@@ -30,6 +31,38 @@ DdsFormat choose_dds_format(const Texture& tex, const ProductInfo& info, const O
   return DdsFormat::R32G32B32A32_FLOAT;
 }
 
+// Writes `tex` to `tmp` in one format; returns the encoding it used.
+std::string write_format(const std::string& format, const std::string& tmp, const Texture& tex,
+                         const ProductInfo& info, const OutputSpec& spec) {
+  if (format == "exr") {
+    const bool half = spec.precision == "half";
+    write_exr(tmp, tex, half ? ExrPrecision::half : ExrPrecision::float32);
+    return half ? "half" : "float";
+  }
+  if (format == "dds") {
+    const DdsFormat dds = choose_dds_format(tex, info, spec);
+    const bool mips = spec.options.value("mips", info.default_mips);
+    write_dds(tmp, mips ? build_mip_chain(tex, MipEdge::wrap) : std::vector<Texture>{tex}, dds);
+    return dxgi_format_name(dds);
+  }
+  if (format == "vdb") {
+    write_vdb(tmp, tex, 1.0 / tex.width);
+    return "float";
+  }
+  if (format == "png") {
+    PreviewOptions preview;
+    preview.tile_2x2 = info.preview_tiled;
+    preview.split_channels = info.preview_split;
+    if (info.preview_split) {  // channels side by side, two slices stacked: stays readable
+      preview.max_slices = 2;
+      preview.max_columns = 1;
+    }
+    write_png_preview(tmp, tex, preview);
+    return "srgb8";
+  }
+  throw Error(fmt::format("unknown format '{}' passed validation", format));
+}
+
 }  // namespace
 
 std::vector<std::string> output_files(const OutputSpec& spec) {
@@ -39,6 +72,7 @@ std::vector<std::string> output_files(const OutputSpec& spec) {
   return files;
 }
 
+
 std::vector<ManifestFile> write_outputs(const Texture& tex, const ProductInfo& info,
                                         const OutputSpec& spec,
                                         const std::filesystem::path& scene_dir) {
@@ -46,35 +80,15 @@ std::vector<ManifestFile> write_outputs(const Texture& tex, const ProductInfo& i
   std::vector<ManifestFile> files;
   const std::vector<std::string> names = output_files(spec);
   for (size_t i = 0; i < spec.formats.size(); ++i) {
-    const std::string& format = spec.formats[i];
     pending.push_back(std::make_unique<AtomicFile>(scene_dir / names[i]));
-    const std::string tmp = pending.back()->temp_path().string();
-    ManifestFile record{names[i], format, ""};
-    if (format == "exr") {
-      const bool half = spec.precision == "half";
-      write_exr(tmp, tex, half ? ExrPrecision::half : ExrPrecision::float32);
-      record.encoding = half ? "half" : "float";
-    } else if (format == "dds") {
-      const DdsFormat dds = choose_dds_format(tex, info, spec);
-      const bool mips = spec.options.value("mips", info.default_mips);
-      write_dds(tmp, mips ? build_mip_chain(tex, MipEdge::wrap) : std::vector<Texture>{tex}, dds);
-      record.encoding = dxgi_format_name(dds);
-    } else if (format == "vdb") {
-      write_vdb(tmp, tex, 1.0 / tex.width);
-      record.encoding = "float";
-    } else if (format == "png") {
-      PreviewOptions preview;
-      preview.tile_2x2 = info.preview_tiled;
-      preview.split_channels = info.preview_split;
-      if (info.preview_split) {  // channels side by side, two slices stacked: stays readable
-        preview.max_slices = 2;
-        preview.max_columns = 1;
-      }
-      write_png_preview(tmp, tex, preview);
-      record.encoding = "srgb8";
-    } else {
-      throw Error(fmt::format("unknown format '{}' passed validation", format));
-    }
+    const std::filesystem::path& tmp = pending.back()->temp_path();
+    ManifestFile record;
+    record.path = names[i];
+    record.format = spec.formats[i];
+    record.encoding = write_format(spec.formats[i], tmp.string(), tex, info, spec);
+    // Size and content as written, so freshness notices a truncated or edited file.
+    record.size = stat_file(tmp).size;
+    record.hash = hash_file(tmp);
     files.push_back(record);
   }
   for (auto& p : pending) p->commit();
