@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/safe_input.hpp"
 
 namespace fs = std::filesystem;
 
@@ -16,9 +17,13 @@ namespace skybake {
 
 namespace {
 
+// A file too large or too deeply nested to tell counts as a scene, so that
+// loading it names the limit instead of the folder silently skipping it.
 bool looks_like_scene(const fs::path& file) {
-  std::ifstream in(file);
-  const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  const FileText read = read_regular_file(file, kMaxJsonFileBytes);
+  if (read.status == ReadStatus::missing) return false;
+  if (read.status == ReadStatus::refused || json_nesting_problem(read.text)) return true;
+  const nlohmann::json j = nlohmann::json::parse(read.text, nullptr, /*allow_exceptions=*/false);
   return j.is_object() && j.contains("outputs");
 }
 

@@ -2,6 +2,7 @@
 
 #include <fstream>
 
+#include "core/safe_input.hpp"
 #include "io/atomic_file.hpp"
 
 namespace fs = std::filesystem;
@@ -16,10 +17,11 @@ void update_stamp(const fs::path& scene_dir, const std::string& name, const std:
   const fs::path stamp = stamp_path(scene_dir, name);
   std::error_code ec;
   fs::create_directories(stamp.parent_path(), ec);
-  std::ifstream in(stamp);
-  std::string old;
-  std::getline(in, old);
-  if (old == hash) return;  // untouched, so ninja's restat sees no change
+  // A stamp is one hash and a newline; anything else is rewritten. A stamp
+  // already right is left untouched, so ninja's restat sees no change.
+  const FileText read = read_regular_file(stamp, 4096);
+  const std::string old = read.text.substr(0, read.text.find('\n'));
+  if (read.status == ReadStatus::ok && old == hash) return;
   write_text_atomic(stamp, hash + "\n");
 }
 

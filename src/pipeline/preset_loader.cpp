@@ -18,6 +18,7 @@
 #include <fmt/ranges.h>
 
 #include "core/error.hpp"
+#include "core/safe_input.hpp"
 #include "core/suggest.hpp"
 #include "pipeline/cloud_products.hpp"
 #include "pipeline/product_tables.hpp"
@@ -54,21 +55,15 @@ std::string token(size_t index) {
   return "/" + std::to_string(index);
 }
 
-// The whole file, or nullopt with the reason in `why`.
+// The whole file, or nullopt with the reason in `why`: only a regular file
+// within the JSON size limit (core/safe_input.hpp) is read.
 std::optional<std::string> read_text(const fs::path& path, std::string& why) {
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) {
-    why = "is a directory";
+  FileText read = read_regular_file(path, kMaxJsonFileBytes);
+  if (read.status != ReadStatus::ok) {
+    why = read.why;
     return std::nullopt;
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    why = std::strerror(errno ? errno : ENOENT);
-    return std::nullopt;
-  }
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return std::move(read.text);
 }
 
 // "a scene preset", "an atmosphere preset".

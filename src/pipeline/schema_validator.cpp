@@ -20,6 +20,7 @@
 #include <rapidjson/stringbuffer.h>
 
 #include "core/error.hpp"
+#include "core/safe_input.hpp"
 #include "core/suggest.hpp"
 
 namespace skybake {
@@ -112,6 +113,8 @@ std::string lower_first(std::string s) {
 }  // namespace
 
 std::optional<SchemaViolation> parse_strict_json(const std::string& text, json& out) {
+  // Before the parser: rapidjson's parser and convert() recurse per level.
+  if (auto deep = json_nesting_problem(text)) return SchemaViolation{"", "syntax", *deep, {}};
   rapidjson::Document doc;
   doc.Parse<rapidjson::kParseValidateEncodingFlag | rapidjson::kParseFullPrecisionFlag>(
       text.data(), text.size());
