@@ -2,9 +2,17 @@
 // attributes are documented in exr.hpp.
 #include "io/exr.hpp"
 
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <OpenImageIO/imageio.h>
@@ -184,13 +192,75 @@ struct Shape {
   int width = 0, height = 0, depth = 1, layers = 1;
 };
 
+// Every size below comes from the file: products are taken in 64 bits and
+// saturate instead of wrapping, so no forged header can announce a small total.
+constexpr uint64_t kU64Max = std::numeric_limits<uint64_t>::max();
+uint64_t mul_saturated(uint64_t a, uint64_t b) {
+  return a != 0 && b > kU64Max / a ? kU64Max : a * b;
+}
+
+// "WxHxDxL", four integers from 1 to INT_MAX, or nullopt.
+std::optional<Shape> parse_shape(const std::string& text) {
+  int values[4];
+  const char* p = text.c_str();
+  for (int i = 0; i < 4; ++i) {
+    if (i > 0 && *p++ != 'x') return std::nullopt;
+    if (*p < '0' || *p > '9') return std::nullopt;
+    errno = 0;
+    char* end = nullptr;
+    const long long v = std::strtoll(p, &end, 10);
+    if (errno != 0 || v < 1 || v > std::numeric_limits<int>::max()) return std::nullopt;
+    values[i] = int(v);
+    p = end;
+  }
+  if (*p != '\0') return std::nullopt;
+  return Shape{values[0], values[1], values[2], values[3]};
+}
+
+// Refuses, before any pixel is allocated, a file whose parts would decode to
+// more float32 bytes than kMaxExrExpansion times the file's size (with a
+// floor of kExrExpansionFloor): EXR's lossless codecs compress at most about
+// 1000:1 (deflate), so such a header cannot describe the pixels that follow.
+constexpr uint64_t kMaxExrExpansion = 4096;
+constexpr uint64_t kExrExpansionFloor = uint64_t(64) << 20;
+constexpr uint64_t kMaxExrDecodedBytes = uint64_t(16) << 30;
+
+void check_decoded_size(const std::string& path, const std::vector<OIIO::ImageSpec>& specs) {
+  uint64_t decoded = 0;
+  for (size_t i = 0; i < specs.size(); ++i) {
+    const OIIO::ImageSpec& s = specs[i];
+    if (s.width < 1 || s.height < 1 || s.depth != 1 || s.nchannels < 1)
+      throw IoError(fmt::format("{}: part {}: expected a 2D image with channels, got {}x{}x{} "
+                                "with {} channels",
+                                path, i, s.width, s.height, s.depth, s.nchannels));
+    if (s.deep) throw IoError(fmt::format("{}: part {}: expected flat pixels, got deep data", path, i));
+    const uint64_t part = mul_saturated(
+        mul_saturated(mul_saturated(uint64_t(s.width), uint64_t(s.height)), uint64_t(s.nchannels)),
+        sizeof(float));
+    decoded = part > kU64Max - decoded ? kU64Max : decoded + part;
+  }
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0)
+    throw IoError(fmt::format("{}: cannot stat: {}", path, std::strerror(errno)));
+  const uint64_t file_size = uint64_t(st.st_size);
+  const uint64_t allowed =
+      std::min(kMaxExrDecodedBytes,
+               std::max(kExrExpansionFloor, mul_saturated(file_size, kMaxExrExpansion)));
+  if (decoded > allowed)
+    throw IoError(fmt::format(
+        "{}: header sizes decode to {} bytes of float32 pixels from a {}-byte file; the limit "
+        "is {} times the file size (at least {} MiB, at most {} GiB)",
+        path, decoded == kU64Max ? std::string("more than 2^64") : std::to_string(decoded),
+        file_size, kMaxExrExpansion, kExrExpansionFloor >> 20, kMaxExrDecodedBytes >> 30));
+}
+
 // Reads one part as float32 with the channels in `channels` order.
 std::vector<float> read_part(const std::string& path, OIIO::ImageInput& in, int part,
                              const std::vector<std::string>& channels) {
   if (!in.seek_subimage(part, 0))
     throw IoError(fmt::format("{}: expected a part {}, got none", path, part));
   const OIIO::ImageSpec& spec = in.spec();
-  std::vector<float> file(size_t(spec.width) * spec.height * spec.nchannels);
+  std::vector<float> file(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
   if (!in.read_image(part, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, file.data()))
     throw IoError(fmt::format("{}: cannot read part {}: {}", path, part, in.geterror()));
   std::vector<int> from;
@@ -208,8 +278,8 @@ std::vector<float> read_part(const std::string& path, OIIO::ImageInput& in, int 
   return out;
 }
 
-void expect_part_size(const std::string& path, const OIIO::ImageSpec& spec, int part, int width,
-                      int height) {
+void expect_part_size(const std::string& path, const OIIO::ImageSpec& spec, int part,
+                      int64_t width, int64_t height) {
   if (spec.width != width || spec.height != height)
     throw IoError(fmt::format("{}: expected part {} of {}x{}, got {}x{}", path, part, width, height,
                               spec.width, spec.height));
@@ -222,19 +292,55 @@ Texture read_exr(const std::string& path) {
   if (!in) throw IoError(fmt::format("{}: cannot read EXR: {}", path, OIIO::geterror()));
   std::vector<OIIO::ImageSpec> specs;
   for (int s = 0; in->seek_subimage(s, 0); ++s) specs.push_back(in->spec());
+  if (specs.empty()) throw IoError(fmt::format("{}: expected at least one part, got none", path));
+  // Every skybake:* attribute is checked against the parts' real sizes, and
+  // those against the file size, before the texture is allocated.
+  check_decoded_size(path, specs);
   const OIIO::ImageSpec& head = specs.at(0);
 
   Shape shape{head.width, head.height, 1, int(specs.size())};
   const std::string shape_text = head.get_string_attribute(kPrefix + "shape");
-  if (!shape_text.empty() && std::sscanf(shape_text.c_str(), "%dx%dx%dx%d", &shape.width,
-                                         &shape.height, &shape.depth, &shape.layers) != 4)
-    throw IoError(
-        fmt::format("{}: expected skybake:shape of the form WxHxDxL, got '{}'", path, shape_text));
+  if (!shape_text.empty()) {
+    const std::optional<Shape> parsed = parse_shape(shape_text);
+    if (!parsed)
+      throw IoError(fmt::format(
+          "{}: expected skybake:shape of the form WxHxDxL with sizes from 1 to {}, got '{}'", path,
+          std::numeric_limits<int>::max(), shape_text));
+    shape = *parsed;
+  }
   const std::string layout =
       head.get_string_attribute(kPrefix + "layout", specs.size() > 1 ? "layers" : "image");
   const std::string channel_text = head.get_string_attribute(kPrefix + "channels");
-  Texture tex(shape.width, shape.height, shape.depth, shape.layers,
-              channel_text.empty() ? head.channelnames : split_channels(channel_text));
+  const std::vector<std::string> channels =
+      channel_text.empty() ? head.channelnames : split_channels(channel_text);
+  for (size_t c = 0; c < channels.size(); ++c)
+    if (head.channelindex(channels[c]) < 0 ||
+        std::find(channels.begin(), channels.begin() + c, channels[c]) != channels.begin() + c)
+      throw IoError(fmt::format(
+          "{}: expected skybake:channels to name distinct channels of the file, got '{}'", path,
+          channels[c]));
+  int columns = 0;
+  if (layout == "atlas") {
+    columns = head.get_int_attribute(kPrefix + "atlas_columns");
+    const int rows = head.get_int_attribute(kPrefix + "atlas_rows");
+    if (shape.layers != 1)
+      throw IoError(fmt::format("{}: expected 1 layer in an atlas (skybake:shape), got {}", path,
+                                shape.layers));
+    if (columns < 1 || rows < 1 || int64_t(columns) * rows < shape.depth)
+      throw IoError(fmt::format("{}: expected an atlas of at least {} cells, got {}x{}", path,
+                                shape.depth, columns, rows));
+    expect_part_size(path, head, 0, int64_t(columns) * shape.width,
+                     int64_t(rows) * shape.height);
+  } else {
+    const uint64_t parts = uint64_t(shape.depth) * uint64_t(shape.layers);
+    if (specs.size() != parts)
+      throw IoError(fmt::format("{}: expected {} parts for a {}x{}x{}x{} texture, got {}", path,
+                                parts, shape.width, shape.height, shape.depth, shape.layers,
+                                specs.size()));
+    for (size_t i = 0; i < specs.size(); ++i)
+      expect_part_size(path, specs[i], int(i), shape.width, shape.height);
+  }
+  Texture tex(shape.width, shape.height, shape.depth, shape.layers, channels);
   for (const OIIO::ParamValue& p : head.extra_attribs) {
     const std::string name = p.name().string();
     if (name.rfind(kPrefix, 0) != 0 || p.type() != OIIO::TypeString) continue;
@@ -243,12 +349,6 @@ Texture read_exr(const std::string& path) {
   }
 
   if (layout == "atlas") {
-    const int columns = head.get_int_attribute(kPrefix + "atlas_columns");
-    const int rows = head.get_int_attribute(kPrefix + "atlas_rows");
-    if (columns < 1 || rows < 1 || columns * rows < tex.depth)
-      throw IoError(fmt::format("{}: expected an atlas of at least {} cells, got {}x{}", path,
-                                tex.depth, columns, rows));
-    expect_part_size(path, head, 0, columns * tex.width, rows * tex.height);
     const std::vector<float> atlas = read_part(path, *in, 0, tex.channels);
     const size_t nc = tex.channels.size(), atlas_width = size_t(columns) * tex.width;
     for (int z = 0; z < tex.depth; ++z) {
@@ -260,12 +360,7 @@ Texture read_exr(const std::string& path) {
     }
     return tex;
   }
-  const size_t parts = size_t(tex.depth) * tex.layers;
-  if (specs.size() != parts)
-    throw IoError(fmt::format("{}: expected {} parts for a {} texture, got {}", path, parts,
-                              tex.shape_string(), specs.size()));
-  for (size_t i = 0; i < parts; ++i) {
-    expect_part_size(path, specs[i], int(i), tex.width, tex.height);
+  for (size_t i = 0; i < specs.size(); ++i) {
     const std::vector<float> part = read_part(path, *in, int(i), tex.channels);
     // Parts are slices (layers == 1) or layers (depth == 1): either way the
     // part index is the slab index of the texture layout.
