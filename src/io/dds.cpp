@@ -3,6 +3,10 @@
 // "Programming Guide for DDS" for the fields and the data order).
 #include "io/dds.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -234,17 +238,29 @@ std::vector<uint8_t> make_header(const std::vector<Texture>& mips, const FormatI
 
 // ---- reading ---------------------------------------------------------------
 
+// At most `max_bytes` from the start of a regular file (opened without
+// blocking, so a FIFO swapped in after the caller's stat cannot hang it).
 std::vector<uint8_t> read_bytes(const std::string& path, size_t max_bytes) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0)
     throw IoError(fmt::format("{}: cannot open for reading: {}", path, std::strerror(errno)));
-  std::vector<uint8_t> bytes;
-  char buf[1 << 16];
-  while (bytes.size() < max_bytes && in) {
-    in.read(buf, std::streamsize(std::min(sizeof buf, max_bytes - bytes.size())));
-    bytes.insert(bytes.end(), buf, buf + in.gcount());
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode))
+    throw IoError(fmt::format("{}: expected a regular file", path));
+  std::vector<uint8_t> bytes(std::min<uint64_t>(max_bytes, uint64_t(st.st_size)));
+  size_t got = 0;
+  while (got < bytes.size()) {
+    const ssize_t n = ::read(fd, bytes.data() + got, bytes.size() - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw IoError(fmt::format("{}: read error: {}", path, std::strerror(errno)));
+    if (n == 0) break;
+    got += size_t(n);
   }
-  if (in.bad()) throw IoError(fmt::format("{}: read error", path));
+  bytes.resize(got);
   return bytes;
 }
 
@@ -284,6 +300,15 @@ struct Layout {
   int width, height, depth, layers, levels;
   uint64_t data_bytes;
 };
+
+// Bounds on what a header may announce (Direct3D 12: D3D12_REQ_TEXTURE2D_U_OR_V_DIMENSION,
+// D3D12_REQ_TEXTURE3D_U_V_OR_W_DIMENSION, D3D12_REQ_TEXTURE2D_ARRAY_AXIS_DIMENSION), and on
+// the decoded texels, so that a header cannot make the reader allocate more
+// than a few GiB even when the file is that long.
+constexpr uint32_t kMaxDdsSide = 16384;
+constexpr uint32_t kMaxDdsVolumeSide = 2048;
+constexpr uint32_t kMaxDdsArraySize = 2048;
+constexpr uint64_t kMaxDdsDecodedBytes = uint64_t(4) << 30;
 
 // Header sizes come from the file: saturate instead of wrapping, so a forged
 // header cannot announce a small total (a saturated total never matches the
@@ -330,20 +355,27 @@ Layout validate(const std::string& path, const DdsHeaderInfo& h) {
   if (h.misc_flag & dds::kMiscTextureCube)
     throw IoError(fmt::format("{}: expected no cube map, got miscFlag 0x{:x}", path, h.misc_flag));
   const uint32_t depth = volume ? h.depth : 1;
-  const uint32_t limit = uint32_t(std::numeric_limits<int>::max());
-  if (h.width < 1 || h.height < 1 || depth < 1 || h.width > limit || h.height > limit ||
-      depth > limit)
-    throw IoError(fmt::format("{}: expected sizes from 1 to {}, got {}x{}x{}", path, limit, h.width,
-                              h.height, depth));
-  if (h.array_size < 1 || h.array_size > limit || (volume && h.array_size != 1))
-    throw IoError(fmt::format("{}: expected arraySize {}, got {}", path,
-                              volume ? "1 for a volume" : "of at least 1", h.array_size));
+  // Direct3D 12's resource limits, which every file skybake writes is within:
+  // they bound each header size before anything is computed from it.
+  const uint32_t side_limit = volume ? kMaxDdsVolumeSide : kMaxDdsSide;
+  const char* const kind = volume ? "a volume" : "a 2D texture";
+  const std::pair<const char*, uint32_t> sides[] = {
+      {"width", h.width}, {"height", h.height}, {"depth", depth}};
+  for (const auto& [field, value] : sides)
+    if (value < 1 || value > side_limit)
+      throw IoError(fmt::format("{}: expected {} from 1 to {} for {}, got {}", path, field,
+                                side_limit, kind, value));
+  if (volume && h.array_size != 1)
+    throw IoError(fmt::format("{}: expected arraySize 1 for a volume, got {}", path, h.array_size));
+  if (h.array_size < 1 || h.array_size > kMaxDdsArraySize)
+    throw IoError(fmt::format("{}: expected arraySize from 1 to {}, got {}", path,
+                              kMaxDdsArraySize, h.array_size));
   l.width = int(h.width), l.height = int(h.height), l.depth = int(depth);
   l.layers = int(h.array_size);
   // DirectXTex reads mipMapCount even without DDSD_MIPMAPCOUNT; 0 means 1.
   const int full = mip_count(l.width, l.height, l.depth);
   if (h.mip_map_count > uint32_t(full))
-    throw IoError(fmt::format("{}: expected at most {} mip levels for {}x{}x{}, got {}", path, full,
+    throw IoError(fmt::format("{}: expected mipMapCount at most {} for {}x{}x{}, got {}", path, full,
                               l.width, l.height, l.depth, h.mip_map_count));
   l.levels = std::max(1, int(h.mip_map_count));
   uint64_t per_layer = 0;
@@ -354,6 +386,14 @@ Layout validate(const std::string& path, const DdsHeaderInfo& h) {
     per_layer = add_saturated(per_layer, mul_saturated(texels, uint64_t(l.format->bytes)));
   }
   l.data_bytes = mul_saturated(per_layer, uint64_t(l.layers));
+  const uint64_t decoded = mul_saturated(
+      mul_saturated(l.data_bytes / uint64_t(l.format->bytes), uint64_t(l.format->components)),
+      sizeof(float));
+  if (decoded > kMaxDdsDecodedBytes)
+    throw IoError(fmt::format(
+        "{}: expected at most {} GiB of float32 texels (all mip levels and layers), got {} "
+        "bytes for {}x{}x{} with arraySize {} and {} mip levels",
+        path, kMaxDdsDecodedBytes >> 30, decoded, l.width, l.height, l.depth, l.layers, l.levels));
   const uint64_t got = h.file_size - dds::kHeaderBytes;
   if (got != l.data_bytes)
     throw IoError(
@@ -445,11 +485,13 @@ void write_dds(const std::string& path, const std::vector<Texture>& mips, DdsFor
 }
 
 DdsHeaderInfo read_dds_header(const std::string& path) {
-  std::ifstream probe(path, std::ios::binary | std::ios::ate);
-  if (!probe)
+  // Only a regular file: a FIFO would block the open, a device never ends.
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0)
     throw IoError(fmt::format("{}: cannot open for reading: {}", path, std::strerror(errno)));
-  const uint64_t size = uint64_t(probe.tellg());
-  return parse_header(path, read_bytes(path, dds::kHeaderBytes), size);
+  if (!S_ISREG(st.st_mode))
+    throw IoError(fmt::format("{}: expected a regular file", path));
+  return parse_header(path, read_bytes(path, dds::kHeaderBytes), uint64_t(st.st_size));
 }
 
 DdsImage read_dds(const std::string& path) {
