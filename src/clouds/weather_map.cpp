@@ -111,6 +111,146 @@ void set_signal_meta(Metadata& m, const std::string& name, const Signal& s, doub
   set_meta(m, "octaves_used." + name, s.octaves);
 }
 
+// The three noise signals of the map, one stream each.
+struct WeatherSignals {
+  Signal coverage, rain, type;
+};
+
+WeatherSignals weather_signals(const WeatherSpec& spec) {
+  return {signal_for(spec, spec.coverage.feature_km, spec.coverage.octaves, kCoverageStream),
+          signal_for(spec, spec.precipitation.feature_km, spec.precipitation.octaves,
+                     kPrecipitationStream),
+          signal_for(spec, spec.type.feature_km, spec.type.octaves, kTypeStream)};
+}
+
+// Per texel: the coverage and type noise normalized to [-1, 1], and the
+// precipitation p (all 0 where it does not rain).
+struct WeatherFields {
+  std::vector<float> coverage, type, precipitation;
+};
+
+WeatherFields sample_weather_fields(const WeatherSpec& spec, const WeatherSignals& signals,
+                                    const ProgressCounter& progress) {
+  const int n = spec.size;
+  const size_t count = size_t(n) * size_t(n);
+  const bool rains = texels_from_fraction(spec.precipitation.area, count) > 0;
+  std::vector<float> nc(count), np(rains ? count : 0), nt(count);
+  tbb::parallel_for(0, n, [&](int y) {
+    for (int x = 0; x < n; ++x) {
+      const size_t i = size_t(y) * n + x;
+      nc[i] = sample(signals.coverage, x, y, n);
+      nt[i] = sample(signals.type, x, y, n);
+      if (rains) np[i] = sample(signals.rain, x, y, n);
+    }
+    progress.tick();
+  });
+  normalize(nc);
+  normalize(nt);
+  std::vector<float> p(count, 0.0f);
+  if (rains) {
+    normalize(np);
+    const float w = float(spec.precipitation.correlation);
+    for (size_t i = 0; i < count; ++i) np[i] = (1.0f - w) * np[i] + w * nc[i];
+    p = precipitation_from(np, spec.precipitation);
+  }
+  return {std::move(nc), std::move(nt), std::move(p)};
+}
+
+Texture weather_texture(const WeatherSpec& spec) {
+  const bool schneider = spec.layout == WeatherLayout::schneider;
+  return Texture(
+      spec.size, spec.size, 1, 1,
+      schneider ? std::vector<std::string>{"R", "G", "B"} : std::vector<std::string>{"R", "G"});
+}
+
+// What the map holds, summed over its texels (for the metadata).
+struct WeatherTotals {
+  double coverage_sum = 0.0;
+  size_t raining = 0;
+};
+
+// Coverage and type of every texel at threshold t, rain rules applied (see
+// the header); row sums added in row order (same for any thread count).
+WeatherTotals write_weather_texels(const WeatherSpec& spec, const WeatherFields& fields, double t,
+                                   Texture& tex, const ProgressCounter& progress) {
+  const int n = spec.size;
+  const bool schneider = spec.layout == WeatherLayout::schneider;
+  const std::vector<float>&nc = fields.coverage, &nt = fields.type, &p = fields.precipitation;
+  std::vector<double> row_coverage(n);
+  std::vector<size_t> row_raining(n);
+  tbb::parallel_for(0, n, [&](int y) {
+    double sum = 0.0;
+    size_t raining = 0;
+    for (int x = 0; x < n; ++x) {
+      const size_t i = size_t(y) * n + x;
+      const float c =
+          coverage_with_rain(float(raw_coverage(nc[i], t, spec.coverage.contrast)), p[i]);
+      const float type_raw =
+          float(std::clamp(spec.type.mean + spec.type.variation * nt[i], 0.0, 1.0));
+      float* texel = tex.texel(x, y);
+      texel[0] = c;
+      if (schneider) {
+        texel[1] = p[i];
+        texel[2] = std::clamp(type_with_rain(type_raw, p[i]), 0.0f, 1.0f);
+      } else {
+        const double index = frostbite_type_index(type_raw, p[i]);
+        texel[1] = float(std::clamp((index + 0.5) / spec.type_count, 0.0, 1.0));
+      }
+      sum += c;
+      raining += p[i] == 1.0f;
+    }
+    row_coverage[y] = sum;
+    row_raining[y] = raining;
+    progress.tick();
+  });
+  WeatherTotals totals;
+  for (int y = 0; y < n; ++y) {
+    totals.coverage_sum += row_coverage[y];
+    totals.raining += row_raining[y];
+  }
+  return totals;
+}
+
+void set_weather_metadata(Metadata& m, const WeatherSpec& spec, const WeatherSignals& signals,
+                          double t, const WeatherTotals& totals) {
+  const bool schneider = spec.layout == WeatherLayout::schneider;
+  const double count = double(spec.size) * double(spec.size);
+  set_meta(m, "product", "weather");
+  set_meta(m, "weather_layout", schneider ? "schneider" : "frostbite");
+  set_meta(m, "tiling", "periodic on x, y");
+  set_meta(m, "seed", std::to_string(spec.seed));
+  set_meta(m, "world_size_km", spec.world_size_km);
+  set_meta(m, "texel_size_m", spec.world_size_km * 1e3 / spec.size);
+  set_meta(m, "coverage.mean", spec.coverage.mean);
+  set_meta(m, "coverage.mean_baked", totals.coverage_sum / count);
+  set_meta(m, "coverage.contrast", spec.coverage.contrast);
+  set_meta(m, "coverage.threshold", t);
+  set_signal_meta(m, "coverage", signals.coverage, spec.world_size_km);
+  set_meta(m, "precipitation.area", spec.precipitation.area);
+  set_meta(m, "precipitation.area_baked", double(totals.raining) / count);
+  set_meta(m, "precipitation.edge", spec.precipitation.edge);
+  set_meta(m, "precipitation.correlation", spec.precipitation.correlation);
+  set_signal_meta(m, "precipitation", signals.rain, spec.world_size_km);
+  set_meta(m, "type.mean", spec.type.mean);
+  set_meta(m, "type.variation", spec.type.variation);
+  set_signal_meta(m, "type", signals.type, spec.world_size_km);
+  set_meta(m, "rain_rule",
+           "coverage = max(c, 0.7 p); type = (1 - p) type + p (schneider), type index = "
+           "(1 - p) 2 type + 3 p (frostbite); p = 1 gives coverage >= 0.7 and cumulonimbus");
+  if (schneider) {
+    set_meta(m, "channel.R", "coverage");
+    set_meta(m, "channel.G", "precipitation");
+    set_meta(m, "channel.B",
+             "cloud type: 0 stratus, 0.5 stratocumulus, 1 cumulus (1 with G = 1: cumulonimbus)");
+  } else {
+    set_meta(m, "type_count", spec.type_count);
+    set_meta(m, "channel.R", "density (coverage)");
+    set_meta(m, "channel.G",
+             "cloud_types u = (index + 0.5) / type_count; index 0 stratus, 1 stratocumulus, "
+             "2 cumulus, 3 cumulonimbus");
+  }
+}
+
 }  // namespace
 
 int period_from_feature_km(double world_size_km, double feature_km) {
@@ -172,110 +312,14 @@ Texture bake_weather_map(const WeatherSpec& spec, const BakeContext& ctx) {
   const auto problems = spec_problems(spec);
   if (!problems.empty())
     throw Error(fmt::format("weather: {}: {}", problems[0].field, problems[0].message));
-  const int n = spec.size;
-  const size_t count = size_t(n) * size_t(n);
-  const Signal cov =
-      signal_for(spec, spec.coverage.feature_km, spec.coverage.octaves, kCoverageStream);
-  const Signal rain = signal_for(spec, spec.precipitation.feature_km, spec.precipitation.octaves,
-                                 kPrecipitationStream);
-  const Signal type = signal_for(spec, spec.type.feature_km, spec.type.octaves, kTypeStream);
-  const bool rains = texels_from_fraction(spec.precipitation.area, count) > 0;
-
-  std::vector<float> nc(count), np(rains ? count : 0), nt(count);
-  ProgressCounter progress(ctx, size_t(n) * 2);
-  tbb::parallel_for(0, n, [&](int y) {
-    for (int x = 0; x < n; ++x) {
-      const size_t i = size_t(y) * n + x;
-      nc[i] = sample(cov, x, y, n);
-      nt[i] = sample(type, x, y, n);
-      if (rains) np[i] = sample(rain, x, y, n);
-    }
-    progress.tick();
-  });
-  normalize(nc);
-  normalize(nt);
-  std::vector<float> p(count, 0.0f);
-  if (rains) {
-    normalize(np);
-    const float w = float(spec.precipitation.correlation);
-    for (size_t i = 0; i < count; ++i) np[i] = (1.0f - w) * np[i] + w * nc[i];
-    p = precipitation_from(np, spec.precipitation);
-  }
-  const double t = coverage_threshold(nc, p, spec.coverage, n);
-
-  const bool schneider = spec.layout == WeatherLayout::schneider;
-  Texture tex(
-      n, n, 1, 1,
-      schneider ? std::vector<std::string>{"R", "G", "B"} : std::vector<std::string>{"R", "G"});
-  std::vector<double> row_coverage(n);
-  std::vector<size_t> row_raining(n);
-  tbb::parallel_for(0, n, [&](int y) {
-    double sum = 0.0;
-    size_t raining = 0;
-    for (int x = 0; x < n; ++x) {
-      const size_t i = size_t(y) * n + x;
-      const float c =
-          coverage_with_rain(float(raw_coverage(nc[i], t, spec.coverage.contrast)), p[i]);
-      const float type_raw =
-          float(std::clamp(spec.type.mean + spec.type.variation * nt[i], 0.0, 1.0));
-      float* texel = tex.texel(x, y);
-      texel[0] = c;
-      if (schneider) {
-        texel[1] = p[i];
-        texel[2] = std::clamp(type_with_rain(type_raw, p[i]), 0.0f, 1.0f);
-      } else {
-        const double index = frostbite_type_index(type_raw, p[i]);
-        texel[1] = float(std::clamp((index + 0.5) / spec.type_count, 0.0, 1.0));
-      }
-      sum += c;
-      raining += p[i] == 1.0f;
-    }
-    row_coverage[y] = sum;
-    row_raining[y] = raining;
-    progress.tick();
-  });
-  double coverage_sum = 0.0;
-  size_t raining = 0;
-  for (int y = 0; y < n; ++y) {
-    coverage_sum += row_coverage[y];
-    raining += row_raining[y];
-  }
-
-  Metadata& m = tex.metadata;
-  set_meta(m, "product", "weather");
-  set_meta(m, "weather_layout", schneider ? "schneider" : "frostbite");
-  set_meta(m, "tiling", "periodic on x, y");
-  set_meta(m, "seed", std::to_string(spec.seed));
-  set_meta(m, "world_size_km", spec.world_size_km);
-  set_meta(m, "texel_size_m", spec.world_size_km * 1e3 / n);
-  set_meta(m, "coverage.mean", spec.coverage.mean);
-  set_meta(m, "coverage.mean_baked", coverage_sum / double(count));
-  set_meta(m, "coverage.contrast", spec.coverage.contrast);
-  set_meta(m, "coverage.threshold", t);
-  set_signal_meta(m, "coverage", cov, spec.world_size_km);
-  set_meta(m, "precipitation.area", spec.precipitation.area);
-  set_meta(m, "precipitation.area_baked", double(raining) / double(count));
-  set_meta(m, "precipitation.edge", spec.precipitation.edge);
-  set_meta(m, "precipitation.correlation", spec.precipitation.correlation);
-  set_signal_meta(m, "precipitation", rain, spec.world_size_km);
-  set_meta(m, "type.mean", spec.type.mean);
-  set_meta(m, "type.variation", spec.type.variation);
-  set_signal_meta(m, "type", type, spec.world_size_km);
-  set_meta(m, "rain_rule",
-           "coverage = max(c, 0.7 p); type = (1 - p) type + p (schneider), type index = "
-           "(1 - p) 2 type + 3 p (frostbite); p = 1 gives coverage >= 0.7 and cumulonimbus");
-  if (schneider) {
-    set_meta(m, "channel.R", "coverage");
-    set_meta(m, "channel.G", "precipitation");
-    set_meta(m, "channel.B",
-             "cloud type: 0 stratus, 0.5 stratocumulus, 1 cumulus (1 with G = 1: cumulonimbus)");
-  } else {
-    set_meta(m, "type_count", spec.type_count);
-    set_meta(m, "channel.R", "density (coverage)");
-    set_meta(m, "channel.G",
-             "cloud_types u = (index + 0.5) / type_count; index 0 stratus, 1 stratocumulus, "
-             "2 cumulus, 3 cumulonimbus");
-  }
+  const WeatherSignals signals = weather_signals(spec);
+  ProgressCounter progress(ctx, size_t(spec.size) * 2);
+  WeatherFields fields = sample_weather_fields(spec, signals, progress);
+  const double t =
+      coverage_threshold(fields.coverage, fields.precipitation, spec.coverage, spec.size);
+  Texture tex = weather_texture(spec);
+  const WeatherTotals totals = write_weather_texels(spec, fields, t, tex, progress);
+  set_weather_metadata(tex.metadata, spec, signals, t, totals);
   return tex;
 }
 
