@@ -9,8 +9,8 @@
 // the sequence is geometric the ratio still grows toward lambda, so f is an
 // underestimate: the tail never adds light the orders would not have. No
 // tail (f = 0) when lambda >= kMaxTailRatio.
-// Used by the azimuth-free 3D table (scattering3d_lut.cpp); the 4D orders
-// compute the same factor inline (scattering_orders.cpp).
+// Used by the 4D orders (scattering_orders.cpp) and the azimuth-free 3D
+// table (scattering3d_lut.cpp).
 #pragma once
 
 #include <string>
@@ -18,9 +18,10 @@
 #include <fmt/format.h>
 #include <glm/glm.hpp>
 
-#include "atmosphere/scattering_orders.hpp"
-
 namespace skybake {
+
+// Order ratios at or above this are not extrapolated (f would exceed 1e4).
+constexpr double kMaxTailRatio = 0.9999;
 
 // f per channel from the totals of the last order (N) and the one before it.
 inline glm::dvec3 geometric_tail_factor(glm::dvec3 order_sum, glm::dvec3 previous_order_sum) {

@@ -15,6 +15,7 @@
 #include "atmosphere/gathering_lut.hpp"
 #include "atmosphere/geometric_tail.hpp"
 #include "atmosphere/geometry.hpp"
+#include "atmosphere/order_progress.hpp"
 #include "atmosphere/scattering_orders.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
@@ -31,13 +32,6 @@ const double kSunScale = std::tan(1.26 * 0.75);
 double horizon_cosine(const Atmosphere& atm, double h) {
   h = std::max(h, 0.0);
   return -std::sqrt(h * (2.0 * atm.bottom_radius_m + h)) / (atm.bottom_radius_m + h);
-}
-
-BakeContext stage_context(const BakeContext& ctx, double begin, double end) {
-  BakeContext sub;
-  if (ctx.on_progress)
-    sub.on_progress = [&ctx, begin, end](double f) { ctx.on_progress(begin + (end - begin) * f); };
-  return sub;
 }
 
 // Trilinear read of 3 channels from `first`.
@@ -313,108 +307,132 @@ void check_scattering3d_spec(const Scattering3dSpec& spec) {
                             spec.gathering_directions));
 }
 
-Scattering3dTextures bake_scattering3d(const Atmosphere& atm, const Texture& transmittance_lut,
-                                       const Scattering3dSpec& spec, const BakeContext& ctx) {
-  check_scattering3d_spec(spec);
+namespace {
+
+// Order 1, rows (h, mu) in parallel; the ray's nodes are shared by its suns.
+void bake_single_scattering3d(const Atmosphere& atm, const TransmittanceReader& reader,
+                              const Scattering3dSpec& spec, Texture& rayleigh, Texture& mie,
+                              const BakeContext& ctx) {
   const Scattering3dShape shape = spec.shape();
-  const ScatteringPhases phases = scattering_phases(atm);
-  const TransmittanceReader reader(transmittance_lut, atm);
-  const bool converge = spec.tolerance > 0.0;
-  const bool tail_mode = converge && spec.geometric_tail;
-  const int last_order = converge ? spec.max_orders : spec.orders;
-  const double stage = 1.0 / last_order;
   const int W = shape.height_size, Hv = shape.view_size, D = shape.sun_size;
+  ProgressCounter progress(ctx, size_t(W * Hv));
+  tbb::parallel_for(tbb::blocked_range<int>(0, W * Hv), [&](const tbb::blocked_range<int>& range) {
+    SingleScatteringRay ray;
+    for (int row = range.begin(); row != range.end(); ++row) {
+      const int x = row % W, y = row / W;
+      const Scattering3dParams p = scattering3d_texel_params(atm, shape, x, y, 0);
+      ray.prepare(atm, reader, atm.bottom_radius_m + p.h, p.mu, p.ray_hits_ground, spec.ray_nodes);
+      for (int z = 0; z < D; ++z) {
+        const double mu_s = mu_s_from_scattering3d_u(texel_center(z, D), D);
+        const SingleScattering mean =
+            azimuth_mean(reader, ray, p.mu, mu_s, spec.azimuth_samples, atm.sun_illuminance);
+        for (int c = 0; c < 3; ++c) {
+          rayleigh.at(x, y, z, 0, c) = float(mean.rayleigh[c]);
+          mie.at(x, y, z, 0, c) = float(mean.mie[c]);
+        }
+      }
+      progress.tick();
+    }
+  });
+}
 
-  // Order 1, rows (h, mu) in parallel; the ray's nodes are shared by its suns.
-  Texture rayleigh(W, Hv, D, 1, {"R", "G", "B"}), mie(W, Hv, D, 1, {"R", "G", "B"});
-  {
-    const BakeContext sub = stage_context(ctx, 0.0, stage);
-    ProgressCounter progress(sub, size_t(W * Hv));
-    tbb::parallel_for(
-        tbb::blocked_range<int>(0, W * Hv), [&](const tbb::blocked_range<int>& range) {
-          SingleScatteringRay ray;
-          for (int row = range.begin(); row != range.end(); ++row) {
-            const int x = row % W, y = row / W;
-            const Scattering3dParams p = scattering3d_texel_params(atm, shape, x, y, 0);
-            ray.prepare(atm, reader, atm.bottom_radius_m + p.h, p.mu, p.ray_hits_ground,
-                        spec.ray_nodes);
-            for (int z = 0; z < D; ++z) {
-              const double mu_s = mu_s_from_scattering3d_u(texel_center(z, D), D);
-              const SingleScattering mean =
-                  azimuth_mean(reader, ray, p.mu, mu_s, spec.azimuth_samples, atm.sun_illuminance);
-              for (int c = 0; c < 3; ++c) {
-                rayleigh.at(x, y, z, 0, c) = float(mean.rayleigh[c]);
-                mie.at(x, y, z, 0, c) = float(mean.mie[c]);
-              }
-            }
-            progress.tick();
-          }
-        });
-  }
+// The orders k >= 2 of one bake (header): the sums so far, the last order
+// (which the next one gathers) and the lit ground.
+class Scattering3dIteration {
+ public:
+  Scattering3dIteration(const Atmosphere& atm, const Texture& transmittance_lut,
+                        const Scattering3dSpec& spec, const ScatteringPhases& phases,
+                        Texture order1_rayleigh, Texture order1_mie)
+      : atm_(atm),
+        lut_(transmittance_lut),
+        spec_(spec),
+        shape_(spec.shape()),
+        phases_(phases),
+        total_r_(order1_rayleigh),
+        total_m_(order1_mie),
+        gathering_sum_(shape_.height_size, shape_.sun_size, 1, 1, {"R", "G", "B"}),
+        delta_r_(std::move(order1_rayleigh)),
+        delta_m_(std::move(order1_mie)) {}
 
-  Scattering3dTextures out;
-  out.shape = shape;
-  out.orders_used = 1;
-  Texture total_r = rayleigh, total_m = mie;
-  out.gathering_sum = Texture(W, D, 1, 1, {"R", "G", "B"});
-  Texture delta_r = std::move(rayleigh), delta_m = std::move(mie);
-  std::vector<glm::dvec3> ground_E;  // E_{k-1} per sun texel
-  GroundLight3d ground;              // direct sunlight for order 1's gathering
-  Texture last_gathering;            // G_{k-1}, for the tail of the gathering sum
-  glm::dvec3 previous_order_sum(0.0), tail_factor(0.0);
-  for (int k = 2; k <= last_order; ++k) {
-    const double begin = (k - 1) * stage;
-    // Gather order k - 1, lit ground of order k - 2.
+  // Order k: gathers order k - 1 (lit ground of order k - 2) and integrates
+  // it along the rays; returns the residual.
+  double add_next_order(int k, const BakeContext& ctx) {
     const GatheringPass pass =
-        bake_gathering(atm, transmittance_lut, shape, {&delta_r, &delta_m, &phases}, ground,
-                       spec.gathering_directions, stage_context(ctx, begin, begin + 0.1 * stage));
-    for (size_t i = 0; i < out.gathering_sum.data.size(); ++i)
-      out.gathering_sum.data[i] += pass.gathering.data[i];
-    ground_E = pass.ground_irradiance;
-    ground.per_sun_texel = &ground_E;
+        bake_gathering(atm_, lut_, shape_, {&delta_r_, &delta_m_, &phases_}, ground_,
+                       spec_.gathering_directions, stage_context(ctx, 0.0, 0.1));
+    for (size_t i = 0; i < gathering_sum_.data.size(); ++i)
+      gathering_sum_.data[i] += pass.gathering.data[i];
+    ground_E_ = pass.ground_irradiance;
+    ground_.per_sun_texel = &ground_E_;
 
-    bake_order_from_gathering(atm, shape, pass.gathering, spec.ray_nodes, delta_r, delta_m,
-                              stage_context(ctx, begin + 0.1 * stage, begin + stage));
+    bake_order_from_gathering(atm_, shape_, pass.gathering, spec_.ray_nodes, delta_r_, delta_m_,
+                              stage_context(ctx, 0.1, 1.0));
     // The tail's ratio of this order's total to the last's (header).
     glm::dvec3 order_sum(0.0);
-    for (size_t i = 0; i < delta_r.data.size(); ++i)
-      order_sum[i % 3] += double(delta_r.data[i]) + delta_m.data[i];
-    tail_factor = k >= 3 ? geometric_tail_factor(order_sum, previous_order_sum) : glm::dvec3(0.0);
-    previous_order_sum = order_sum;
-    if (tail_mode) last_gathering = pass.gathering;
-    // Residual (header) and accumulation.
-    double peak = 0.0;
-    for (size_t i = 0; i < total_r.data.size(); ++i)
-      peak = std::max(
-          peak, double(total_r.data[i]) + total_m.data[i] + delta_r.data[i] + delta_m.data[i]);
-    const double floor = std::max(1e-6 * peak, std::numeric_limits<double>::min());
-    double residual = 0.0;
-    for (size_t i = 0; i < total_r.data.size(); ++i) {
-      const double delta = double(delta_r.data[i]) + delta_m.data[i];
-      const double sum = double(total_r.data[i]) + total_m.data[i] + delta;
-      residual = std::max(residual, delta / std::max(sum, floor));
-      total_r.data[i] += delta_r.data[i];
-      total_m.data[i] += delta_m.data[i];
-    }
-    out.orders_used = k;
-    out.last_residual = residual;
-    out.residuals.push_back(residual);
-    if (converge && residual < spec.tolerance) break;
-  }
-  if (tail_mode) {
-    // Orders k > N stand as DeltaS_N lambda^(k - N): their sum is f DeltaS_N.
-    out.tail_factor = tail_factor;
-    for (size_t i = 0; i < total_r.data.size(); ++i) {
-      const double f = tail_factor[i % 3];
-      total_r.data[i] = float(total_r.data[i] + f * delta_r.data[i]);
-      total_m.data[i] = float(total_m.data[i] + f * delta_m.data[i]);
-    }
-    for (size_t i = 0; i < last_gathering.data.size(); ++i)
-      out.gathering_sum.data[i] =
-          float(out.gathering_sum.data[i] + tail_factor[i % 3] * last_gathering.data[i]);
+    for (size_t i = 0; i < delta_r_.data.size(); ++i)
+      order_sum[i % 3] += double(delta_r_.data[i]) + delta_m_.data[i];
+    tail_factor_ = k >= 3 ? geometric_tail_factor(order_sum, previous_order_sum_) : glm::dvec3(0.0);
+    previous_order_sum_ = order_sum;
+    if (spec_.tolerance > 0.0 && spec_.geometric_tail) last_gathering_ = pass.gathering;
+    return accumulate_order();
   }
 
-  out.scattering = Texture(W, Hv, D, 1,
+  // Orders k > N stand as DeltaS_N lambda^(k - N): their sum is f DeltaS_N.
+  glm::dvec3 add_geometric_tail() {
+    for (size_t i = 0; i < total_r_.data.size(); ++i) {
+      const double f = tail_factor_[i % 3];
+      total_r_.data[i] = float(total_r_.data[i] + f * delta_r_.data[i]);
+      total_m_.data[i] = float(total_m_.data[i] + f * delta_m_.data[i]);
+    }
+    for (size_t i = 0; i < last_gathering_.data.size(); ++i)
+      gathering_sum_.data[i] =
+          float(gathering_sum_.data[i] + tail_factor_[i % 3] * last_gathering_.data[i]);
+    return tail_factor_;
+  }
+
+  Texture& total_rayleigh() { return total_r_; }
+  Texture& total_mie() { return total_m_; }
+  Texture& gathering_sum() { return gathering_sum_; }
+
+ private:
+  // Residual (header) and accumulation.
+  double accumulate_order() {
+    double peak = 0.0;
+    for (size_t i = 0; i < total_r_.data.size(); ++i)
+      peak = std::max(
+          peak, double(total_r_.data[i]) + total_m_.data[i] + delta_r_.data[i] + delta_m_.data[i]);
+    const double floor = std::max(1e-6 * peak, std::numeric_limits<double>::min());
+    double residual = 0.0;
+    for (size_t i = 0; i < total_r_.data.size(); ++i) {
+      const double delta = double(delta_r_.data[i]) + delta_m_.data[i];
+      const double sum = double(total_r_.data[i]) + total_m_.data[i] + delta;
+      residual = std::max(residual, delta / std::max(sum, floor));
+      total_r_.data[i] += delta_r_.data[i];
+      total_m_.data[i] += delta_m_.data[i];
+    }
+    return residual;
+  }
+
+  const Atmosphere& atm_;
+  const Texture& lut_;
+  const Scattering3dSpec& spec_;
+  const Scattering3dShape shape_;
+  const ScatteringPhases& phases_;
+  Texture total_r_, total_m_;
+  Texture gathering_sum_;
+  Texture delta_r_, delta_m_;         // DeltaS of the last order
+  std::vector<glm::dvec3> ground_E_;  // E_{k-1} per sun texel
+  GroundLight3d ground_;              // direct sunlight for order 1's gathering
+  Texture last_gathering_;            // G_{k-1}, for the tail of the gathering sum
+  glm::dvec3 previous_order_sum_{0.0}, tail_factor_{0.0};
+};
+
+// out.scattering (+ Mie red in A with combined_mie_alpha) and out.mie from
+// the sums, with their metadata.
+void assemble_scattering3d(const Atmosphere& atm, const Scattering3dSpec& spec,
+                           const ScatteringPhases& phases, const Texture& total_r, Texture total_m,
+                           Scattering3dTextures& out) {
+  out.scattering = Texture(total_r.width, total_r.height, total_r.depth, 1,
                            spec.combined_mie_alpha ? std::vector<std::string>{"R", "G", "B", "A"}
                                                    : std::vector<std::string>{"R", "G", "B"});
   const int channels = out.scattering.channel_count();
@@ -433,7 +451,11 @@ Scattering3dTextures bake_scattering3d(const Atmosphere& atm, const Texture& tra
             "p_M(nu)*mie");
   set_scattering3d_metadata(out.mie.metadata, atm, spec, out, phases,
                             "Mie-phase scattering of all orders without phase, RGB");
-  Metadata& g = out.gathering_sum.metadata;
+}
+
+void set_gathering_sum_metadata(Metadata& g, const Atmosphere& atm, const Scattering3dSpec& spec,
+                                const Scattering3dTextures& out) {
+  const bool tail_mode = spec.tolerance > 0.0 && spec.geometric_tail;
   set_meta(g, "parameterization", std::string("gathering_sum"));
   set_meta(g, "quantity",
            std::string("sum over orders 1..N-1 of the light gathered from all directions, "
@@ -450,6 +472,42 @@ Scattering3dTextures bake_scattering3d(const Atmosphere& atm, const Texture& tra
                        "v = coord(0.5*(atan(max(mu_s, mu_s_min)*tan(0.945))/0.75 + 0.74), "
                        "height)"));
   set_meta(g, "units", std::string("relative to the sun_illuminance of the preset"));
+}
+
+}  // namespace
+
+Scattering3dTextures bake_scattering3d(const Atmosphere& atm, const Texture& transmittance_lut,
+                                       const Scattering3dSpec& spec, const BakeContext& ctx) {
+  check_scattering3d_spec(spec);
+  const Scattering3dShape shape = spec.shape();
+  const ScatteringPhases phases = scattering_phases(atm);
+  const bool converge = spec.tolerance > 0.0;
+  const int last_order = converge ? spec.max_orders : spec.orders;
+  // Stages: order 1 and orders 2..N; the tail and the outputs are quick.
+  OrderProgress progress(ctx, last_order, spec.tolerance, 0);
+  const int W = shape.height_size, Hv = shape.view_size, D = shape.sun_size;
+
+  Texture rayleigh(W, Hv, D, 1, {"R", "G", "B"}), mie(W, Hv, D, 1, {"R", "G", "B"});
+  bake_single_scattering3d(atm, TransmittanceReader(transmittance_lut, atm), spec, rayleigh, mie,
+                           progress.order_context(1));
+  Scattering3dTextures out;
+  out.shape = shape;
+  out.orders_used = 1;
+  Scattering3dIteration orders(atm, transmittance_lut, spec, phases, std::move(rayleigh),
+                               std::move(mie));
+  for (int k = 2; k <= last_order; ++k) {
+    const double residual = orders.add_next_order(k, progress.order_context(k));
+    progress.order_done(k, residual);
+    out.orders_used = k;
+    out.last_residual = residual;
+    out.residuals.push_back(residual);
+    if (converge && residual < spec.tolerance) break;
+  }
+  if (converge && spec.geometric_tail) out.tail_factor = orders.add_geometric_tail();
+  assemble_scattering3d(atm, spec, phases, orders.total_rayleigh(), std::move(orders.total_mie()),
+                        out);
+  out.gathering_sum = std::move(orders.gathering_sum());
+  set_gathering_sum_metadata(out.gathering_sum.metadata, atm, spec, out);
   if (ctx.on_progress) ctx.on_progress(1.0);
   return out;
 }

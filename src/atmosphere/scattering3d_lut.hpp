@@ -131,7 +131,8 @@ struct Scattering3dTextures {
 void check_scattering3d_spec(const Scattering3dSpec& spec);
 
 // Rows in parallel (tbb) per stage, every texel independent: same data for
-// any thread count. Progress over the orders.
+// any thread count. Progress over the orders; with a tolerance, over those
+// the decay of the residuals predicts (order_progress.hpp).
 Scattering3dTextures bake_scattering3d(const Atmosphere& atm, const Texture& transmittance_lut,
                                        const Scattering3dSpec& spec, const BakeContext& ctx);
 

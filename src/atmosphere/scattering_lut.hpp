@@ -344,7 +344,7 @@ struct ScatteringOrder {
   const Texture* radiance = nullptr;  // order >= 2: radiance, phase included
   const ScatteringPhases* phases = nullptr;
   // The tables' rows of rays that meet the ground hold the value divided by
-  // the ray's opacity 1 - T (scattering_orders.hpp, divide_ground_rows_by_
+  // the ray's opacity 1 - T (incident_radiance.hpp, divide_ground_rows_by_
   // opacity); radiance_at returns that quotient there, and the caller
   // multiplies by the opacity of its own ray.
   bool ground_rows_per_opacity = false;

@@ -467,6 +467,34 @@ TEST(BakeScattering3d, SameDataForOneAndTwoThreads) {
   EXPECT_TRUE(one.gathering_sum.data == two.gathering_sum.data);
 }
 
+TEST(BakeScattering3d, ProgressFollowsTheOrdersAToleranceTakes) {
+  // As the 4D test (scattering_orders_test.cpp): never decreasing, 1 only
+  // at the end, past half when the last order starts. One thread: the
+  // reports arrive in order.
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+  const Atmosphere atm = scaled(fixtures::earth_atmosphere(), 50.0);
+  const Texture lut = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{});
+  Scattering3dSpec spec = small_spec(4);
+  spec.tolerance = 5e-3;
+  spec.max_orders = 400;
+  std::vector<double> seen;
+  BakeContext ctx;
+  ctx.on_progress = [&](double f) { seen.push_back(f); };
+  const Scattering3dTextures t = bake_scattering3d(atm, lut, spec, ctx);
+  ASSERT_GT(t.orders_used, 10);
+  // Each order k >= 2 reports once per (h, mu_s) texel of its gathering and
+  // once per (h, mu) row of its table; the bake then reports 1.
+  const size_t per_order = size_t(spec.height_size) * (spec.sun_size + spec.view_size);
+  ASSERT_GT(seen.size(), per_order + 2);
+  for (size_t i = 1; i < seen.size(); ++i) ASSERT_GE(seen[i], seen[i - 1]) << i;
+  for (size_t i = 0; i + 1 < seen.size(); ++i) ASSERT_LT(seen[i], 1.0) << i;
+  EXPECT_EQ(seen.back(), 1.0);
+  const double last_order_start = seen[seen.size() - 2 - per_order];
+  RecordProperty("orders_used", t.orders_used);
+  RecordProperty("last_order_start", fmt::format("{:.3f}", last_order_start));
+  EXPECT_GT(last_order_start, 0.5);
+}
+
 TEST(BakeScattering3d, RejectsBadSpecs) {
   const Atmosphere atm = fixtures::earth_atmosphere();
   const Texture lut = bake_transmittance_lut(atm, {16, 4, 5}, BakeContext{});

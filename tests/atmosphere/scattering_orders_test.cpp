@@ -572,6 +572,37 @@ TEST(BakeBruneton, SameDataForOneAndTwoThreads) {
   EXPECT_EQ(one.last_residual, two.last_residual);
 }
 
+TEST(BakeBruneton, ProgressFollowsTheOrdersAToleranceTakes) {
+  // 50x Earth to a tolerance: many orders, far fewer than the cap. The
+  // fraction never decreases, reaches 1 only at the end, and is past half
+  // when the last order starts (with each order weighted 1 / (max_orders +
+  // 1), it would start near 28% and the bake jump to 1 from there). One
+  // thread: the reports arrive in order.
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+  const Atmosphere atm = scaled(fixtures::earth_atmosphere(), 50.0);
+  const Texture lut = bake_transmittance_lut(atm, {128, 32, 40}, BakeContext{});
+  BrunetonSpec spec = dense_spec();
+  spec.tolerance = 5e-3;
+  spec.max_orders = 400;
+  std::vector<double> seen;
+  BakeContext ctx;
+  ctx.on_progress = [&](double f) { seen.push_back(f); };
+  const BrunetonTextures t = bake_bruneton(atm, lut, spec, ctx);
+  ASSERT_GT(t.orders_used, 10);
+  ASSERT_LT(t.orders_used, spec.max_orders);
+  // Each order k >= 2 reports once per (r, mu_s) pair of its density and
+  // once per (r, mu) row of its DeltaS; the bake then reports 1.
+  const size_t per_order = size_t(spec.r_size) * (spec.mu_s_size + spec.mu_size);
+  ASSERT_GT(seen.size(), per_order + 2);
+  for (size_t i = 1; i < seen.size(); ++i) ASSERT_GE(seen[i], seen[i - 1]) << i;
+  for (size_t i = 0; i + 1 < seen.size(); ++i) ASSERT_LT(seen[i], 1.0) << i;
+  EXPECT_EQ(seen.back(), 1.0);
+  const double last_order_start = seen[seen.size() - 2 - per_order];
+  RecordProperty("orders_used", t.orders_used);
+  RecordProperty("last_order_start", fmt::format("{:.3f}", last_order_start));
+  EXPECT_GT(last_order_start, 0.5);
+}
+
 TEST(BakeBruneton, RejectsBadSpecs) {
   const Atmosphere atm = fixtures::earth_atmosphere();
   const Texture lut = bake_transmittance_lut(atm, {16, 4, 5}, BakeContext{});

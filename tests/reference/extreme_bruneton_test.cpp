@@ -144,7 +144,7 @@ TEST(ExtremeBruneton, ConservativeDenseSkyReturnsTheSunlightUpToTheTablesLoss) {
   // interpolation at every order, compounded over ~160 orders
   // (docs/report.md "Dense media need larger tables": 0.83-0.96 from 8 x 32
   // to 32 x 256). On 16 x 64 x 8 x 4: R / G / B 0.917 / 0.869 / 0.848 with the
-  // ground rows read per opacity (scattering_orders.hpp), 0.878 / 0.840 /
+  // ground rows read per opacity (incident_radiance.hpp), 0.878 / 0.840 /
   // 0.829 before; never above 1.
   Atmosphere atm = extreme_atmosphere("rayleigh_100x");
   std::vector<MediumComponent> rayleigh;

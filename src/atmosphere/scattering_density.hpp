@@ -1,0 +1,28 @@
+// The scattering density J_k of one order of the 4D table (Bruneton 2017
+// ComputeScatteringDensity; the equation, the phase quadrature and how the
+// work is shared between texels are in scattering_orders.hpp).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "atmosphere/incident_radiance.hpp"
+#include "atmosphere/medium.hpp"
+#include "atmosphere/scattering_lut.hpp"
+#include "core/bake_context.hpp"
+#include "core/texture.hpp"
+
+namespace skybake {
+
+// J_k at (r, mu, mu_s, nu) by the direct quadrature over the grid: the
+// reference for bake_scattering_density, which must agree (tests).
+glm::dvec3 compute_scattering_density(const Atmosphere& atm, const Texture& transmittance_lut,
+                                      const ScatteringShape& shape, const ScatteringOrder& previous,
+                                      const GroundIrradiance& ground, double r, double mu,
+                                      double mu_s, double nu, int bands);
+
+// J_k at every texel (RGB, the scattering table's shape), fast path.
+Texture bake_scattering_density(const Atmosphere& atm, const Texture& transmittance_lut,
+                                const ScatteringShape& shape, const ScatteringOrder& previous,
+                                const GroundIrradiance& ground, int bands, const BakeContext& ctx);
+
+}  // namespace skybake
