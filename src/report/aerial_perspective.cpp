@@ -17,6 +17,7 @@
 #include "atmosphere/aerial_perspective_lut.hpp"
 #include "atmosphere/sky_integrator.hpp"
 #include "pipeline/atmosphere_specs.hpp"
+#include "report/aerial_perspective.hpp"
 #include "report/ladders.hpp"
 #include "report/stats.hpp"
 
@@ -30,11 +31,12 @@ struct AerialQuery {
   glm::dvec4 reference{0.0};  // RGB luminance, A mean transmittance
 };
 
-std::vector<AerialQuery> aerial_queries(const ReportInputs& in, const AerialPerspectiveSpec& op) {
+std::vector<AerialQuery> aerial_queries(const ReportInputs& in, const AerialPerspectiveSetup& setup,
+                                        const AerialPerspectiveSpec& op) {
   const Atmosphere& atm = in.scene.atmosphere;
   const glm::dvec3 position(0.0, 0.0, atm.bottom_radius_m + std::max(op.camera.altitude_m, 0.0));
   const glm::dvec3 sun_dir = sun_direction(op.sun_zenith_rad, op.sun_azimuth_rad);
-  std::vector<AerialQuery> q(size_t(in.level.aerial_queries));
+  std::vector<AerialQuery> q(size_t(setup.aerial_queries));
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
     q[i].screen_uv = {query_unit(i, 30), query_unit(i, 31)};
     const glm::dvec3 dir = view_dir_from_screen_uv(op.camera, q[i].screen_uv);
@@ -46,7 +48,7 @@ std::vector<AerialQuery> aerial_queries(const ReportInputs& in, const AerialPers
     q[i].distance_m = query_unit(i, 32) * reach;
     const ScatteringResult ref =
         integrate_scattered_luminance(atm, in.transmittance, &in.multiscattering, position, dir,
-                                      sun_dir, q[i].distance_m, in.level.aerial_reference_steps);
+                                      sun_dir, q[i].distance_m, setup.aerial_reference_steps);
     const glm::dvec3& t = ref.transmittance;
     q[i].reference = glm::dvec4(ref.luminance, (t.x + t.y + t.z) / 3.0);
   });
@@ -68,20 +70,39 @@ nlohmann::json measure(const Texture& lut, double depth_range_m,
 
 }  // namespace
 
-nlohmann::json aerial_perspective_report(const ReportInputs& in) {
+AerialPerspectiveSetup AerialPerspectiveSetup::full() {
+  AerialPerspectiveSetup s;
+  s.aerial_steps = {1, 2, 4, 8};
+  s.aerial_depths = {16, 32, 64};
+  s.aerial_queries = 2048;
+  s.aerial_reference_steps = 2000;
+  return s;
+}
+
+AerialPerspectiveSetup AerialPerspectiveSetup::quick() {
+  AerialPerspectiveSetup s;
+  s.aerial_steps = {1, 2, 4};
+  s.aerial_depths = {16, 32};
+  s.aerial_queries = 256;
+  s.aerial_reference_steps = 500;
+  return s;
+}
+
+nlohmann::json aerial_perspective_report(const ReportInputs& in,
+                                         const AerialPerspectiveSetup& setup) {
   const Atmosphere& atm = in.scene.atmosphere;
   const AerialPerspectiveSpec op =
       aerial_perspective_spec(operating_spec(in.scene, "aerial_perspective"));
   in.stage("aerial_perspective: reference march");
-  const std::vector<AerialQuery> queries = aerial_queries(in, op);
+  const std::vector<AerialQuery> queries = aerial_queries(in, setup, op);
 
   std::vector<nlohmann::json> grid;
-  for (int depth : in.level.aerial_depths)
-    for (int steps : in.level.aerial_steps)
+  for (int depth : setup.aerial_depths)
+    for (int steps : setup.aerial_steps)
       grid.push_back({{"size", {op.width, op.height, depth}}, {"steps_per_slice", steps}});
   nlohmann::json sizes = nlohmann::json::array();
-  for (int depth : in.level.aerial_depths) sizes.push_back({op.width, op.height, depth});
-  const nlohmann::json axes = {{"steps_per_slice", in.level.aerial_steps}, {"size", sizes}};
+  for (int depth : setup.aerial_depths) sizes.push_back({op.width, op.height, depth});
+  const nlohmann::json axes = {{"steps_per_slice", setup.aerial_steps}, {"size", sizes}};
   const LadderMeasure bake_and_measure = [&](const nlohmann::json& s) {
     AerialPerspectiveSpec spec = op;
     spec.width = s["size"][0];
@@ -108,7 +129,7 @@ nlohmann::json aerial_perspective_report(const ReportInputs& in) {
   out["reference"] = fmt::format(
       "the same march from the camera with {} uniform steps to each query's distance, reading "
       "the same transmittance and multiple-scattering tables",
-      in.level.aerial_reference_steps);
+      setup.aerial_reference_steps);
   out["queries"] = fmt::format(
       "{} points: screen position uniform, distance uniform up to the nearer of {:g} km and "
       "the ground; RGB in max_rel / rms_rel, A in transmittance; lookup_aerial_perspective "

@@ -20,15 +20,15 @@ namespace {
 
 constexpr double kDeg = kPi / 180.0;
 
-BrunetonSpec level_bruneton_spec(const ReportLevel& level) {
+BrunetonSpec level_bruneton_spec(const BrunetonSetup& setup) {
   BrunetonSpec b;
-  b.r_size = level.bruneton_shape.at(0);
-  b.mu_size = level.bruneton_shape.at(1);
-  b.mu_s_size = level.bruneton_shape.at(2);
-  b.nu_size = level.bruneton_shape.at(3);
-  b.orders = level.bruneton_orders;
-  b.tolerance = level.bruneton_tolerance;
-  b.max_orders = level.bruneton_max_orders;
+  b.r_size = setup.bruneton_shape.at(0);
+  b.mu_size = setup.bruneton_shape.at(1);
+  b.mu_s_size = setup.bruneton_shape.at(2);
+  b.nu_size = setup.bruneton_shape.at(3);
+  b.orders = setup.bruneton_orders;
+  b.tolerance = setup.bruneton_tolerance;
+  b.max_orders = setup.bruneton_max_orders;
   return b;
 }
 
@@ -36,35 +36,52 @@ glm::dvec3 rgb_of(const nlohmann::json& v) {
   return {v[0], v[1], v[2]};
 }
 
-}  // namespace
+// The 4D tables compared, and order 1 alone as bake_bruneton made it (same
+// shape, nodes and transmittance): the table minus it is orders >= 2.
+struct BakedTables {
+  bool own = false;  // the scene's scattering output, else the setup's table
+  BrunetonSpec spec;
+  BrunetonTextures tables;
+  SingleScatteringTables single;
+  double seconds = 0.0;
+};
 
-nlohmann::json bruneton_comparison_report(const ReportInputs& in,
-                                          const nlohmann::json& sky_radiance) {
-  if (sky_radiance.is_null())
-    return {{"status", "not run"}, {"reason", "the sky radiance section was not run"}};
+BakedTables bake_tables(const ReportInputs& in, const BrunetonSetup& setup) {
   const Atmosphere& atm = in.scene.atmosphere;
+  BakedTables t;
   const OutputSpec* own = in.scene.find_output("scattering");
-  const BrunetonSpec spec = own ? bruneton_spec(*own) : level_bruneton_spec(in.level);
+  t.own = own != nullptr;
+  t.spec = own ? bruneton_spec(*own) : level_bruneton_spec(setup);
+  const BrunetonSpec& spec = t.spec;
   in.stage(fmt::format("Bruneton tables {}x{}x{}x{}, {}", spec.r_size, spec.mu_size, spec.mu_s_size,
                        spec.nu_size,
                        spec.tolerance > 0 ? fmt::format("orders to {:g}", spec.tolerance)
                                           : fmt::format("{} orders", spec.orders)));
   const auto t0 = std::chrono::steady_clock::now();
-  const BrunetonTextures tables = bake_bruneton(atm, in.transmittance, spec, BakeContext{});
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  // Order 1 alone, as bake_bruneton made it (same shape, nodes and
-  // transmittance): the table minus it is orders >= 2 (header).
-  const SingleScatteringTables single_tables =
-      bake_single_scattering(atm, in.transmittance, tables.shape, spec.ray_nodes, BakeContext{});
-  // An engine with the combined texture extrapolates single Mie from alpha.
-  const Texture no_texture;
-  const Texture& single_mie = spec.combined_mie_alpha ? no_texture : tables.single_mie;
+  t.tables = bake_bruneton(atm, in.transmittance, spec, BakeContext{});
+  t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  t.single =
+      bake_single_scattering(atm, in.transmittance, t.tables.shape, spec.ray_nodes, BakeContext{});
+  return t;
+}
 
-  const double r = atm.bottom_radius_m + sky_radiance["camera_altitude_m"].get<double>();
+// The three readings of the tables against the path tracer, over every view
+// and per sun elevation.
+struct Readings {
   std::vector<RadiancePair> all, exact_mie, hybrid;
   std::map<double, std::vector<RadiancePair>> by_sun, hybrid_by_sun;
   nlohmann::json views = nlohmann::json::array();
+};
+
+Readings read_views(const ReportInputs& in, const BakedTables& t,
+                    const nlohmann::json& sky_radiance) {
+  const Atmosphere& atm = in.scene.atmosphere;
+  const BrunetonTextures& tables = t.tables;
+  // An engine with the combined texture extrapolates single Mie from alpha.
+  const Texture no_texture;
+  const Texture& single_mie = t.spec.combined_mie_alpha ? no_texture : tables.single_mie;
+  const double r = atm.bottom_radius_m + sky_radiance["camera_altitude_m"].get<double>();
+  Readings out;
   for (const nlohmann::json& v : sky_radiance["views"]) {
     const double e = v["view_elevation_deg"].get<double>() * kDeg;
     const double phi = v["view_azimuth_deg"].get<double>() * kDeg;
@@ -81,44 +98,73 @@ nlohmann::json bruneton_comparison_report(const ReportInputs& in,
     // alpha channel's extrapolation costs.
     const glm::dvec3 exact = lookup_scattering(tables.scattering, tables.single_mie, tables.shape,
                                                atm, r, mu, mu_s, nu, hits);
-    exact_mie.push_back({exact, pt, ci95, pt});
+    out.exact_mie.push_back({exact, pt, ci95, pt});
     // Single scattering marched in the sky-view table (Psi_ms = 0) plus the
     // 4D table's orders >= 2: the exact-Mie read minus the single-scattering
     // tables read with the same taps, so the difference is the interpolated
     // multiple scattering.
-    const glm::dvec3 multiple = exact - lookup_scattering(single_tables.rayleigh, single_tables.mie,
+    const glm::dvec3 multiple = exact - lookup_scattering(t.single.rayleigh, t.single.mie,
                                                           tables.shape, atm, r, mu, mu_s, nu, hits);
     const glm::dvec3 h = rgb_of(v["lut_single"]) + glm::max(multiple, 0.0);
     const RadiancePair hybrid_pair{h, pt, ci95, pt};
-    all.push_back(pair);
-    hybrid.push_back(hybrid_pair);
+    out.all.push_back(pair);
+    out.hybrid.push_back(hybrid_pair);
     const double sun_elevation = v["sun_elevation_deg"];
-    by_sun[sun_elevation].push_back(pair);
-    hybrid_by_sun[sun_elevation].push_back(hybrid_pair);
-    views.push_back({{"sun_elevation_deg", v["sun_elevation_deg"]},
-                     {"view_elevation_deg", v["view_elevation_deg"]},
-                     {"view_azimuth_deg", v["view_azimuth_deg"]},
-                     {"bruneton", {l.x, l.y, l.z}},
-                     {"skyview_single_plus_bruneton_multiple", {h.x, h.y, h.z}}});
+    out.by_sun[sun_elevation].push_back(pair);
+    out.hybrid_by_sun[sun_elevation].push_back(hybrid_pair);
+    out.views.push_back({{"sun_elevation_deg", v["sun_elevation_deg"]},
+                         {"view_elevation_deg", v["view_elevation_deg"]},
+                         {"view_azimuth_deg", v["view_azimuth_deg"]},
+                         {"bruneton", {l.x, l.y, l.z}},
+                         {"skyview_single_plus_bruneton_multiple", {h.x, h.y, h.z}}});
   }
+  return out;
+}
+
+}  // namespace
+
+BrunetonSetup BrunetonSetup::full() {
+  BrunetonSetup s;
+  s.bruneton_shape = {32, 128, 32, 8};
+  s.bruneton_orders = 4;
+  s.bruneton_tolerance = 1e-3;
+  s.bruneton_max_orders = 100;
+  return s;
+}
+
+BrunetonSetup BrunetonSetup::quick() {
+  BrunetonSetup s = full();
+  s.bruneton_shape = {16, 64, 16, 4};
+  s.bruneton_orders = 4;
+  s.bruneton_tolerance = 0.0;
+  return s;
+}
+
+nlohmann::json bruneton_comparison_report(const ReportInputs& in, const BrunetonSetup& setup) {
+  const nlohmann::json& sky_radiance = in.report.at("sky_radiance");
+  if (sky_radiance.is_null())
+    return {{"status", "not run"}, {"reason", "the sky radiance section was not run"}};
+  const BakedTables t = bake_tables(in, setup);
+  Readings r = read_views(in, t, sky_radiance);
   nlohmann::json sun_stats = nlohmann::json::array();
   for (double elevation : sky_radiance["sun_elevations_deg"])
     sun_stats.push_back(
         {{"sun_elevation_deg", elevation},
-         {"bruneton", radiance_stats(by_sun[elevation])},
-         {"skyview_single_plus_bruneton_multiple", radiance_stats(hybrid_by_sun[elevation])}});
-  const nlohmann::json stats = radiance_stats(all), exact_mie_stats = radiance_stats(exact_mie),
-                       hybrid_stats = radiance_stats(hybrid);
+         {"bruneton", radiance_stats(r.by_sun[elevation])},
+         {"skyview_single_plus_bruneton_multiple", radiance_stats(r.hybrid_by_sun[elevation])}});
+  const nlohmann::json stats = radiance_stats(r.all), exact_mie_stats = radiance_stats(r.exact_mie),
+                       hybrid_stats = radiance_stats(r.hybrid);
+  const BrunetonSpec& spec = t.spec;
   return {{"status", "measured"},
           {"bruneton",
-           {{"source", own ? "the scene's scattering output" : "the report level's table"},
+           {{"source", t.own ? "the scene's scattering output" : "the report level's table"},
             {"shape", {spec.r_size, spec.mu_size, spec.mu_s_size, spec.nu_size}},
             {"orders", spec.orders},
             {"tolerance", spec.tolerance},
-            {"orders_used", tables.orders_used},
-            {"last_residual", tables.last_residual},
+            {"orders_used", t.tables.orders_used},
+            {"last_residual", t.tables.last_residual},
             {"mie", spec.combined_mie_alpha ? "alpha" : "separate"},
-            {"bake_seconds", seconds}}},
+            {"bake_seconds", t.seconds}}},
           {"hillaire", sky_radiance["multiple"]},
           {"bruneton_vs_path_tracer", stats},
           {"target", target_json(stats)},
@@ -127,7 +173,7 @@ nlohmann::json bruneton_comparison_report(const ReportInputs& in,
           {"bruneton_exact_mie_vs_path_tracer", exact_mie_stats},
           {"skyview_single_plus_bruneton_multiple_vs_path_tracer", hybrid_stats},
           {"hybrid_target", target_json(hybrid_stats)},
-          {"views", views}};
+          {"views", std::move(r.views)}};
 }
 
 }  // namespace skybake

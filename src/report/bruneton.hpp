@@ -28,15 +28,31 @@
 // {"status": "not run", "reason"} when there is no sky radiance section.
 #pragma once
 
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
 #include "report/setup.hpp"
 
 namespace skybake {
 
-// `sky_radiance` is the section sky_radiance_report returned (its views and
-// path-traced references are reused), or null when it was not run.
-nlohmann::json bruneton_comparison_report(const ReportInputs& in,
-                                          const nlohmann::json& sky_radiance);
+// Bruneton's tables when the scene has no scattering output of its own:
+// shape (r, mu, mu_s, nu) and orders, or with tolerance > 0 orders until the
+// residual drops below it.
+struct BrunetonSetup {
+  std::vector<int> bruneton_shape;
+  int bruneton_orders = 4;
+  double bruneton_tolerance = 0.0;
+  int bruneton_max_orders = 100;
+
+  static BrunetonSetup quick();
+  static BrunetonSetup full();
+};
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BrunetonSetup, bruneton_shape, bruneton_orders,
+                                   bruneton_tolerance, bruneton_max_orders)
+
+// Reads the report's "sky_radiance" (its views and path-traced references
+// are reused); "not run" when that section was not run.
+nlohmann::json bruneton_comparison_report(const ReportInputs& in, const BrunetonSetup& setup);
 
 }  // namespace skybake

@@ -18,6 +18,7 @@
 #include "atmosphere/gathering_lut.hpp"
 #include "atmosphere/scattering3d_lut.hpp"
 #include "pipeline/atmosphere_specs.hpp"
+#include "report/gathering_sum.hpp"
 #include "report/ladders.hpp"
 #include "report/stats.hpp"
 
@@ -31,9 +32,10 @@ struct GatheringQuery {
 };
 
 // Pseudo-random texel centres of the reference table.
-std::vector<GatheringQuery> gathering_queries(const ReportInputs& in, const Texture& reference) {
+std::vector<GatheringQuery> gathering_queries(const ReportInputs& in, int count,
+                                              const Texture& reference) {
   const Atmosphere& atm = in.scene.atmosphere;
-  std::vector<GatheringQuery> q(size_t(in.level.gathering_queries));
+  std::vector<GatheringQuery> q(static_cast<size_t>(count));
   for (size_t i = 0; i < q.size(); ++i) {
     const int x = std::min(int(query_unit(i, 80) * reference.width), reference.width - 1);
     const int y = std::min(int(query_unit(i, 81) * reference.height), reference.height - 1);
@@ -56,7 +58,29 @@ ErrorStats measure(const Atmosphere& atm, const Texture& gathering,
 
 }  // namespace
 
-nlohmann::json gathering_sum_report(const ReportInputs& in) {
+GatheringSumSetup GatheringSumSetup::full() {
+  GatheringSumSetup s;
+  s.gathering_shapes = {{8, 32, 8}, {16, 64, 16}, {32, 128, 32}};
+  s.gathering_directions = {4, 8, 16, 32};
+  s.gathering_queries = 512;
+  s.gathering_reference_shape = {64, 256, 64};
+  s.gathering_reference_directions = 64;
+  s.gathering_reference_ray_nodes = 99;
+  return s;
+}
+
+GatheringSumSetup GatheringSumSetup::quick() {
+  GatheringSumSetup s;
+  s.gathering_shapes = {{8, 32, 8}, {16, 64, 16}};
+  s.gathering_directions = {4, 16};
+  s.gathering_queries = 128;
+  s.gathering_reference_shape = {48, 192, 48};
+  s.gathering_reference_directions = 32;
+  s.gathering_reference_ray_nodes = 99;
+  return s;
+}
+
+nlohmann::json gathering_sum_report(const ReportInputs& in, const GatheringSumSetup& setup) {
   const Atmosphere& atm = in.scene.atmosphere;
   const Scattering3dSpec op = scattering3d_spec(operating_spec(in.scene, "scattering3d"));
   const auto bake = [&](const std::vector<int>& shape, int directions, int nodes) {
@@ -70,16 +94,17 @@ nlohmann::json gathering_sum_report(const ReportInputs& in) {
   };
   in.stage("gathering_sum: reference bake");
   const Scattering3dTextures reference =
-      bake(in.level.gathering_reference_shape, in.level.gathering_reference_directions,
-           in.level.gathering_reference_ray_nodes);
-  const std::vector<GatheringQuery> queries = gathering_queries(in, reference.gathering_sum);
+      bake(setup.gathering_reference_shape, setup.gathering_reference_directions,
+           setup.gathering_reference_ray_nodes);
+  const std::vector<GatheringQuery> queries =
+      gathering_queries(in, setup.gathering_queries, reference.gathering_sum);
 
   std::vector<nlohmann::json> grid;
-  for (const std::vector<int>& shape : in.level.gathering_shapes)
-    for (int directions : in.level.gathering_directions)
+  for (const std::vector<int>& shape : setup.gathering_shapes)
+    for (int directions : setup.gathering_directions)
       grid.push_back({{"size", shape}, {"directions", directions}});
-  const nlohmann::json axes = {{"directions", in.level.gathering_directions},
-                               {"size", in.level.gathering_shapes}};
+  const nlohmann::json axes = {{"directions", setup.gathering_directions},
+                               {"size", setup.gathering_shapes}};
   const LadderMeasure bake_and_measure = [&](const nlohmann::json& s) {
     Scattering3dTextures t;
     const double seconds = time_bake(
@@ -97,15 +122,15 @@ nlohmann::json gathering_sum_report(const ReportInputs& in) {
   nlohmann::json out = run_ladder("gathering_sum", axes, grid, op_settings, bake_and_measure, in);
   out["product"] = "gathering_sum";
   out["kind"] = "lut";
-  const std::vector<int>& rs = in.level.gathering_reference_shape;
+  const std::vector<int>& rs = setup.gathering_reference_shape;
   out["reference"] = fmt::format(
       "self-convergence: the same bake ({}) at {}x{}x{} with {} gathering directions and {} "
       "ray nodes, read at its texel centres; measures the distance to the converged "
       "discretisation, not the azimuth-free model's error",
       op.tolerance > 0.0 ? fmt::format("orders until a residual below {:g}", op.tolerance)
                          : fmt::format("{} orders", op.orders),
-      rs.at(0), rs.at(1), rs.at(2), in.level.gathering_reference_directions,
-      in.level.gathering_reference_ray_nodes);
+      rs.at(0), rs.at(1), rs.at(2), setup.gathering_reference_directions,
+      setup.gathering_reference_ray_nodes);
   out["queries"] = fmt::format(
       "{} texel centres of the reference table, uniform over its (h, mu_s) texels; "
       "lookup_gathering (bilinear)",

@@ -37,6 +37,7 @@
 #include "core/math.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/product_graph.hpp"
+#include "report/irradiance.hpp"
 #include "report/ladders.hpp"
 #include "report/stats.hpp"
 #include "reference/atmosphere_quadrature.hpp"
@@ -71,10 +72,11 @@ glm::dvec3 reference_indirect_irradiance(const Atmosphere& atm, double r, double
   return integrate_adaptive(over_azimuth, 0.0, 1.0, options, {mu_s}).value;
 }
 
-std::vector<IrradianceQuery> irradiance_queries(const ReportInputs& in, double mu_s_min) {
+std::vector<IrradianceQuery> irradiance_queries(const ReportInputs& in,
+                                                const IrradianceSetup& setup, double mu_s_min) {
   const Atmosphere& atm = in.scene.atmosphere;
   const double top = atm.top_radius_m - atm.bottom_radius_m;
-  std::vector<IrradianceQuery> q(size_t(in.level.irradiance_queries));
+  std::vector<IrradianceQuery> q(size_t(setup.irradiance_queries));
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
     const double u = query_unit(i, 60);
     q[i].r = atm.bottom_radius_m + top * u * u;
@@ -85,8 +87,8 @@ std::vector<IrradianceQuery> irradiance_queries(const ReportInputs& in, double m
           atm.sun_illuminance * c *
           reference_transmittance_to_top(atm, q[i].r, q[i].mu_s, in.level.quadrature_tolerance)
               .value;
-    q[i].indirect = reference_indirect_irradiance(atm, q[i].r, q[i].mu_s,
-                                                  in.level.irradiance_reference_tolerance);
+    q[i].indirect =
+        reference_indirect_irradiance(atm, q[i].r, q[i].mu_s, setup.irradiance_reference_tolerance);
   });
   return q;
 }
@@ -112,7 +114,25 @@ nlohmann::json measure(const Texture& table, bool includes_direct, const ReportI
 
 }  // namespace
 
-nlohmann::json irradiance_report(const ReportInputs& in) {
+IrradianceSetup IrradianceSetup::full() {
+  IrradianceSetup s;
+  s.irradiance_sizes = {{16, 4}, {32, 8}, {64, 16}, {128, 32}};
+  s.irradiance_directions = {8, 16, 32, 64};
+  s.irradiance_queries = 256;
+  s.irradiance_reference_tolerance = 1e-4;
+  return s;
+}
+
+IrradianceSetup IrradianceSetup::quick() {
+  IrradianceSetup s;
+  s.irradiance_sizes = {{16, 4}, {64, 16}};
+  s.irradiance_directions = {8, 32};
+  s.irradiance_queries = 16;
+  s.irradiance_reference_tolerance = 1e-3;
+  return s;
+}
+
+nlohmann::json irradiance_report(const ReportInputs& in, const IrradianceSetup& setup) {
   const Atmosphere& atm = in.scene.atmosphere;
   const OutputSpec product = operating_spec(in.scene, "irradiance");
   const bool includes_direct = product.options.value("include_direct", false);
@@ -124,7 +144,7 @@ nlohmann::json irradiance_report(const ReportInputs& in) {
       bake_single_scattering(atm, in.transmittance, shape, family.ray_nodes, BakeContext{});
   const ScatteringOrder order1{&single.rayleigh, &single.mie, nullptr, &phases};
   in.stage("irradiance: reference quadrature over the hemisphere");
-  const std::vector<IrradianceQuery> queries = irradiance_queries(in, shape.mu_s_min);
+  const std::vector<IrradianceQuery> queries = irradiance_queries(in, setup, shape.mu_s_min);
 
   const auto bake = [&](int width, int height, int directions) {
     Texture e =
@@ -137,11 +157,11 @@ nlohmann::json irradiance_report(const ReportInputs& in) {
     return e;
   };
   std::vector<nlohmann::json> grid;
-  for (const std::vector<int>& size : in.level.irradiance_sizes)
-    for (int directions : in.level.irradiance_directions)
+  for (const std::vector<int>& size : setup.irradiance_sizes)
+    for (int directions : setup.irradiance_directions)
       grid.push_back({{"size", size}, {"directions", directions}});
-  const nlohmann::json axes = {{"directions", in.level.irradiance_directions},
-                               {"size", in.level.irradiance_sizes}};
+  const nlohmann::json axes = {{"directions", setup.irradiance_directions},
+                               {"size", setup.irradiance_sizes}};
   const LadderMeasure bake_and_measure = [&](const nlohmann::json& s) {
     Texture table;
     const double seconds = time_bake(
@@ -167,7 +187,7 @@ nlohmann::json irradiance_report(const ReportInputs& in) {
       includes_direct ? "E_0 = E_sun T c(mu_s), T by adaptive quadrature, c the bake's "
                         "sun-disk average (Bruneton 2017), plus "
                       : "",
-      in.level.irradiance_reference_tolerance, shape.r_size, shape.mu_size, shape.mu_s_size,
+      setup.irradiance_reference_tolerance, shape.r_size, shape.mu_size, shape.mu_s_size,
       shape.nu_size,
       includes_direct ? ", plus direct sunlight"
                       : "; the table holds indirect light only (include_direct false), "

@@ -46,17 +46,8 @@
 
 namespace skybake {
 
-nlohmann::json transmittance_report(const ReportInputs& in);
-nlohmann::json multiscattering_report(const ReportInputs& in);
-nlohmann::json skyview_report(const ReportInputs& in);
-nlohmann::json aerial_perspective_report(const ReportInputs& in);
-nlohmann::json scattering_report(const ReportInputs& in);
-nlohmann::json single_mie_report(const ReportInputs& in);
-nlohmann::json irradiance_report(const ReportInputs& in);
-nlohmann::json scattering3d_report(const ReportInputs& in);
-nlohmann::json gathering_sum_report(const ReportInputs& in);
-
-// ---- Shared by the product files ---------------------------------------------
+// Each ladder's setup and entry point is in its own header (transmittance.hpp,
+// ...); these tools are what they share.
 
 // Bakes and measures one ladder point: returns an object with at least
 // "seconds" and the ErrorStats fields (max_abs, max_rel, rms_rel, samples).

@@ -14,6 +14,7 @@
 #include "atmosphere/multiscattering_lut.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "report/ladders.hpp"
+#include "report/multiscattering.hpp"
 #include "report/stats.hpp"
 
 namespace skybake {
@@ -25,16 +26,17 @@ struct MultiscatteringQuery {
   glm::dvec3 reference{0.0};
 };
 
-std::vector<MultiscatteringQuery> multiscattering_queries(const ReportInputs& in) {
+std::vector<MultiscatteringQuery> multiscattering_queries(const ReportInputs& in,
+                                                          const MultiscatteringSetup& setup) {
   const Atmosphere& atm = in.scene.atmosphere;
   const std::vector<glm::dvec3> dirs =
-      fibonacci_sphere_directions(in.level.multiscattering_reference_directions);
-  std::vector<MultiscatteringQuery> q(size_t(in.level.multiscattering_queries));
+      fibonacci_sphere_directions(setup.multiscattering_reference_directions);
+  std::vector<MultiscatteringQuery> q(size_t(setup.multiscattering_queries));
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
     q[i].r = atm.bottom_radius_m + query_unit(i, 10) * (atm.top_radius_m - atm.bottom_radius_m);
     q[i].mu_s = 2.0 * query_unit(i, 11) - 1.0;
     q[i].reference = compute_multiscattering(atm, in.reference_transmittance, q[i].r, q[i].mu_s,
-                                             dirs, in.level.multiscattering_reference_steps)
+                                             dirs, setup.multiscattering_reference_steps)
                          .psi_ms;
   });
   return q;
@@ -52,24 +54,46 @@ ErrorStats measure(const Texture& lut, const Atmosphere& atm,
 
 }  // namespace
 
-nlohmann::json multiscattering_report(const ReportInputs& in) {
+MultiscatteringSetup MultiscatteringSetup::full() {
+  MultiscatteringSetup s;
+  s.multiscattering_directions = {16, 64, 256};
+  s.multiscattering_steps = {10, 20, 40};
+  s.multiscattering_sizes = {{32, 32}, {64, 64}};
+  s.multiscattering_queries = 128;
+  s.multiscattering_reference_directions = 2048;
+  s.multiscattering_reference_steps = 200;
+  return s;
+}
+
+MultiscatteringSetup MultiscatteringSetup::quick() {
+  MultiscatteringSetup s;
+  s.multiscattering_directions = {16, 64};
+  s.multiscattering_steps = {10, 20};
+  s.multiscattering_sizes = {};
+  s.multiscattering_queries = 24;
+  s.multiscattering_reference_directions = 512;
+  s.multiscattering_reference_steps = 80;
+  return s;
+}
+
+nlohmann::json multiscattering_report(const ReportInputs& in, const MultiscatteringSetup& setup) {
   const Atmosphere& atm = in.scene.atmosphere;
   in.stage("multiscattering: reference integration");
-  const std::vector<MultiscatteringQuery> queries = multiscattering_queries(in);
+  const std::vector<MultiscatteringQuery> queries = multiscattering_queries(in, setup);
   const MultiscatteringLutSpec op =
       multiscattering_spec(operating_spec(in.scene, "multiscattering"));
   const nlohmann::json size = {op.width, op.height};
   std::vector<nlohmann::json> sizes = {size};
-  for (const std::vector<int>& s : in.level.multiscattering_sizes)
+  for (const std::vector<int>& s : setup.multiscattering_sizes)
     if (nlohmann::json(s) != size) sizes.push_back(s);
 
   std::vector<nlohmann::json> grid;
   for (const nlohmann::json& s : sizes)
-    for (int directions : in.level.multiscattering_directions)
-      for (int steps : in.level.multiscattering_steps)
+    for (int directions : setup.multiscattering_directions)
+      for (int steps : setup.multiscattering_steps)
         grid.push_back({{"size", s}, {"directions", directions}, {"steps", steps}});
-  const nlohmann::json axes = {{"directions", in.level.multiscattering_directions},
-                               {"steps", in.level.multiscattering_steps},
+  const nlohmann::json axes = {{"directions", setup.multiscattering_directions},
+                               {"steps", setup.multiscattering_steps},
                                {"size", sizes}};
   const LadderMeasure bake_and_measure = [&](const nlohmann::json& s) {
     MultiscatteringLutSpec spec = op;
@@ -94,7 +118,7 @@ nlohmann::json multiscattering_report(const ReportInputs& in) {
   out["reference"] = fmt::format(
       "the same integral (Hillaire 2020 eq. 5-10) with {} directions and {} steps, reading a "
       "{}x{} transmittance table baked with {} steps",
-      in.level.multiscattering_reference_directions, in.level.multiscattering_reference_steps,
+      setup.multiscattering_reference_directions, setup.multiscattering_reference_steps,
       in.level.reference_transmittance_size[0], in.level.reference_transmittance_size[1],
       in.level.reference_transmittance_steps);
   out["queries"] = fmt::format(

@@ -6,19 +6,14 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "atmosphere/sky_preview.hpp"
+#include "atmosphere/multiscattering_lut.hpp"
+#include "atmosphere/transmittance_lut.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
-#include "io/png_preview.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/product.hpp"
-#include "pipeline/product_graph.hpp"
-#include "pipeline/product_options.hpp"
-#include "report/bruneton.hpp"
 #include "report/html.hpp"
-#include "report/ladders.hpp"
-#include "report/precision.hpp"
-#include "report/sky_radiance.hpp"
+#include "report/sections.hpp"
 #include "core/suggest.hpp"
 
 namespace fs = std::filesystem;
@@ -26,29 +21,6 @@ namespace fs = std::filesystem;
 namespace skybake {
 
 namespace {
-
-using ProductSection = nlohmann::json (*)(const ReportInputs&);
-
-// The tables measured by a ladder, in dependency order.
-const std::vector<std::pair<std::string, ProductSection>>& measured_products() {
-  static const std::vector<std::pair<std::string, ProductSection>> table = {
-      {"transmittance", transmittance_report},
-      {"multiscattering", multiscattering_report},
-      {"skyview", skyview_report},
-      {"aerial_perspective", aerial_perspective_report},
-      {"scattering", scattering_report},
-      {"single_mie", single_mie_report},
-      {"irradiance", irradiance_report},
-      {"scattering3d", scattering3d_report},
-      {"gathering_sum", gathering_sum_report}};
-  return table;
-}
-
-bool is_measured(const std::string& product) {
-  for (const auto& [name, fn] : measured_products())
-    if (name == product) return true;
-  return false;
-}
 
 // The products of the report: those the scene requests, restricted to `only`.
 std::vector<std::string> selected_products(const Scene& scene,
@@ -94,34 +66,6 @@ nlohmann::json unmeasured_product(const std::string& product) {
            "discretisation to measure; check-tiling checks its seams"}};
 }
 
-Texture bake_preview(const Scene& scene, const ReportLevel& level, const Texture& transmittance,
-                     const Texture& multiscattering) {
-  SkyPreviewSpec spec;
-  spec.width = level.preview_width;
-  spec.height = level.preview_height;
-  if (const OutputSpec* o = scene.find_output("sky_preview"))
-    spec.camera_altitude_m =
-        option_double(*o, "camera_altitude_km", spec.camera_altitude_m * 1e-3) * 1e3;
-  return bake_sky_preview(scene.atmosphere, transmittance, multiscattering, spec, BakeContext{});
-}
-
-void write_png_atomic(const fs::path& path, const Texture& tex) {
-  AtomicFile file(path);
-  PreviewOptions opt;
-  opt.exposure = 1.0;  // the preview is display-referred already
-  write_png_preview(file.temp_path().string(), tex, opt);
-  file.commit();
-}
-
-// A section's JSON with the wall seconds it took ("section_seconds").
-nlohmann::json timed(nlohmann::json (*section)(const ReportInputs&), const ReportInputs& in) {
-  const auto t0 = std::chrono::steady_clock::now();
-  nlohmann::json j = section(in);
-  j["section_seconds"] =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return j;
-}
-
 fs::path create_folder(const fs::path& folder) {
   std::error_code ec;
   fs::create_directories(folder, ec);
@@ -129,52 +73,64 @@ fs::path create_folder(const fs::path& folder) {
   return folder;
 }
 
-// Every section that needs the atmosphere's tables: the operating-point
-// tables are baked once and shared; the preview goes into `folder`.
-void add_atmosphere_sections(const Scene& scene, const ReportLevel& level,
-                             const std::vector<std::string>& products, const ReportStage& on_stage,
-                             const fs::path& folder, nlohmann::json& report) {
+// A section's JSON with the wall seconds it took ("section_seconds").
+nlohmann::json timed(const ReportSection& section, const ReportInputs& in,
+                     const nlohmann::json& settings) {
+  const auto t0 = std::chrono::steady_clock::now();
+  nlohmann::json j = section.run(in, settings);
+  if (j.is_object())
+    j["section_seconds"] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return j;
+}
+
+// Puts a section's JSON at its place; a product's half round trip is also
+// listed with the others under "precision".
+void place(const ReportSection& section, nlohmann::json j, nlohmann::json& report) {
+  if (j.is_object() && j.contains("half")) {
+    const nlohmann::json& half = j["half"];
+    report["precision"]["half"].push_back({{"product", j.at("product")},
+                                           {"float", half["float"]},
+                                           {"half", half["half"]},
+                                           {"storage", half["storage"]}});
+  }
+  report[nlohmann::json::json_pointer(section.place)] = std::move(j);
+}
+
+// The tables every section reads, baked once at the preset's settings (the
+// operating point), and the fine transmittance table of the fine references.
+struct OperatingTables {
+  Texture transmittance, multiscattering, reference_transmittance;
+};
+
+OperatingTables bake_operating_tables(const Scene& scene, const ReportLevel& level) {
   const Atmosphere& atm = scene.atmosphere;
-  const auto wants = [&](const char* p) {
-    return std::find(products.begin(), products.end(), p) != products.end();
-  };
-  if (on_stage) on_stage("baking the operating-point tables");
-  const Texture transmittance = bake_transmittance_lut(
+  OperatingTables t;
+  t.transmittance = bake_transmittance_lut(
       atm, transmittance_spec(operating_spec(scene, "transmittance")), BakeContext{});
-  const Texture multiscattering = bake_multiscattering_lut(
-      atm, transmittance, multiscattering_spec(operating_spec(scene, "multiscattering")),
+  t.multiscattering = bake_multiscattering_lut(
+      atm, t.transmittance, multiscattering_spec(operating_spec(scene, "multiscattering")),
       BakeContext{});
   TransmittanceLutSpec fine;
-  fine.width = level.reference_transmittance_size[0];
-  fine.height = level.reference_transmittance_size[1];
+  fine.width = level.reference_transmittance_size.at(0);
+  fine.height = level.reference_transmittance_size.at(1);
   fine.steps = level.reference_transmittance_steps;
-  const Texture reference_transmittance = bake_transmittance_lut(atm, fine, BakeContext{});
-  const ReportInputs in{scene,   level, transmittance, multiscattering, reference_transmittance,
-                        on_stage};
+  t.reference_transmittance = bake_transmittance_lut(atm, fine, BakeContext{});
+  return t;
+}
 
-  for (const auto& [name, section] : measured_products()) {
-    if (!wants(name.c_str())) continue;
-    nlohmann::json p = timed(section, in);
-    report["precision"]["half"].push_back({{"product", name},
-                                           {"float", p["half"]["float"]},
-                                           {"half", p["half"]["half"]},
-                                           {"storage", p["half"]["storage"]}});
-    report["products"].push_back(std::move(p));
-  }
-  // The sky as an engine renders it from either family of tables.
-  if (wants("skyview") || wants("scattering"))
-    report["sky_radiance"] = timed(sky_radiance_report, in);
-  if (wants("transmittance"))
-    report["precision"]["horizon_transmittance"] = timed(horizon_transmittance_report, in);
-  const auto t_bruneton = std::chrono::steady_clock::now();
-  report["bruneton_comparison"] = bruneton_comparison_report(in, report["sky_radiance"]);
-  report["bruneton_comparison"]["section_seconds"] =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_bruneton).count();
-
-  if (on_stage) on_stage("sky preview");
-  write_png_atomic(create_folder(folder) / "sky_preview.png",
-                   bake_preview(scene, level, transmittance, multiscattering));
-  report["files"]["preview"] = "sky_preview.png";
+// Every section of the table that covers one of `products`, in order.
+void run_sections(const Scene& scene, const nlohmann::json& settings,
+                  const std::vector<std::string>& products, const ReportStage& on_stage,
+                  const fs::path& folder, nlohmann::json& report) {
+  const ReportLevel level = settings.get<ReportLevel>();
+  if (on_stage) on_stage("baking the operating-point tables");
+  const OperatingTables t = bake_operating_tables(scene, level);
+  const ReportInputs in{
+      scene,  level,  t.transmittance, t.multiscattering, t.reference_transmittance,
+      report, folder, on_stage};
+  for (const ReportSection& section : report_sections())
+    if (section_runs(section, products)) place(section, timed(section, in, settings), report);
 }
 
 }  // namespace
@@ -182,8 +138,8 @@ void add_atmosphere_sections(const Scene& scene, const ReportLevel& level,
 ReportResult run_report(const Scene& scene, const ReportOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<std::string> products = selected_products(scene, options.products);
-  ReportLevel level = options.quick ? ReportLevel::quick() : ReportLevel::full();
-  if (options.path_samples > 0) level.path_samples = options.path_samples;
+  nlohmann::json settings = level_settings(options.quick);
+  if (options.path_samples > 0) settings["path_samples"] = options.path_samples;  // sky radiance's
   ReportResult result;
   result.folder = options.out_dir / scene.name / "report";
 
@@ -191,18 +147,19 @@ ReportResult run_report(const Scene& scene, const ReportOptions& options) {
       {"tool", "skybake " SKYBAKE_VERSION},
       {"scene", scene.name},
       {"preset", scene.file.string()},
-      {"level", level.name},
-      {"level_settings", level_json(level)},
+      {"level", settings["name"]},
+      {"level_settings", settings},
       {"products", nlohmann::json::array()},
       {"sky_radiance", nullptr},
       {"precision", {{"horizon_transmittance", nullptr}, {"half", nlohmann::json::array()}}},
       {"bruneton_comparison", nullptr},
       {"files", {{"json", "report.json"}, {"html", "report.html"}}}};
-  const bool needs_tables =
-      std::any_of(products.begin(), products.end(), is_measured) ||
-      std::find(products.begin(), products.end(), "scattering") != products.end();
-  if (scene.has_atmosphere && needs_tables)
-    add_atmosphere_sections(scene, level, products, options.on_stage, result.folder, report);
+  // Every section reads the atmosphere's tables.
+  const bool any_section =
+      std::any_of(report_sections().begin(), report_sections().end(),
+                  [&](const ReportSection& s) { return section_runs(s, products); });
+  if (scene.has_atmosphere && any_section)
+    run_sections(scene, settings, products, options.on_stage, result.folder, report);
   for (const std::string& p : products)
     if (!is_measured(p)) report["products"].push_back(unmeasured_product(p));
 

@@ -21,6 +21,7 @@
 #include "core/math.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "report/ladders.hpp"
+#include "report/scattering.hpp"
 #include "report/stats.hpp"
 #include "reference/atmosphere_quadrature.hpp"
 
@@ -34,9 +35,10 @@ struct ScatteringQuery {
   glm::dvec3 reference{0.0};
 };
 
-std::vector<ScatteringQuery> scattering_queries(const ReportInputs& in, double mu_s_min) {
+std::vector<ScatteringQuery> scattering_queries(const ReportInputs& in, int count,
+                                                double mu_s_min) {
   const Atmosphere& atm = in.scene.atmosphere;
-  std::vector<ScatteringQuery> q(size_t(in.level.scattering_queries));
+  std::vector<ScatteringQuery> q(static_cast<size_t>(count));
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
     const ViewQuery v = view_query(atm, i, 40, mu_s_min);
     q[i].r = v.r, q[i].mu = v.mu, q[i].mu_s = v.mu_s, q[i].nu = v.nu;
@@ -63,20 +65,37 @@ nlohmann::json measure(const Atmosphere& atm, const BrunetonTextures& t,
 
 }  // namespace
 
-nlohmann::json scattering_report(const ReportInputs& in) {
+ScatteringSetup ScatteringSetup::full() {
+  ScatteringSetup s;
+  s.scattering_shapes = {{8, 32, 8, 4}, {16, 64, 16, 8}, {32, 128, 32, 8}, {32, 256, 32, 16}};
+  s.scattering_ray_nodes = {15, 30, 51, 99};
+  s.scattering_queries = 1024;
+  return s;
+}
+
+ScatteringSetup ScatteringSetup::quick() {
+  ScatteringSetup s;
+  s.scattering_shapes = {{8, 32, 8, 4}, {16, 64, 16, 8}};
+  s.scattering_ray_nodes = {15, 51};
+  s.scattering_queries = 64;
+  return s;
+}
+
+nlohmann::json scattering_report(const ReportInputs& in, const ScatteringSetup& setup) {
   const Atmosphere& atm = in.scene.atmosphere;
   BrunetonSpec op = bruneton_spec(operating_spec(in.scene, "scattering"));
   op.orders = 1;
   op.tolerance = 0.0;
   in.stage("scattering: reference quadrature");
-  const std::vector<ScatteringQuery> queries = scattering_queries(in, op.mu_s_min);
+  const std::vector<ScatteringQuery> queries =
+      scattering_queries(in, setup.scattering_queries, op.mu_s_min);
 
   std::vector<nlohmann::json> grid;
-  for (const std::vector<int>& shape : in.level.scattering_shapes)
-    for (int nodes : in.level.scattering_ray_nodes)
+  for (const std::vector<int>& shape : setup.scattering_shapes)
+    for (int nodes : setup.scattering_ray_nodes)
       grid.push_back({{"size", shape}, {"ray_nodes", nodes}});
-  const nlohmann::json axes = {{"ray_nodes", in.level.scattering_ray_nodes},
-                               {"size", in.level.scattering_shapes}};
+  const nlohmann::json axes = {{"ray_nodes", setup.scattering_ray_nodes},
+                               {"size", setup.scattering_shapes}};
   const LadderMeasure bake_and_measure = [&](const nlohmann::json& s) {
     BrunetonSpec spec = op;
     spec.r_size = s["size"][0];

@@ -31,6 +31,7 @@
 #include "core/math.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "report/ladders.hpp"
+#include "report/scattering3d.hpp"
 #include "report/stats.hpp"
 #include "reference/atmosphere_quadrature.hpp"
 
@@ -59,12 +60,13 @@ PhaseFreePair phase_free_at(const Atmosphere& atm, double r, double mu, double m
           .value};
 }
 
-std::vector<Scattering3dQuery> scattering3d_queries(const ReportInputs& in) {
+std::vector<Scattering3dQuery> scattering3d_queries(const ReportInputs& in,
+                                                    const Scattering3dSetup& setup) {
   const Atmosphere& atm = in.scene.atmosphere;
   const ScatteringPhases phases = scattering_phases(atm);
   const double tol = in.level.single_scattering_tolerance;
-  const int azimuths = in.level.scattering3d_reference_azimuths;
-  std::vector<Scattering3dQuery> q(size_t(in.level.scattering3d_queries));
+  const int azimuths = setup.scattering3d_reference_azimuths;
+  std::vector<Scattering3dQuery> q(size_t(setup.scattering3d_queries));
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
     const ViewQuery v = view_query(atm, i, 70, kScattering3dMuSMin);
     q[i].h = v.altitude_m, q[i].mu = v.mu, q[i].mu_s = v.mu_s, q[i].nu = v.nu;
@@ -103,20 +105,38 @@ nlohmann::json measure(const Atmosphere& atm, const Scattering3dTextures& t,
 
 }  // namespace
 
-nlohmann::json scattering3d_report(const ReportInputs& in) {
+Scattering3dSetup Scattering3dSetup::full() {
+  Scattering3dSetup s;
+  s.scattering3d_shapes = {{8, 32, 8}, {16, 64, 16}, {32, 128, 32}, {64, 256, 64}};
+  s.scattering3d_ray_nodes = {15, 30, 51, 99};
+  s.scattering3d_queries = 1024;
+  s.scattering3d_reference_azimuths = 32;
+  return s;
+}
+
+Scattering3dSetup Scattering3dSetup::quick() {
+  Scattering3dSetup s;
+  s.scattering3d_shapes = {{8, 32, 8}, {16, 64, 16}};
+  s.scattering3d_ray_nodes = {15, 51};
+  s.scattering3d_queries = 64;
+  s.scattering3d_reference_azimuths = 16;
+  return s;
+}
+
+nlohmann::json scattering3d_report(const ReportInputs& in, const Scattering3dSetup& setup) {
   const Atmosphere& atm = in.scene.atmosphere;
   Scattering3dSpec op = scattering3d_spec(operating_spec(in.scene, "scattering3d"));
   op.orders = 1;
   op.tolerance = 0.0;
   in.stage("scattering3d: reference quadrature (azimuth means)");
-  const std::vector<Scattering3dQuery> queries = scattering3d_queries(in);
+  const std::vector<Scattering3dQuery> queries = scattering3d_queries(in, setup);
 
   std::vector<nlohmann::json> grid;
-  for (const std::vector<int>& shape : in.level.scattering3d_shapes)
-    for (int nodes : in.level.scattering3d_ray_nodes)
+  for (const std::vector<int>& shape : setup.scattering3d_shapes)
+    for (int nodes : setup.scattering3d_ray_nodes)
       grid.push_back({{"size", shape}, {"ray_nodes", nodes}});
-  const nlohmann::json axes = {{"ray_nodes", in.level.scattering3d_ray_nodes},
-                               {"size", in.level.scattering3d_shapes}};
+  const nlohmann::json axes = {{"ray_nodes", setup.scattering3d_ray_nodes},
+                               {"size", setup.scattering3d_shapes}};
   const LadderMeasure bake_and_measure = [&](const nlohmann::json& s) {
     Scattering3dSpec spec = op;
     spec.height_size = s["size"][0];
@@ -144,7 +164,7 @@ nlohmann::json scattering3d_report(const ReportInputs& in) {
       "{} azimuth samples, Mie storage '{}'); vs_single_scattering: the same reads against the "
       "radiance at the query's own azimuth (reference_single_scattering), the model's error "
       "included",
-      in.level.scattering3d_reference_azimuths, in.level.single_scattering_tolerance,
+      setup.scattering3d_reference_azimuths, in.level.single_scattering_tolerance,
       op.azimuth_samples, op.combined_mie_alpha ? "alpha" : "separate");
   out["queries"] = fmt::format(
       "{} points: altitude top*u^2, mu uniform, mu_s uniform in [mu_s_min, 1] of the 3D "

@@ -22,6 +22,8 @@
 #include "core/math.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "report/ladders.hpp"
+#include "report/scattering.hpp"
+#include "report/single_mie.hpp"
 #include "report/stats.hpp"
 #include "reference/atmosphere_quadrature.hpp"
 
@@ -35,9 +37,9 @@ struct MieQuery {
   glm::dvec3 reference{0.0};  // S_M, phase-free
 };
 
-std::vector<MieQuery> single_mie_queries(const ReportInputs& in, double mu_s_min) {
+std::vector<MieQuery> single_mie_queries(const ReportInputs& in, int count, double mu_s_min) {
   const Atmosphere& atm = in.scene.atmosphere;
-  std::vector<MieQuery> q(size_t(in.level.single_mie_queries));
+  std::vector<MieQuery> q(static_cast<size_t>(count));
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
     const ViewQuery v = view_query(atm, i, 50, mu_s_min);
     q[i].r = v.r, q[i].mu = v.mu, q[i].mu_s = v.mu_s, q[i].nu = v.nu;
@@ -63,21 +65,39 @@ ErrorStats measure(const Atmosphere& atm, const Texture& single_mie, const Scatt
 
 }  // namespace
 
-nlohmann::json single_mie_report(const ReportInputs& in) {
+// The scattering ladder's points: both textures come from the same pass.
+SingleMieSetup SingleMieSetup::full() {
+  SingleMieSetup s;
+  s.single_mie_shapes = ScatteringSetup::full().scattering_shapes;
+  s.single_mie_ray_nodes = ScatteringSetup::full().scattering_ray_nodes;
+  s.single_mie_queries = 1024;
+  return s;
+}
+
+SingleMieSetup SingleMieSetup::quick() {
+  SingleMieSetup s;
+  s.single_mie_shapes = ScatteringSetup::quick().scattering_shapes;
+  s.single_mie_ray_nodes = ScatteringSetup::quick().scattering_ray_nodes;
+  s.single_mie_queries = 64;
+  return s;
+}
+
+nlohmann::json single_mie_report(const ReportInputs& in, const SingleMieSetup& setup) {
   const Atmosphere& atm = in.scene.atmosphere;
   const BrunetonSpec op = bruneton_spec(operating_spec(in.scene, "scattering"));
   in.stage("single_mie: reference quadrature");
-  const std::vector<MieQuery> queries = single_mie_queries(in, op.mu_s_min);
+  const std::vector<MieQuery> queries =
+      single_mie_queries(in, setup.single_mie_queries, op.mu_s_min);
 
   const auto bake = [&](const ScatteringShape& shape, int nodes) {
     return bake_single_scattering(atm, in.transmittance, shape, nodes, BakeContext{}).mie;
   };
   std::vector<nlohmann::json> grid;
-  for (const std::vector<int>& shape : in.level.single_mie_shapes)
-    for (int nodes : in.level.single_mie_ray_nodes)
+  for (const std::vector<int>& shape : setup.single_mie_shapes)
+    for (int nodes : setup.single_mie_ray_nodes)
       grid.push_back({{"size", shape}, {"ray_nodes", nodes}});
-  const nlohmann::json axes = {{"ray_nodes", in.level.single_mie_ray_nodes},
-                               {"size", in.level.single_mie_shapes}};
+  const nlohmann::json axes = {{"ray_nodes", setup.single_mie_ray_nodes},
+                               {"size", setup.single_mie_shapes}};
   const LadderMeasure bake_and_measure = [&](const nlohmann::json& s) {
     const std::vector<int> size = s["size"];
     const ScatteringShape shape{size[0], size[1], size[2], size[3], op.mu_s_min};

@@ -28,11 +28,11 @@ nlohmann::json vec_json(glm::dvec3 v) {
 
 // The views of one sun elevation, in the camera's local frame (z up, the sun
 // at azimuth 0).
-std::vector<glm::dvec3> view_directions(const ReportLevel& level) {
+std::vector<glm::dvec3> view_directions(const SkyRadianceSetup& setup) {
   std::vector<glm::dvec3> dirs;
-  for (double elevation : level.view_elevations_deg)
-    for (int k = 0; k < level.view_azimuths; ++k) {
-      const double phi = 2.0 * kPi * k / level.view_azimuths, e = elevation * kDeg;
+  for (double elevation : setup.view_elevations_deg)
+    for (int k = 0; k < setup.view_azimuths; ++k) {
+      const double phi = 2.0 * kPi * k / setup.view_azimuths, e = elevation * kDeg;
       dirs.push_back({std::cos(e) * std::cos(phi), std::cos(e) * std::sin(phi), std::sin(e)});
     }
   return dirs;
@@ -99,15 +99,15 @@ nlohmann::json view_json(const ViewResult& v) {
 struct PathSpecs {
   PathTracerSpec all, second, single;
 };
-PathSpecs path_specs(const Atmosphere& atm, const ReportLevel& level) {
+PathSpecs path_specs(const Atmosphere& atm, const SkyRadianceSetup& setup) {
   PathSpecs p;
-  p.all.samples = level.path_samples;
+  p.all.samples = setup.path_samples;
   p.all.max_bounces = max_bounces_for(atm);
   p.second = p.all;
-  p.second.samples = level.path_samples_single;
+  p.second.samples = setup.path_samples_single;
   p.second.max_bounces = 2;
   p.single = single_scattering_spec(p.all);
-  p.single.samples = level.path_samples_single;
+  p.single.samples = setup.path_samples_single;
   return p;
 }
 
@@ -206,88 +206,84 @@ nlohmann::json radiance_stats(const std::vector<RadiancePair>& rows) {
             {"max_rel", worst_max}}}};
 }
 
-nlohmann::json sky_radiance_report(const ReportInputs& in) {
-  const Atmosphere& atm = in.scene.atmosphere;
-  const ReportLevel& level = in.level;
-  const double altitude_m = std::min(200.0, 0.5 * (atm.top_radius_m - atm.bottom_radius_m));
-  const glm::dvec3 position(0.0, 0.0, atm.bottom_radius_m + altitude_m);
-  const std::vector<glm::dvec3> dirs = view_directions(level);
-  Texture no_multiscattering = in.multiscattering;
-  std::fill(no_multiscattering.data.begin(), no_multiscattering.data.end(), 0.0f);
-  const Texture second_order = second_order_table(
-      atm, in.transmittance, multiscattering_spec(operating_spec(in.scene, "multiscattering")));
+namespace {
 
-  SkyviewLutSpec sky = skyview_spec(operating_spec(in.scene, "skyview"));
-  PathSpecs paths = path_specs(atm, level);
-  const SkyPathTracer tracer(atm);
+// What every sun elevation reads: the camera, its views, the sky-view spec
+// and the multiple-scattering tables with Psi_ms replaced.
+struct SkyRadianceScene {
+  double altitude_m = 0.0;
+  glm::dvec3 position{0.0};
+  std::vector<glm::dvec3> dirs;
+  SkyviewLutSpec sky;
+  Texture no_multiscattering, second_order;
+};
+
+SkyRadianceScene sky_radiance_scene(const ReportInputs& in, const SkyRadianceSetup& setup) {
+  const Atmosphere& atm = in.scene.atmosphere;
+  SkyRadianceScene s;
+  s.altitude_m = std::min(200.0, 0.5 * (atm.top_radius_m - atm.bottom_radius_m));
+  s.position = glm::dvec3(0.0, 0.0, atm.bottom_radius_m + s.altitude_m);
+  s.dirs = view_directions(setup);
+  s.sky = skyview_spec(operating_spec(in.scene, "skyview"));
+  s.no_multiscattering = in.multiscattering;
+  std::fill(s.no_multiscattering.data.begin(), s.no_multiscattering.data.end(), 0.0f);
+  s.second_order = second_order_table(
+      atm, in.transmittance, multiscattering_spec(operating_spec(in.scene, "multiscattering")));
+  return s;
+}
+
+// The views of one sun elevation, appended to `views`.
+void measure_sun(const ReportInputs& in, const SkyRadianceSetup& setup, SkyRadianceScene& s,
+                 const SkyPathTracer& tracer, PathSpecs& paths, double sun_elevation,
+                 std::vector<ViewResult>& views) {
+  const Atmosphere& atm = in.scene.atmosphere;
+  const double e = sun_elevation * kDeg;
+  const glm::dvec3 sun_dir(std::cos(e), 0.0, std::sin(e));
+  s.sky.views = {{s.altitude_m, kPi / 2 - e}};
+  auto layer = [&](const Texture& ms) {
+    return bake_skyview_lut(atm, in.transmittance, ms, s.sky, BakeContext{});
+  };
+  const Texture full = layer(in.multiscattering), second = layer(s.second_order),
+                single = layer(s.no_multiscattering);
   SkyRenderOptions render;
   render.sun_disk = false;
   render.ground = false;
-
-  std::vector<ViewResult> views;
-  nlohmann::json by_sun = nlohmann::json::array();
-  for (double sun_elevation : level.sun_elevations_deg) {
-    in.stage(fmt::format("sky radiance: sun at {:g} deg, {} views, {} paths", sun_elevation,
-                         dirs.size(), level.path_samples));
-    const double e = sun_elevation * kDeg;
-    const glm::dvec3 sun_dir(std::cos(e), 0.0, std::sin(e));
-    sky.views = {{altitude_m, kPi / 2 - e}};
-    auto layer = [&](const Texture& ms) {
-      return bake_skyview_lut(atm, in.transmittance, ms, sky, BakeContext{});
-    };
-    const Texture full = layer(in.multiscattering), second = layer(second_order),
-                  single = layer(no_multiscattering);
-    auto render_with = [&](const Texture& ms, const Texture& skyview, glm::dvec3 dir) {
-      const SkyLuts luts{&in.transmittance, &ms, &skyview, 0};
-      return render_sky_luminance(atm, luts, position, dir, sun_dir, render);
-    };
-    const size_t first = views.size();
-    for (size_t v = 0; v < dirs.size(); ++v) {
-      ViewResult r;
-      r.sun_elevation_deg = sun_elevation;
-      r.view_elevation_deg = std::asin(dirs[v].z) / kDeg;
-      r.view_azimuth_deg = 360.0 * double(v % size_t(level.view_azimuths)) / level.view_azimuths;
-      r.lut = render_with(in.multiscattering, full, dirs[v]);
-      r.lut_second = render_with(second_order, second, dirs[v]);
-      r.lut_single = render_with(no_multiscattering, single, dirs[v]);
-      r.quadrature_single = reference_single_scattering(atm, position, dirs[v], sun_dir,
-                                                        level.single_scattering_tolerance)
-                                .value;
-      // Every view and mode draws its own paths.
-      const uint64_t seed = 3 * views.size();
-      paths.all.seed = seed + 1, paths.second.seed = seed + 2, paths.single.seed = seed + 3;
-      r.all = tracer.trace(position, dirs[v], sun_dir, paths.all);
-      r.second = tracer.trace(position, dirs[v], sun_dir, paths.second);
-      r.single = tracer.trace(position, dirs[v], sun_dir, paths.single);
-      views.push_back(r);
-    }
-    const std::vector<ViewResult> these(views.begin() + long(first), views.end());
-    by_sun.push_back({{"sun_elevation_deg", sun_elevation},
-                      {"multiple", compare(these, [](const ViewResult& v) {
-                         return RadiancePair{v.lut, v.all.mean, v.all.ci95, v.all.mean};
-                       })}});
+  auto render_with = [&](const Texture& ms, const Texture& skyview, glm::dvec3 dir) {
+    const SkyLuts luts{&in.transmittance, &ms, &skyview, 0};
+    return render_sky_luminance(atm, luts, s.position, dir, sun_dir, render);
+  };
+  for (size_t v = 0; v < s.dirs.size(); ++v) {
+    const glm::dvec3 dir = s.dirs[v];
+    ViewResult r;
+    r.sun_elevation_deg = sun_elevation;
+    r.view_elevation_deg = std::asin(dir.z) / kDeg;
+    r.view_azimuth_deg = 360.0 * double(v % size_t(setup.view_azimuths)) / setup.view_azimuths;
+    r.lut = render_with(in.multiscattering, full, dir);
+    r.lut_second = render_with(s.second_order, second, dir);
+    r.lut_single = render_with(s.no_multiscattering, single, dir);
+    r.quadrature_single = reference_single_scattering(atm, s.position, dir, sun_dir,
+                                                      in.level.single_scattering_tolerance)
+                              .value;
+    // Every view and mode draws its own paths.
+    const uint64_t seed = 3 * views.size();
+    paths.all.seed = seed + 1, paths.second.seed = seed + 2, paths.single.seed = seed + 3;
+    r.all = tracer.trace(s.position, dir, sun_dir, paths.all);
+    r.second = tracer.trace(s.position, dir, sun_dir, paths.second);
+    r.single = tracer.trace(s.position, dir, sun_dir, paths.single);
+    views.push_back(r);
   }
+}
 
-  const nlohmann::json multiple = compare(views, [](const ViewResult& v) {
-    return RadiancePair{v.lut, v.all.mean, v.all.ci95, v.all.mean};
-  });
-  nlohmann::json rows = nlohmann::json::array();
-  for (const ViewResult& v : views) rows.push_back(view_json(v));
+RadiancePair multiple_pair(const ViewResult& v) {
+  return {v.lut, v.all.mean, v.all.ci95, v.all.mean};
+}
+
+// The comparisons of the header over every view.
+nlohmann::json comparisons_json(const std::vector<ViewResult>& views) {
+  const nlohmann::json multiple = compare(views, multiple_pair);
   return {
-      {"camera_altitude_m", altitude_m},
-      {"sun_elevations_deg", level.sun_elevations_deg},
-      {"view_elevations_deg", level.view_elevations_deg},
-      {"view_azimuths", level.view_azimuths},
-      {"skyview", {{"size", {sky.width, sky.height}}, {"steps", sky.steps}}},
-      {"path_tracer",
-       {{"samples", level.path_samples},
-        {"samples_single_and_second_order", level.path_samples_single},
-        {"max_bounces", paths.all.max_bounces},
-        {"ground_albedo", vec_json(atm.ground_albedo)},
-        {"single_scattering_max_z_vs_quadrature", path_tracer_max_z(views)}}},
       {"multiple_scattering_share", multiple_scattering_share(views)},
       {"multiple", multiple},
-      {"multiple_by_sun", by_sun},
       {"second_order_vs_path_tracer",
        compare(views,
                [](const ViewResult& v) {
@@ -304,8 +300,62 @@ nlohmann::json sky_radiance_report(const ReportInputs& in) {
            [](const ViewResult& v) {
              return RadiancePair{v.lut_single, v.quadrature_single, glm::dvec3(0.0), v.all.mean};
            })},
-      {"target", target_json(multiple)},
-      {"views", rows}};
+      {"target", target_json(multiple)}};
+}
+
+}  // namespace
+
+SkyRadianceSetup SkyRadianceSetup::full() {
+  SkyRadianceSetup s;
+  s.sun_elevations_deg = {60.0, 20.0, 5.0};
+  s.view_elevations_deg = {5.0, 20.0, 60.0};
+  s.view_azimuths = 8;
+  s.path_samples = 65536;
+  s.path_samples_single = 16384;
+  return s;
+}
+
+SkyRadianceSetup SkyRadianceSetup::quick() {
+  SkyRadianceSetup s = full();
+  s.path_samples = 256;
+  s.path_samples_single = 256;
+  return s;
+}
+
+nlohmann::json sky_radiance_report(const ReportInputs& in, const SkyRadianceSetup& setup) {
+  const Atmosphere& atm = in.scene.atmosphere;
+  SkyRadianceScene scene = sky_radiance_scene(in, setup);
+  PathSpecs paths = path_specs(atm, setup);
+  const SkyPathTracer tracer(atm);
+  std::vector<ViewResult> views;
+  nlohmann::json by_sun = nlohmann::json::array();
+  for (double sun_elevation : setup.sun_elevations_deg) {
+    in.stage(fmt::format("sky radiance: sun at {:g} deg, {} views, {} paths", sun_elevation,
+                         scene.dirs.size(), setup.path_samples));
+    const size_t first = views.size();
+    measure_sun(in, setup, scene, tracer, paths, sun_elevation, views);
+    const std::vector<ViewResult> these(views.begin() + long(first), views.end());
+    by_sun.push_back(
+        {{"sun_elevation_deg", sun_elevation}, {"multiple", compare(these, multiple_pair)}});
+  }
+  nlohmann::json rows = nlohmann::json::array();
+  for (const ViewResult& v : views) rows.push_back(view_json(v));
+  nlohmann::json out = comparisons_json(views);
+  out.update(
+      {{"camera_altitude_m", scene.altitude_m},
+       {"sun_elevations_deg", setup.sun_elevations_deg},
+       {"view_elevations_deg", setup.view_elevations_deg},
+       {"view_azimuths", setup.view_azimuths},
+       {"skyview", {{"size", {scene.sky.width, scene.sky.height}}, {"steps", scene.sky.steps}}},
+       {"path_tracer",
+        {{"samples", setup.path_samples},
+         {"samples_single_and_second_order", setup.path_samples_single},
+         {"max_bounces", paths.all.max_bounces},
+         {"ground_albedo", vec_json(atm.ground_albedo)},
+         {"single_scattering_max_z_vs_quadrature", path_tracer_max_z(views)}}},
+       {"multiple_by_sun", by_sun},
+       {"views", rows}});
+  return out;
 }
 
 }  // namespace skybake

@@ -56,7 +56,21 @@
 
 namespace skybake {
 
-nlohmann::json sky_radiance_report(const ReportInputs& in);
+// The views and the path tracer's sample counts.
+struct SkyRadianceSetup {
+  std::vector<double> sun_elevations_deg;
+  std::vector<double> view_elevations_deg;
+  int view_azimuths = 8;
+  int path_samples = 0;         // paths per channel and view, every order
+  int path_samples_single = 0;  // the same for single scattering (also checked by quadrature)
+
+  static SkyRadianceSetup quick();
+  static SkyRadianceSetup full();
+};
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SkyRadianceSetup, sun_elevations_deg, view_elevations_deg,
+                                   view_azimuths, path_samples, path_samples_single)
+
+nlohmann::json sky_radiance_report(const ReportInputs& in, const SkyRadianceSetup& setup);
 
 // One view's values: the LUTs', and a reference with its 95% half-width (0
 // for the quadrature). `scale` is the view's path-traced radiance with every

@@ -24,6 +24,7 @@
 #include "core/math.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "report/ladders.hpp"
+#include "report/skyview.hpp"
 #include "report/stats.hpp"
 #include "reference/atmosphere_quadrature.hpp"
 
@@ -43,10 +44,11 @@ glm::dvec3 layer_sun(const SkyviewView& v) {
   return {std::sin(v.sun_zenith_rad), 0.0, std::cos(v.sun_zenith_rad)};
 }
 
-std::vector<SkyviewQuery> skyview_queries(const ReportInputs& in, const SkyviewLutSpec& op) {
+std::vector<SkyviewQuery> skyview_queries(const ReportInputs& in, const SkyviewSetup& setup,
+                                          const SkyviewLutSpec& op) {
   const Atmosphere& atm = in.scene.atmosphere;
   const int layers = int(op.views.size());
-  std::vector<SkyviewQuery> q(size_t(in.level.skyview_queries));
+  std::vector<SkyviewQuery> q(size_t(setup.skyview_queries));
   IntegrationOptions fine;
   fine.distribution = op.distribution;
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
@@ -56,10 +58,10 @@ std::vector<SkyviewQuery> skyview_queries(const ReportInputs& in, const SkyviewL
     s.r = atm.bottom_radius_m + std::max(v.altitude_m, 0.0);
     s.view = {2.0 * query_unit(i, 21) - 1.0, 2.0 * kPi * query_unit(i, 22)};
     const glm::dvec3 position(0.0, 0.0, s.r), dir = skyview_vector_from_direction(s.view);
-    s.reference = integrate_scattered_luminance(atm, in.transmittance, &in.multiscattering,
-                                                position, dir, layer_sun(v), INFINITY,
-                                                in.level.skyview_reference_steps, fine)
-                      .luminance;
+    s.reference =
+        integrate_scattered_luminance(atm, in.transmittance, &in.multiscattering, position, dir,
+                                      layer_sun(v), INFINITY, setup.skyview_reference_steps, fine)
+            .luminance;
     s.single_reference = reference_single_scattering(atm, position, dir, layer_sun(v),
                                                      in.level.single_scattering_tolerance)
                              .value;
@@ -80,18 +82,36 @@ ErrorStats measure(const Texture& lut, const Atmosphere& atm,
 
 }  // namespace
 
-nlohmann::json skyview_report(const ReportInputs& in) {
+SkyviewSetup SkyviewSetup::full() {
+  SkyviewSetup s;
+  s.skyview_steps = {8, 15, 30, 60};
+  s.skyview_sizes = {{96, 54}, {192, 108}, {384, 216}};
+  s.skyview_queries = 1024;
+  s.skyview_reference_steps = 2000;
+  return s;
+}
+
+SkyviewSetup SkyviewSetup::quick() {
+  SkyviewSetup s;
+  s.skyview_steps = {8, 30};
+  s.skyview_sizes = {{96, 54}, {192, 108}};
+  s.skyview_queries = 128;
+  s.skyview_reference_steps = 600;
+  return s;
+}
+
+nlohmann::json skyview_report(const ReportInputs& in, const SkyviewSetup& setup) {
   const Atmosphere& atm = in.scene.atmosphere;
   const SkyviewLutSpec op = skyview_spec(operating_spec(in.scene, "skyview"));
   in.stage("skyview: reference march and quadrature");
-  const std::vector<SkyviewQuery> queries = skyview_queries(in, op);
+  const std::vector<SkyviewQuery> queries = skyview_queries(in, setup, op);
   Texture no_multiscattering = in.multiscattering;
   std::fill(no_multiscattering.data.begin(), no_multiscattering.data.end(), 0.0f);
 
   std::vector<nlohmann::json> grid;
-  for (const std::vector<int>& size : in.level.skyview_sizes)
-    for (int steps : in.level.skyview_steps) grid.push_back({{"size", size}, {"steps", steps}});
-  const nlohmann::json axes = {{"steps", in.level.skyview_steps}, {"size", in.level.skyview_sizes}};
+  for (const std::vector<int>& size : setup.skyview_sizes)
+    for (int steps : setup.skyview_steps) grid.push_back({{"size", size}, {"steps", steps}});
+  const nlohmann::json axes = {{"steps", setup.skyview_steps}, {"size", setup.skyview_sizes}};
   const LadderMeasure bake_and_measure = [&](const nlohmann::json& s) {
     SkyviewLutSpec spec = op;
     spec.width = s["size"][0];
@@ -119,7 +139,7 @@ nlohmann::json skyview_report(const ReportInputs& in) {
       "max_rel/rms_rel: the same march with {} steps reading the same transmittance and "
       "multiple-scattering tables; single_scattering: adaptive quadrature "
       "(reference_single_scattering, tolerance {:g}) against the table baked without Psi_ms",
-      in.level.skyview_reference_steps, in.level.single_scattering_tolerance);
+      setup.skyview_reference_steps, in.level.single_scattering_tolerance);
   out["queries"] = fmt::format(
       "{} points: layer uniform over the preset's {} layers, view direction uniform on the "
       "sphere, 3 channels each; lookup_skyview (bilinear, azimuth wraps)",

@@ -13,6 +13,7 @@
 #include "core/math.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "report/ladders.hpp"
+#include "report/transmittance.hpp"
 #include "report/stats.hpp"
 #include "reference/atmosphere_quadrature.hpp"
 
@@ -25,9 +26,9 @@ struct TransmittanceQuery {
   glm::dvec3 reference{0.0};
 };
 
-std::vector<TransmittanceQuery> transmittance_queries(const ReportInputs& in) {
+std::vector<TransmittanceQuery> transmittance_queries(const ReportInputs& in, int count) {
   const Atmosphere& atm = in.scene.atmosphere;
-  std::vector<TransmittanceQuery> q(size_t(in.level.transmittance_queries));
+  std::vector<TransmittanceQuery> q(static_cast<size_t>(count));
   // Any table size maps the unit square the same way: the mapping's inverse
   // is exact, so a 2x2 "table" turns (x_mu, x_r) into (r, mu).
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
@@ -56,18 +57,34 @@ nlohmann::json settings_of(const TransmittanceLutSpec& s) {
 
 }  // namespace
 
-nlohmann::json transmittance_report(const ReportInputs& in) {
+TransmittanceSetup TransmittanceSetup::full() {
+  TransmittanceSetup s;
+  s.transmittance_steps = {5, 10, 20, 40, 80};
+  s.transmittance_sizes = {{64, 16}, {128, 32}, {256, 64}, {512, 128}};
+  s.transmittance_queries = 4096;
+  return s;
+}
+
+TransmittanceSetup TransmittanceSetup::quick() {
+  TransmittanceSetup s;
+  s.transmittance_steps = {5, 10, 20, 40};
+  s.transmittance_sizes = {{64, 16}, {256, 64}};
+  s.transmittance_queries = 512;
+  return s;
+}
+
+nlohmann::json transmittance_report(const ReportInputs& in, const TransmittanceSetup& setup) {
   const Atmosphere& atm = in.scene.atmosphere;
   in.stage("transmittance: reference quadrature");
-  const std::vector<TransmittanceQuery> queries = transmittance_queries(in);
+  const std::vector<TransmittanceQuery> queries =
+      transmittance_queries(in, setup.transmittance_queries);
   const TransmittanceLutSpec op = transmittance_spec(operating_spec(in.scene, "transmittance"));
 
   std::vector<nlohmann::json> grid;
-  for (const std::vector<int>& size : in.level.transmittance_sizes)
-    for (int steps : in.level.transmittance_steps)
-      grid.push_back({{"size", size}, {"steps", steps}});
-  const nlohmann::json axes = {{"steps", in.level.transmittance_steps},
-                               {"size", in.level.transmittance_sizes}};
+  for (const std::vector<int>& size : setup.transmittance_sizes)
+    for (int steps : setup.transmittance_steps) grid.push_back({{"size", size}, {"steps", steps}});
+  const nlohmann::json axes = {{"steps", setup.transmittance_steps},
+                               {"size", setup.transmittance_sizes}};
   const LadderMeasure bake_and_measure = [&](const nlohmann::json& s) {
     TransmittanceLutSpec spec;
     spec.width = s["size"][0];
