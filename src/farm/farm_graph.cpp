@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "farm/stamps.hpp"
+#include "io/bake_log.hpp"
 #include "io/manifest.hpp"
 #include "pipeline/freshness.hpp"
 #include "pipeline/output_writer.hpp"
@@ -39,6 +40,7 @@ FarmGraph build_farm_graph(const std::vector<Scene>& scenes, const fs::path& out
     const ProductGraph graph = build_product_graph(scene, {});
     const fs::path scene_dir = out_dir / scene.name;
     const Manifest manifest = read_manifest(scene_dir / "manifest.json");
+    const BakeLog log = read_bake_log(scene_dir / "bake_log.json");
     std::vector<double> cost(graph.nodes.size(), 0.0);
     for (size_t i = 0; i < graph.nodes.size(); ++i) {
       const GraphNode& node = graph.nodes[i];
@@ -63,7 +65,7 @@ FarmGraph build_farm_graph(const std::vector<Scene>& scenes, const fs::path& out
       f.stamp = stamp_path(fs::path(scene.name), node.spec.name).string();
       f.estimated_seconds = cost[i];
       f.deps = deps;
-      const Freshness fresh = check_freshness(node, manifest, scene_dir);
+      const Freshness fresh = check_freshness(node, manifest, scene_dir, {&log, false});
       f.current = fresh.current;
       f.reason = fresh.reason;
       farm.nodes.push_back(std::move(f));
