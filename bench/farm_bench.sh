@@ -104,9 +104,9 @@ if [ "$mode" = cluster ]; then
   T="$(mktemp -d /tmp/skybake-farm-bench-srun.XXXXXX)"
   trap 'rm -rf "$T"' EXIT
   "$repo/tests/farm/make_catalog.sh" "$CLUSTER_PRESETS" "$T/catalog" >/dev/null
-  "$skybake" plan "$T/catalog" --emit ninja -d "$T/out_local" -o "$T/local.ninja" 2>/dev/null
+  "$skybake" plan "$T/catalog" --emit ninja -o "$T/out_local" --emit-file "$T/local.ninja" 2>/dev/null
   "$skybake" plan "$T/catalog" --emit ninja --launcher "srun -N1 -n1 -c1 --exact --quiet" \
-    -d "$T/out_srun" -o "$T/srun.ninja" 2>/dev/null
+    -o "$T/out_srun" --emit-file "$T/srun.ninja" 2>/dev/null
   measure "salloc -Q -N2 -n2 true (allocation round trip)" "" "salloc -Q -N2 -n2 true"
   (cd "$T" && salloc -Q -N2 -n2 "$self" --inside-allocation)
   # The two output folders must agree.
@@ -121,7 +121,7 @@ T="$(mktemp -d /tmp/skybake-farm-bench.XXXXXX)"
 trap 'rm -rf "$T"' EXIT
 cat="$T/catalog"
 "$repo/tests/farm/make_catalog.sh" "$PRESETS" "$cat" >/dev/null
-"$skybake" plan "$cat" --emit ninja -d "$T/out_ninja" -o "$T/build.ninja" 2>/dev/null
+"$skybake" plan "$cat" --emit ninja -o "$T/out_ninja" --emit-file "$T/build.ninja" 2>/dev/null
 edges=$(grep -c '^build .*: bake ' "$T/build.ninja")
 
 echo "farm_bench: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(command -v hyperfine >/dev/null && echo hyperfine || echo date), skybake $("$skybake" --version | awk '{print $2}')"
@@ -138,7 +138,7 @@ measure "ninja -j 2, everything current (no-op)" "" "ninja -f '$T/build.ninja' -
 measure "skybake bake CAT/*.json, everything current (no-op)" "" \
   "'$skybake' bake '$cat'/*.json -o '$T/out_bake' --threads 2 --quiet"
 measure "skybake plan CAT --emit ninja (plan $PRESETS presets)" "" \
-  "'$skybake' plan '$cat' --emit ninja -d '$T/out_ninja' -o '$T/again.ninja'"
+  "'$skybake' plan '$cat' --emit ninja -o '$T/out_ninja' --emit-file '$T/again.ninja'"
 echo
 echo "ninja / one process: $(ratio "$ninja_full / $bake_full")x; ninja cost per product over one process: $(ratio "($ninja_full - $bake_full) / ($edges / 2)") s per slot (start-up alone: $(ratio "$startup") s)"
 for f in $(cd "$T/out_bake" && find . -name '*.exr' -o -name '*.dds'); do

@@ -10,9 +10,9 @@
 #include <tbb/info.h>
 
 #include "cli/commands.hpp"
+#include "cli/errors.hpp"
 #include "cli/progress.hpp"
 #include "core/error.hpp"
-#include "farm/catalog.hpp"
 #include "farm/stamps.hpp"
 #include "pipeline/bake.hpp"
 #include "pipeline/preset_loader.hpp"
@@ -51,7 +51,7 @@ nlohmann::json record_json(const OutputRecord& r, const std::string& scene_dir) 
 
 int run_bake(const BakeArgs& args) {
   std::vector<Scene> scenes;
-  for (const auto& preset : expand_catalog(args.presets)) scenes.push_back(load_scene(preset));
+  for (const auto& preset : expand_presets(args.presets)) scenes.push_back(load_scene(preset));
 
   const size_t threads =
       args.threads > 0 ? size_t(args.threads) : size_t(tbb::info::default_concurrency());

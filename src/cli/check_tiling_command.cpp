@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/errors.hpp"
 #include "core/error.hpp"
 #include "core/tiling.hpp"
 #include "io/texture_file.hpp"
@@ -15,6 +16,7 @@
 namespace skybake::cli {
 
 int run_check_tiling(const CheckTilingArgs& args) {
+  require_files(args.files);
   bool all_tile = true;
   nlohmann::json files = nlohmann::json::array();
   for (const std::string& file : args.files) {

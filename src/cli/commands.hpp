@@ -15,6 +15,7 @@ struct BakeArgs {
   int threads = 0;  // 0 = all cores
   bool force = false;
   bool quiet = false;
+  bool verbose = false;  // log reasons, reads, threads and timings on stderr
   bool json = false;
 };
 int run_bake(const BakeArgs& args);
@@ -28,11 +29,11 @@ int run_validate(const ValidateArgs& args);
 
 struct PlanArgs {
   std::vector<std::string> catalog;  // preset files, folders, globs
-  std::string out_dir = "out";
+  std::string out_dir = "out";       // read for the state, never written
   std::vector<std::string> only;
   bool json = false;
   std::string emit;         // "", "ninja" or "slurm"
-  std::string output;       // file for --emit (default stdout)
+  std::string emit_file;    // file for --emit (default stdout)
   std::string launcher;     // ninja: command prefix for each edge
   int threads = 1;          // --threads of each emitted task
   int chunk = 1;            // slurm: presets per array task
@@ -56,9 +57,9 @@ struct CheckTilingArgs {
 int run_check_tiling(const CheckTilingArgs& args);
 
 struct ReportArgs {
-  std::vector<std::string> presets;
+  std::vector<std::string> presets;   // files, folders, globs
   std::string out_dir = "out";
-  std::vector<std::string> products;  // empty: every product the scene requests
+  std::vector<std::string> only;      // empty: every product the scene requests
   int threads = 0;                    // 0 = all cores
   bool quick = false;                 // fewer ladder points, queries and paths
   int paths = 0;                      // > 0: path tracer paths per view (every order)

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/errors.hpp"
 #include "core/error.hpp"
 #include "io/texture_file.hpp"
 
@@ -37,6 +38,7 @@ nlohmann::json channel_stats(const Texture& tex) {
 }  // namespace
 
 int run_info(const InfoArgs& args) {
+  require_files(args.files);
   nlohmann::json all = nlohmann::json::array();
   for (const std::string& file : args.files) {
     const LoadedTexture loaded = read_texture_file(file);

@@ -1,18 +1,21 @@
 // The skybake executable: parses the command line with CLI11 (only here) and
 // dispatches to the subcommands of commands.hpp. Errors are caught once:
 // `skybake: error: <message>` on stderr and the exit code of core/error.hpp.
-#include <cstdio>
 #include <filesystem>
-#include <iostream>
+#include <functional>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/errors.hpp"
 #include "core/error.hpp"
 #include "pipeline/product.hpp"
 
 namespace {
+
+using namespace skybake::cli;
 
 // The absolute path of this executable, for emitted build files.
 std::string self_path(const char* argv0) {
@@ -42,8 +45,230 @@ Examples:
   skybake check-tiling out/clouds_hzd/noise_shape.dds   verify a noise volume tiles
   skybake report presets/earth.json --quick      error vs bake time -> out/earth/report/report.html
 
+Errors are one line on stderr: "skybake: error: <message>".
 Exit codes: 0 ok, 1 check failed, 2 usage, 3 invalid preset, 4 file error, 5 internal error.
 Docs: README.md, docs/presets.md.)";
+
+// Options that mean the same in every command that has them.
+
+void add_presets_option(CLI::App* cmd, std::vector<std::string>& presets) {
+  cmd->add_option("presets", presets,
+                  "Scene presets: files, folders (their scene presets, recursively) or globs")
+      ->required();
+}
+
+void add_out_option(CLI::App* cmd, std::string& out_dir, const std::string& help) {
+  cmd->add_option("-o,--out", out_dir, "Output folder" + help)->capture_default_str();
+}
+
+void add_only_option(CLI::App* cmd, std::vector<std::string>& only, const std::string& help) {
+  cmd->add_option("--only", only, help)->delimiter(',');
+}
+
+void add_threads_option(CLI::App* cmd, int& threads) {
+  cmd->add_option("-j,--threads", threads, "Worker threads; 0 = all cores")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1024));
+}
+
+void add_json_flag(CLI::App* cmd, bool& json, const std::string& help) {
+  cmd->add_flag("--json", json, help);
+}
+
+CLI::App* add_bake_command(CLI::App& app, BakeArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "bake", "Bake the outputs each scene preset asks for (only what is stale).");
+  add_presets_option(cmd, args.presets);
+  add_out_option(cmd, args.out_dir, "; files go to DIR/<scene>/");
+  add_only_option(cmd, args.only,
+                  "Bake only these products (comma separated); their dependencies are read back "
+                  "when current on disk, else computed in memory");
+  add_threads_option(cmd, args.threads);
+  cmd->add_flag("-f,--force", args.force, "Bake even outputs that are up to date");
+  cmd->add_flag("-q,--quiet", args.quiet, "No progress, no line per output, no summary line");
+  add_json_flag(cmd, args.json, "Print a machine-readable summary on stdout");
+  cmd->footer(
+      "\nOutputs are written to a temporary name and renamed when complete; "
+      "DIR/<scene>/manifest.json records every output (files, shape, channels, "
+      "parameterization, input hash, bake time). Re-running an unchanged bake does no work.");
+  return cmd;
+}
+
+CLI::App* add_validate_command(CLI::App& app, ValidateArgs& args) {
+  CLI::App* cmd =
+      app.add_subcommand("validate", "Check presets against schemas/ and the semantic rules.");
+  cmd->add_option("presets", args.presets, "Preset files (JSON)")->required();
+  cmd->add_flag("-q,--quiet", args.quiet, "Print only errors");
+  add_json_flag(cmd, args.json, "Print results as JSON on stdout");
+  cmd->footer("\nExit 0 when every preset is valid, 1 otherwise; 4 when a file does not exist.");
+  return cmd;
+}
+
+void add_plan_emit_options(CLI::App* cmd, PlanArgs& args) {
+  CLI::Option* emit = cmd->add_option("--emit", args.emit, "Emit a build file: ninja or slurm")
+                          ->check(CLI::IsMember({"ninja", "slurm"}));
+  cmd->add_option("--emit-file", args.emit_file, "Write the emitted file here (default: stdout)")
+      ->needs(emit);
+  cmd->add_option("--launcher", args.launcher,
+                  "ninja: prefix of every edge, e.g. \"srun -N1 -n1 -c1 --exact --quiet\"")
+      ->needs(emit);
+  cmd->add_option("--task-threads", args.threads, "--threads of each emitted task")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1024))
+      ->needs(emit);
+  cmd->add_option("--chunk", args.chunk, "slurm: presets per array task")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000000))
+      ->needs(emit);
+  cmd->add_option("--max-parallel", args.max_parallel,
+                  "slurm: at most this many array tasks at once (0 = no limit)")
+      ->capture_default_str()
+      ->needs(emit);
+  cmd->get_option("--json")->excludes(emit);
+}
+
+CLI::App* add_plan_command(CLI::App& app, PlanArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "plan", "Show the product graph of scenes or a catalog; emit it for ninja or Slurm.");
+  add_presets_option(cmd, args.catalog);
+  add_out_option(cmd, args.out_dir, " the bakes write to (read for the state, not written)");
+  add_only_option(cmd, args.only, "Plan only these products (comma separated)");
+  add_json_flag(cmd, args.json,
+                "JSON on stdout: per-scene graphs plus the farm graph of stale nodes and edges");
+  add_plan_emit_options(cmd, args);
+  cmd->footer(
+      "\nExamples:\n"
+      "  skybake plan presets/earth.json                       graph and state of one scene\n"
+      "  skybake plan presets/ --json                          farm graph of a catalog\n"
+      "  skybake plan presets/ -o out --emit ninja --emit-file build.ninja && ninja -f "
+      "build.ninja -j 8\n"
+      "  skybake plan presets/ --emit ninja --launcher \"srun -N1 -n1 -c1 --exact --quiet\" "
+      "--emit-file build.ninja\n"
+      "  skybake plan 'catalog/*.json' --emit slurm --chunk 10 --emit-file bake.sbatch && sbatch "
+      "bake.sbatch");
+  return cmd;
+}
+
+CLI::App* add_info_command(CLI::App& app, InfoArgs& args) {
+  CLI::App* cmd =
+      app.add_subcommand("info", "Read back EXR, DDS or VDB files and print shape and metadata.");
+  cmd->add_option("files", args.files, "Files written by skybake")->required();
+  add_json_flag(cmd, args.json, "Print as JSON on stdout");
+  return cmd;
+}
+
+CLI::App* add_check_tiling_command(CLI::App& app, CheckTilingArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "check-tiling", "Check that baked 2D/3D textures tile (DDS, EXR, VDB); exit 1 if not.");
+  cmd->add_option("files", args.files, "Texture files written by skybake")->required();
+  cmd->add_option("-t,--tolerance", args.tolerance,
+                  "A face passes when its seam jump <= (1 + T) x the largest interior "
+                  "jump along that axis")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1000.0));
+  cmd->add_flag("-q,--quiet", args.quiet, "One line per file");
+  add_json_flag(cmd, args.json, "Print the ratios as JSON on stdout");
+  cmd->footer(
+      "\nFor each axis and channel: the largest jump between neighbours across the wrapped "
+      "face against the largest jump between interior neighbours (the ratio). A tileable "
+      "texture's seam is just another neighbour face (ratio near or below 1).");
+  return cmd;
+}
+
+CLI::App* add_report_command(CLI::App& app, ReportArgs& args) {
+  CLI::App* cmd = app.add_subcommand(
+      "report", "Measure each product's error against run time; write report.json and HTML.");
+  add_presets_option(cmd, args.presets);
+  add_out_option(cmd, args.out_dir, "; writes DIR/<scene>/report/");
+  add_only_option(cmd, args.only, "Measure only these products (comma separated)");
+  add_threads_option(cmd, args.threads);
+  cmd->add_flag("--quick", args.quick, "Few ladder points, queries and paths (seconds, for tests)");
+  cmd->add_option("--paths", args.paths,
+                  "Path tracer paths per view for the sky radiance (0 = the level's: "
+                  "65536, --quick 256)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1 << 24));
+  cmd->add_flag("-q,--quiet", args.quiet, "No progress lines on stderr");
+  add_json_flag(cmd, args.json, "Print the summary as JSON on stdout");
+  cmd->footer(
+      "\nLadders of sample counts and sizes per table against independent references (adaptive "
+      "quadrature, finer integration), sky radiance against the path tracer, float32/half "
+      "findings, sky previews. Exit 0 whatever the accuracy; see docs/report.md.");
+  return cmd;
+}
+
+// The arguments of every command, filled by the parse.
+struct Arguments {
+  BakeArgs bake;
+  ValidateArgs validate;
+  PlanArgs plan;
+  InfoArgs info;
+  CheckTilingArgs tiling;
+  ReportArgs report;
+};
+
+struct Command {
+  CLI::App* app;
+  std::function<int()> run;
+};
+
+std::vector<Command> add_commands(CLI::App& app, Arguments& a) {
+  return {{add_bake_command(app, a.bake), [&a] { return run_bake(a.bake); }},
+          {add_validate_command(app, a.validate), [&a] { return run_validate(a.validate); }},
+          {add_plan_command(app, a.plan), [&a] { return run_plan(a.plan); }},
+          {add_info_command(app, a.info), [&a] { return run_info(a.info); }},
+          {add_check_tiling_command(app, a.tiling), [&a] { return run_check_tiling(a.tiling); }},
+          {add_report_command(app, a.report), [&a] { return run_report(a.report); }}};
+}
+
+void configure_app(CLI::App& app) {
+  app.set_version_flag("--version", "skybake " SKYBAKE_VERSION);
+  app.require_subcommand(1);
+  app.footer(products_help() + kFooter);
+  app.get_formatter()->column_width(34);
+}
+
+std::vector<std::string> command_names(const CLI::App& app) {
+  std::vector<std::string> names;
+  for (const CLI::App* cmd : app.get_subcommands([](const CLI::App*) { return true; }))
+    names.push_back(cmd->get_name());
+  return names;
+}
+
+std::vector<std::string> option_names(const CLI::App& cmd) {
+  std::vector<std::string> names;
+  for (const CLI::Option* opt : cmd.get_options()) {
+    for (const std::string& n : opt->get_lnames()) names.push_back("--" + n);
+    for (const std::string& n : opt->get_snames()) names.push_back("-" + n);
+  }
+  return names;
+}
+
+bool is_option(const std::string& arg) { return arg.size() > 1 && arg[0] == '-'; }
+
+// The one line for a command line CLI11 refused: an unknown option or command
+// is named (with a suggestion), before CLI11's complaint about what it then
+// misses ("presets is required"); otherwise CLI11's own message.
+std::string parse_error_message(const CLI::App& app, const CLI::ParseError& e) {
+  const std::vector<CLI::App*> parsed = app.get_subcommands();
+  for (const CLI::App* cmd : parsed)
+    for (const std::string& arg : cmd->remaining())
+      if (is_option(arg)) return unknown_option_message(cmd->get_name(), arg, option_names(*cmd));
+  for (const std::string& arg : app.remaining()) {
+    if (is_option(arg)) return unknown_option_message("", arg, option_names(app));
+    if (parsed.empty()) return unknown_command_message(arg, command_names(app));
+  }
+  if (parsed.empty()) return no_command_message(command_names(app));
+  return e.what();
+}
+
+// --json anywhere on the command line: errors go to stdout as JSON too,
+// also when the command line itself is refused.
+bool wants_json(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) == "--json") return true;
+  return false;
+}
 
 }  // namespace
 
@@ -51,158 +276,18 @@ int main(int argc, char** argv) {
   CLI::App app{"skybake " SKYBAKE_VERSION
                " - bakes real-time sky assets (atmosphere LUTs, cloud noise, weather textures)\n"
                "from JSON scene presets into EXR, DDS, VDB and PNG files."};
-  app.set_version_flag("--version", "skybake " SKYBAKE_VERSION);
-  app.require_subcommand(1);
-  app.footer(products_help() + kFooter);
-  app.get_formatter()->column_width(34);
-
-  bool json_errors = false;
-
-  skybake::cli::BakeArgs bake;
-  CLI::App* bake_cmd = app.add_subcommand(
-      "bake", "Bake the outputs each scene preset asks for (only what is stale).");
-  bake_cmd->add_option("presets", bake.presets,
-                       "Scene presets: files, folders (their scene presets, recursively) or globs")
-      ->required();
-  bake_cmd->add_option("-o,--out", bake.out_dir, "Output folder; files go to DIR/<scene>/")
-      ->capture_default_str();
-  bake_cmd->add_option("--only", bake.only,
-                       "Bake only these products (comma separated); their dependencies are "
-                       "computed in memory")
-      ->delimiter(',');
-  bake_cmd->add_option("-j,--threads", bake.threads, "Worker threads; 0 = all cores")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 1024));
-  bake_cmd->add_flag("-f,--force", bake.force, "Bake even outputs that are up to date");
-  bake_cmd->add_flag("-q,--quiet", bake.quiet, "No progress and no summary lines");
-  bake_cmd->add_flag("--json", bake.json, "Print a machine-readable summary on stdout");
-  bake_cmd->footer(
-      "\nOutputs are written to a temporary name and renamed when complete; "
-      "DIR/<scene>/manifest.json records every output (files, shape, channels, "
-      "parameterization, input hash, bake time). Re-running an unchanged bake does no work.");
-
-  skybake::cli::ValidateArgs validate;
-  CLI::App* validate_cmd =
-      app.add_subcommand("validate", "Check presets against schemas/ and the semantic rules.");
-  validate_cmd->add_option("presets", validate.presets, "Preset files (JSON)")->required();
-  validate_cmd->add_flag("-q,--quiet", validate.quiet, "Print only errors");
-  validate_cmd->add_flag("--json", validate.json, "Print results as JSON on stdout");
-  validate_cmd->footer("\nExit 0 when every preset is valid, 1 otherwise.");
-
-  skybake::cli::PlanArgs plan;
-  plan.self = self_path(argv[0]);
-  CLI::App* plan_cmd = app.add_subcommand(
-      "plan", "Show the product graph of scenes or a catalog; emit it for ninja or Slurm.");
-  plan_cmd->add_option("catalog", plan.catalog,
-                       "Scene presets: files, folders (searched recursively) or glob patterns")
-      ->required();
-  plan_cmd->add_option("-d,--out-dir", plan.out_dir, "Output folder the bakes write to")
-      ->capture_default_str();
-  plan_cmd->add_option("--only", plan.only, "Restrict to these products")->delimiter(',');
-  plan_cmd->add_flag("--json", plan.json,
-                     "JSON: per-scene graphs plus the farm graph of stale nodes and edges");
-  plan_cmd->add_option("--emit", plan.emit, "Emit a build file instead: ninja or slurm")
-      ->check(CLI::IsMember({"ninja", "slurm"}));
-  plan_cmd->add_option("-o,--output", plan.output, "Write the plan or emitted file here");
-  plan_cmd->add_option("--launcher", plan.launcher,
-                       "ninja: prefix of every edge, e.g. \"srun -N1 -n1 -c1 --exact --quiet\"");
-  plan_cmd->add_option("--task-threads", plan.threads, "--threads of each emitted task")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 1024));
-  plan_cmd->add_option("--chunk", plan.chunk, "slurm: presets per array task")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 1000000));
-  plan_cmd->add_option("--max-parallel", plan.max_parallel,
-                       "slurm: at most this many array tasks at once (0 = no limit)")
-      ->capture_default_str();
-  plan_cmd->footer(
-      "\nExamples:\n"
-      "  skybake plan presets/earth.json                       graph and state of one scene\n"
-      "  skybake plan presets/ --json                          farm graph of a catalog\n"
-      "  skybake plan presets/ --emit ninja -o build.ninja && ninja -f build.ninja -j 8\n"
-      "  skybake plan presets/ --emit ninja --launcher \"srun -N1 -n1 -c1 --exact --quiet\" -o "
-      "build.ninja\n"
-      "  skybake plan 'catalog/*.json' --emit slurm --chunk 10 -o bake.sbatch && sbatch "
-      "bake.sbatch");
-
-  skybake::cli::InfoArgs info;
-  CLI::App* info_cmd =
-      app.add_subcommand("info", "Read back EXR, DDS or VDB files and print shape and metadata.");
-  info_cmd->add_option("files", info.files, "Files written by skybake")
-      ->required()
-      ->check(CLI::ExistingFile);
-  info_cmd->add_flag("--json", info.json, "Print as JSON on stdout");
-
-  skybake::cli::CheckTilingArgs tiling;
-  CLI::App* tiling_cmd = app.add_subcommand(
-      "check-tiling", "Check that baked 2D/3D textures tile (DDS, EXR, VDB); exit 1 if not.");
-  tiling_cmd->add_option("files", tiling.files, "Texture files written by skybake")
-      ->required()
-      ->check(CLI::ExistingFile);
-  tiling_cmd->add_option("-t,--tolerance", tiling.tolerance,
-                         "A face passes when its seam jump <= (1 + T) x the largest interior "
-                         "jump along that axis")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1000.0));
-  tiling_cmd->add_flag("-q,--quiet", tiling.quiet, "One line per file");
-  tiling_cmd->add_flag("--json", tiling.json, "Print the ratios as JSON on stdout");
-  tiling_cmd->footer(
-      "\nFor each axis and channel: the largest jump between neighbours across the wrapped "
-      "face against the largest jump between interior neighbours (the ratio). A tileable "
-      "texture's seam is just another neighbour face (ratio near or below 1).");
-
-  skybake::cli::ReportArgs report;
-  CLI::App* report_cmd = app.add_subcommand(
-      "report", "Measure each product's error against run time; write report.json and HTML.");
-  report_cmd->add_option("presets", report.presets, "Scene preset files (JSON)")->required();
-  report_cmd->add_option("-o,--out", report.out_dir, "Output folder; writes DIR/<scene>/report/")
-      ->capture_default_str();
-  report_cmd->add_option("--products", report.products,
-                         "Measure only these products (comma separated)")
-      ->delimiter(',');
-  report_cmd->add_option("-j,--threads", report.threads, "Worker threads; 0 = all cores")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 1024));
-  report_cmd->add_flag("--quick", report.quick,
-                       "Few ladder points, queries and paths (seconds, for tests)");
-  report_cmd->add_option("--paths", report.paths,
-                         "Path tracer paths per view for the sky radiance (0 = the level's: "
-                         "65536, --quick 256)")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 1 << 24));
-  report_cmd->add_flag("-q,--quiet", report.quiet, "No progress lines on stderr");
-  report_cmd->add_flag("--json", report.json, "Print the summary as JSON on stdout");
-  report_cmd->footer(
-      "\nLadders of sample counts and sizes per table against independent references (adaptive "
-      "quadrature, finer integration), sky radiance against the path tracer, float32/half "
-      "findings, sky previews. Exit 0 whatever the accuracy; see docs/report.md.");
-
+  configure_app(app);
+  Arguments args;
+  args.plan.self = self_path(argv[0]);
+  const std::vector<Command> commands = add_commands(app, args);
+  const bool json = wants_json(argc, argv);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : skybake::kExitUsage;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    return print_error(parse_error_message(app, e), skybake::kExitUsage, json);
   }
-
-  json_errors = (bake_cmd->parsed() && bake.json) || (plan_cmd->parsed() && plan.json) ||
-                (info_cmd->parsed() && info.json) || (tiling_cmd->parsed() && tiling.json) ||
-                (report_cmd->parsed() && report.json);
-  try {
-    if (bake_cmd->parsed()) return skybake::cli::run_bake(bake);
-    if (validate_cmd->parsed()) return skybake::cli::run_validate(validate);
-    if (plan_cmd->parsed()) return skybake::cli::run_plan(plan);
-    if (info_cmd->parsed()) return skybake::cli::run_info(info);
-    if (tiling_cmd->parsed()) return skybake::cli::run_check_tiling(tiling);
-    if (report_cmd->parsed()) return skybake::cli::run_report(report);
-  } catch (const skybake::Error& e) {
-    std::fprintf(stderr, "skybake: error: %s\n", e.what());
-    if (json_errors)
-      std::cout << nlohmann::json{{"ok", false}, {"error", e.what()}, {"exit_code", e.exit_code()}}
-                       .dump(2)
-                << "\n";
-    return e.exit_code();
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "skybake: internal error: %s\n", e.what());
-    return skybake::kExitInternal;
-  }
-  return skybake::kExitUsage;
+  for (const Command& c : commands)
+    if (c.app->parsed()) return run_reporting_errors(c.run, json);
+  return print_error(no_command_message(command_names(app)), skybake::kExitUsage, json);
 }

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/errors.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/manifest.hpp"
@@ -65,42 +66,44 @@ nlohmann::json scene_plan(const Scene& scene, const PlanArgs& args, bool print) 
           {"nodes", nodes}};
 }
 
-void write_or_print(const std::string& text, const std::string& output) {
-  if (output.empty() || output == "-") {
+void write_or_print(const std::string& text, const std::string& file) {
+  if (file.empty() || file == "-") {
     std::cout << text;
     return;
   }
-  write_text_atomic(output, text);
+  write_text_atomic(file, text);
+}
+
+// The ninja file or Slurm script of the stale nodes, on stdout or --emit-file.
+int emit_plan(const std::vector<Scene>& scenes, const PlanArgs& args) {
+  if (!args.only.empty()) throw UsageError("--emit plans whole scenes; drop --only");
+  if (args.emit == "slurm" && !args.launcher.empty())
+    throw UsageError("--launcher applies to --emit ninja only");
+  const FarmGraph farm = build_farm_graph(scenes, args.out_dir);
+  EmitOptions opt;
+  opt.skybake = args.self;
+  opt.launcher = args.launcher;
+  opt.threads = args.threads;
+  opt.chunk = args.chunk;
+  opt.max_parallel = args.max_parallel;
+  write_or_print(args.emit == "ninja" ? emit_ninja(farm, opt) : emit_slurm(farm, opt),
+                 args.emit_file);
+  if (!args.emit_file.empty() && args.emit_file != "-")
+    std::fprintf(stderr, "wrote %s (%zu products of %zu scenes)\n", args.emit_file.c_str(),
+                 farm.nodes.size(), scenes.size());
+  return kExitOk;
 }
 
 }  // namespace
 
 int run_plan(const PlanArgs& args) {
+  if (fs::is_regular_file(args.out_dir))
+    throw UsageError(fmt::format(
+        "-o: '{}' is a file; -o names the output folder (the emitted file is --emit-file)",
+        args.out_dir));
   std::vector<Scene> scenes;
-  for (const fs::path& preset : expand_catalog(args.catalog)) scenes.push_back(load_scene(preset));
-
-  if (!args.emit.empty()) {
-    if (!args.only.empty()) throw UsageError("--emit plans whole scenes; drop --only");
-    const FarmGraph farm = build_farm_graph(scenes, args.out_dir);
-    EmitOptions opt;
-    opt.skybake = args.self;
-    opt.launcher = args.launcher;
-    opt.threads = args.threads;
-    opt.chunk = args.chunk;
-    opt.max_parallel = args.max_parallel;
-    if (args.emit == "ninja") {
-      write_or_print(emit_ninja(farm, opt), args.output);
-    } else if (args.emit == "slurm") {
-      if (!args.launcher.empty()) throw UsageError("--launcher applies to --emit ninja only");
-      write_or_print(emit_slurm(farm, opt), args.output);
-    } else {
-      throw UsageError(fmt::format("--emit: expected ninja or slurm, got '{}'", args.emit));
-    }
-    if (!args.output.empty() && args.output != "-")
-      std::fprintf(stderr, "wrote %s (%zu products of %zu scenes)\n", args.output.c_str(),
-                   farm.nodes.size(), scenes.size());
-    return kExitOk;
-  }
+  for (const fs::path& preset : expand_presets(args.catalog)) scenes.push_back(load_scene(preset));
+  if (!args.emit.empty()) return emit_plan(scenes, args);
 
   nlohmann::json plans = nlohmann::json::array();
   for (const Scene& scene : scenes) plans.push_back(scene_plan(scene, args, !args.json));
@@ -108,7 +111,7 @@ int run_plan(const PlanArgs& args) {
     nlohmann::json j = args.only.empty() ? farm_graph_json(build_farm_graph(scenes, args.out_dir))
                                          : nlohmann::json::object();
     j["scenes"] = plans;
-    write_or_print(j.dump(2) + "\n", args.output);
+    std::cout << j.dump(2) << "\n";
   }
   return kExitOk;
 }

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/errors.hpp"
 #include "core/error.hpp"
 #include "pipeline/preset_loader.hpp"
 #include "report/report.hpp"
@@ -83,7 +84,7 @@ void print_summary(const nlohmann::json& s) {
 
 int run_report(const ReportArgs& args) {
   std::vector<Scene> scenes;
-  for (const std::string& preset : args.presets) scenes.push_back(load_scene(preset));
+  for (const auto& preset : expand_presets(args.presets)) scenes.push_back(load_scene(preset));
 
   const size_t threads =
       args.threads > 0 ? size_t(args.threads) : size_t(tbb::info::default_concurrency());
@@ -93,7 +94,7 @@ int run_report(const ReportArgs& args) {
   for (const Scene& scene : scenes) {
     ReportOptions options;
     options.out_dir = args.out_dir;
-    options.products = args.products;
+    options.products = args.only;
     options.quick = args.quick;
     options.path_samples = args.paths;
     if (!args.quiet)

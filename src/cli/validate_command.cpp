@@ -6,12 +6,14 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/errors.hpp"
 #include "core/error.hpp"
 #include "pipeline/preset_loader.hpp"
 
 namespace skybake::cli {
 
 int run_validate(const ValidateArgs& args) {
+  require_files(args.presets);
   int status = kExitOk;
   nlohmann::json results = nlohmann::json::array();
   for (const std::string& preset : args.presets) {

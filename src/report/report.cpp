@@ -29,11 +29,11 @@ std::vector<std::string> selected_products(const Scene& scene,
   for (const OutputSpec& o : scene.outputs) asked.push_back(o.product);
   for (const std::string& name : only) {
     if (!find_product(name))
-      throw UsageError(fmt::format("--products: unknown product '{}'{}", name,
+      throw UsageError(fmt::format("--only: unknown product '{}'{}", name,
                                    did_you_mean(name, product_names())));
     if (std::find(asked.begin(), asked.end(), name) == asked.end())
       throw UsageError(
-          fmt::format("--products: scene '{}' ({}) does not request '{}'; it requests: {}",
+          fmt::format("--only: scene '{}' ({}) does not request '{}'; it requests: {}",
                       scene.name, scene.file.string(), name, fmt::join(asked, ", ")));
   }
   if (only.empty()) return asked;

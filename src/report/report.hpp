@@ -46,7 +46,7 @@ struct ReportResult {
   nlohmann::json report;         // the contents of report.json
 };
 
-// Throws UsageError when --products names a product the scene does not
+// Throws UsageError when --only names a product the scene does not
 // request (with "did you mean"), IoError when a file cannot be written.
 ReportResult run_report(const Scene& scene, const ReportOptions& options);
 

@@ -48,7 +48,7 @@ TEST(Cli, MissingPresetFileIsNamed) {
 TEST(Cli, PlanShowsProductsAndState) {
   const fs::path out = fresh_dir("cli_plan");
   const std::string earth = source_path("presets/earth.json").string();
-  auto r = run_skybake({"plan", earth, "-d", out.string(), "--json"});
+  auto r = run_skybake({"plan", earth, "-o", out.string(), "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   auto j = nlohmann::json::parse(r.out);
   const auto& node = j["scenes"][0]["nodes"][0];
@@ -59,8 +59,29 @@ TEST(Cli, PlanShowsProductsAndState) {
   EXPECT_TRUE(skybake::test::list_files(out).empty());
 
   ASSERT_EQ(run_skybake({"bake", earth, "-o", out.string(), "-q"}).exit_code, 0);
-  j = nlohmann::json::parse(run_skybake({"plan", earth, "-d", out.string(), "--json"}).out);
+  j = nlohmann::json::parse(run_skybake({"plan", earth, "-o", out.string(), "--json"}).out);
   EXPECT_TRUE(j["scenes"][0]["nodes"][0]["up_to_date"].get<bool>());
+  EXPECT_EQ(j["scenes"][0]["folder"], (out / "earth").string());
+  EXPECT_EQ(j["out_dir"], out.string());
+}
+
+// -o is the output folder in plan as in bake and report; the emitted build
+// file has its own flag and goes to stdout without it.
+TEST(Cli, PlanEmitsIntoEmitFileForTheFolderOfDashO) {
+  const fs::path dir = fresh_dir("cli_plan_emit");
+  const std::string earth = source_path("presets/earth.json").string();
+  const fs::path out = dir / "baked", ninja = dir / "build.ninja";
+  auto r = run_skybake({"plan", earth, "-o", out.string(), "--emit", "ninja", "--emit-file",
+                        ninja.string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  const std::string text = skybake::test::read_file(ninja);
+  EXPECT_NE(text.find("builddir = " + out.string() + "\n"), std::string::npos) << text;
+  EXPECT_FALSE(fs::exists(out)) << "plan writes nothing into the output folder";
+
+  r = run_skybake({"plan", earth, "--out", out.string(), "--emit", "ninja"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, text) << "without --emit-file the same file goes to stdout";
 }
 
 TEST(Cli, InfoReadsBackBakedFiles) {

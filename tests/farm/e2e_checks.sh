@@ -37,7 +37,7 @@ find_dependent_product() {
     [ "$p" != transmittance ] && grep -qx "$p" <<<"$products" || continue
     rm -rf "$probe"
     "$here/make_catalog.sh" -p "transmittance,$p" -s 64x16 1 "$probe" >/dev/null
-    plan="$("$skybake" plan "$probe" -d "$probe/out" --json 2>/dev/null)" || continue
+    plan="$("$skybake" plan "$probe" -o "$probe/out" --json 2>/dev/null)" || continue
     if grep -q '"edges": \[$' <<<"$plan"; then
       echo "$p"
       return

@@ -82,7 +82,7 @@ nodes=$scenes  # one node per product: 20 scenes x 1 (+ 3 scenes x 2)
 [ -z "$dep" ] || nodes=$((scenes + 3))
 
 # 1. ninja bakes the catalog like one local bake.
-"$skybake" plan "$cat" --emit ninja -d "$outd" -o "$T/build.ninja"
+"$skybake" plan "$cat" --emit ninja -o "$outd" --emit-file "$T/build.ninja"
 [ "$(grep -c '^build .*: bake ' "$T/build.ninja")" -eq "$nodes" ] ||
   fail "build.ninja should have $nodes bake edges"
 grep -q 'restat = 1' "$T/build.ninja" || fail "build.ninja: the bake rule has no restat"
@@ -172,7 +172,7 @@ outf="$T/out fail"
 entries=("$cat/*_00[0-5].json")
 fnodes=6
 if [ -n "$dep" ]; then entries+=("$cat/*_02[0-2].json"); fnodes=12; fi
-"$skybake" plan "${entries[@]}" --emit ninja -d "$outf" -o "$T/fail.ninja"
+"$skybake" plan "${entries[@]}" --emit ninja -o "$outf" --emit-file "$T/fail.ninja"
 [ "$(grep -c '^build .*: bake ' "$T/fail.ninja")" -eq "$fnodes" ] || fail "fail.ninja should have $fnodes edges"
 bad=${dep_scene:-earth_000}
 mkdir -p "$outf/$bad/transmittance.exr"  # the rename onto it fails
@@ -210,7 +210,7 @@ if [ -n "$dep" ]; then
   prc=0
   "$skybake" bake "$cat/$dep_scene.json" -o "$outp" --quiet 2>/dev/null || prc=$?
   [ "$prc" -ne 0 ] || fail "a bake whose $dep output cannot be written succeeded"
-  plan="$("$skybake" plan "$cat/$dep_scene.json" -d "$outp")"
+  plan="$("$skybake" plan "$cat/$dep_scene.json" -o "$outp")"
   for s in "$outp/$dep_scene/.stamps/"*.stamp; do
     [ -e "$s" ] || continue
     name="$(basename "$s" .stamp)"
@@ -247,7 +247,7 @@ wait_all() {  # pids...: every process exits 0
 }
 check_current() {  # presets...: plan reads the manifest and finds every output current
   local plan written current
-  plan="$("$skybake" plan "$@" -d "$conc/out")" || fail "plan of $* failed"
+  plan="$("$skybake" plan "$@" -o "$conc/out")" || fail "plan of $* failed"
   written="$(grep -cE '^  [a-z_]+ +write ' <<<"$plan" || true)"
   current="$(grep -E '^  [a-z_]+ +write ' <<<"$plan" | grep -c 'up to date$' || true)"
   [ "$written" -ge 1 ] && [ "$current" -eq "$written" ] ||
@@ -287,7 +287,7 @@ ok "5. $rounds rounds of $procs concurrent bakes into one folder: manifest keeps
 
 # 6. The --emit slurm job-array script, its tasks run here one by one (the
 #    Slurm run itself is in slurm_e2e.sh), and on an empty catalog.
-"$skybake" plan "$cat" --emit slurm --chunk 4 -d "$T/out slurm" -o "$T/bake.sbatch" 2>/dev/null
+"$skybake" plan "$cat" --emit slurm --chunk 4 -o "$T/out slurm" --emit-file "$T/bake.sbatch" 2>/dev/null
 tasks=$(((scenes + 3) / 4))
 grep -q "^#SBATCH --array=0-$((tasks - 1))\$" "$T/bake.sbatch" || fail "bake.sbatch should have $tasks array tasks"
 for ((i = 0; i < tasks; i++)); do
@@ -296,7 +296,7 @@ done
 same_outputs "$ref" "$T/out slurm"
 mkdir -p "$T/empty catalog"
 erc=0
-"$skybake" plan "$T/empty catalog" --emit slurm -d "$T/out empty" -o "$T/empty.sbatch" 2>/dev/null || erc=$?
+"$skybake" plan "$T/empty catalog" --emit slurm -o "$T/out empty" --emit-file "$T/empty.sbatch" 2>/dev/null || erc=$?
 if [ "$erc" -eq 0 ]; then
   (cd "$T" && SLURM_ARRAY_TASK_ID=0 bash "$T/empty.sbatch" >/dev/null 2>&1) ||
     fail "--emit slurm on an empty catalog wrote a job array whose task fails"

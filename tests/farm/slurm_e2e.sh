@@ -255,7 +255,7 @@ chmod +x "$T/on_node.sh"
 launcher="srun -N1 -n1 -c1 --exact --quiet $T/on_node.sh"
 
 # 1. ninja + srun inside salloc.
-"$skybake" plan "$cat" --emit ninja --launcher "$launcher" -d "$T/out" -o "$T/build.ninja" 2>/dev/null
+"$skybake" plan "$cat" --emit ninja --launcher "$launcher" -o "$T/out" --emit-file "$T/build.ninja" 2>/dev/null
 grep -q "^launcher = srun " "$T/build.ninja" || fail "build.ninja has no srun launcher"
 t0=$(date +%s.%N)
 salloc_ninja -f "$T/build.ninja" -j 2
@@ -291,7 +291,7 @@ ok "3. second run: no work to do, no job step"
 entries=("$cat/*_00[0-5].json")
 fnodes=6
 if [ -n "$dep" ]; then entries+=("$cat/*_02[0-2].json"); fnodes=12; fi
-"$skybake" plan "${entries[@]}" --emit ninja --launcher "$launcher" -d "$T/outf" -o "$T/fail.ninja" 2>/dev/null
+"$skybake" plan "${entries[@]}" --emit ninja --launcher "$launcher" -o "$T/outf" --emit-file "$T/fail.ninja" 2>/dev/null
 bad=${dep_scene:-earth_000}
 mkdir -p "$T/outf/$bad/transmittance.exr"
 salloc_ninja -f "$T/fail.ninja" -j 2 -k 0
@@ -319,7 +319,7 @@ if [ -n "$dep" ]; then note="dependent $dep not run"; else note="no dependent pr
 ok "4. failing $bad/transmittance: salloc/ninja exit $rc, edge named, $note, $expected_ok independent products done"
 
 # 5. The job-array script.
-"$skybake" plan "$cat" --emit slurm --chunk 3 -d "$T/outs" -o "$T/bake.sbatch" 2>/dev/null
+"$skybake" plan "$cat" --emit slurm --chunk 3 -o "$T/outs" --emit-file "$T/bake.sbatch" 2>/dev/null
 tasks=$(((scenes + 2) / 3))
 grep -q "^#SBATCH --array=0-$((tasks - 1))\$" "$T/bake.sbatch" || fail "bake.sbatch should have $tasks array tasks:
 $(grep SBATCH "$T/bake.sbatch")"
@@ -341,7 +341,7 @@ grep -q 'NodeList=n1 ' <<<"$info" && grep -q 'NodeList=n2 ' <<<"$info" ||
   fail "the array tasks did not use both nodes:
 $(grep -oE 'ArrayTaskId=[0-9]+|NodeList=[^ ]+' <<<"$info" | paste - -)"
 same_outputs "$T/ref" "$T/outs"
-plan="$("$skybake" plan "$cat" -d "$T/outs" --json)"
+plan="$("$skybake" plan "$cat" -o "$T/outs" --json)"
 grep -q '^  "nodes": \[\],$' <<<"$plan" || fail "plan finds stale products after the job array"
 ok "5. --emit slurm --chunk 3: $tasks array tasks on n1 and n2 in $(awk "BEGIN{printf \"%.1f\", $t1 - $t0}") s, byte-identical to a local bake, nothing stale after"
 

@@ -232,17 +232,17 @@ TEST(ReportCommand, QuickEarthReport) {
 TEST(ReportCommand, HelpNamesTheOptions) {
   const auto r = test::run_skybake({"report", "--help"});
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* option : {"--products", "--quick", "--threads", "--json", "--paths", "--out"})
+  for (const char* option : {"--only", "--quick", "--threads", "--json", "--paths", "--out"})
     EXPECT_NE(r.out.find(option), std::string::npos) << option;
 }
 
 TEST(ReportCommand, UnknownProductIsAUsageErrorWithASuggestion) {
   const fs::path out = test::fresh_dir("report_usage");
   const auto r = test::run_skybake({"report", test::source_path("presets/earth.json").string(),
-                                    "--products", "transmitance", "-o", out.string()});
+                                    "--only", "transmitance", "-o", out.string()});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err,
-            "skybake: error: --products: unknown product 'transmitance' (did you mean "
+            "skybake: error: --only: unknown product 'transmitance' (did you mean "
             "'transmittance'?)\n");
   EXPECT_TRUE(test::list_files(out).empty());
 }
@@ -257,7 +257,7 @@ TEST(ReportCommand, ScatteringLadderAgainstQuadrature) {
   const fs::path out = test::fresh_dir("report_scattering");
   const auto r = test::run_skybake(
       {"report", test::source_path("presets/earth_precomputed.json").string(), "--quick",
-       "--products", "scattering", "-o", out.string(), "-q", "--json"});
+       "--only", "scattering", "-o", out.string(), "-q", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json report =
       json::parse(test::read_file(json::parse(r.out)["reports"][0]["json"].get<std::string>()));
@@ -290,7 +290,7 @@ TEST(ReportCommand, PrecomputedFamilyLaddersAgainstTheirReferences) {
   const fs::path out = test::fresh_dir("report_precomputed");
   const auto r = test::run_skybake(
       {"report", test::source_path("presets/earth_precomputed.json").string(), "--quick",
-       "--products", "irradiance,scattering3d,gathering_sum", "-o", out.string(), "-q", "--json"});
+       "--only", "irradiance,scattering3d,gathering_sum", "-o", out.string(), "-q", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const json report =
       json::parse(test::read_file(json::parse(r.out)["reports"][0]["json"].get<std::string>()));
