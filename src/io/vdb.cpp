@@ -3,12 +3,17 @@
 // 4-12 s per file; docs/architecture.md "Build").
 #include "io/vdb.hpp"
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <mutex>
+#include <optional>
 #include <set>
 
 #include <fmt/format.h>
@@ -17,6 +22,7 @@
 
 #include "core/error.hpp"
 #include "core/hash.hpp"
+#include "io/vdb_layout.hpp"
 
 namespace skybake {
 
@@ -30,6 +36,33 @@ using DenseXYZ = openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ>;
 // "has grid offsets" flag (1), then the UUID as 36 ASCII characters.
 constexpr size_t kUuidOffset = 21;
 constexpr size_t kUuidLength = 36;
+
+// Bounds on the dense texture read_vdb makes: a side of at most 2^20 voxels
+// (skybake writes at most 1024) and 4 GiB for the texture with its one-grid
+// scratch plane (every output skybake writes is at most 2 GiB).
+constexpr int64_t kMaxVdbSide = int64_t(1) << 20;
+constexpr uint64_t kMaxVdbDenseBytes = uint64_t(4) << 30;
+
+struct Shape {
+  int width, height, depth, layers;
+};
+
+// "WxHxDxL", four integers from 1 to kMaxVdbSide, or nullopt.
+std::optional<Shape> parse_shape(const std::string& text) {
+  int64_t v[4];
+  const char* p = text.c_str();
+  for (int i = 0; i < 4; ++i) {
+    if (i > 0 && *p++ != 'x') return std::nullopt;
+    if (*p < '0' || *p > '9') return std::nullopt;
+    errno = 0;
+    char* end = nullptr;
+    v[i] = std::strtoll(p, &end, 10);
+    if (errno != 0 || v[i] < 1 || v[i] > kMaxVdbSide) return std::nullopt;
+    p = end;
+  }
+  if (*p != '\0') return std::nullopt;
+  return Shape{int(v[0]), int(v[1]), int(v[2]), int(v[3])};
+}
 
 void init_openvdb() {
   static std::once_flag once;
@@ -146,7 +179,12 @@ void write_vdb(const std::string& path, const Texture& tex, double voxel_size) {
 }
 
 Texture read_vdb(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+    throw IoError(fmt::format("{}: expected a regular file", path));
   init_openvdb();
+  // Every length OpenVDB will trust is checked against the file first.
+  check_vdb_layout(path);
   openvdb::GridPtrVecPtr grids;
   try {
     openvdb::io::File file(path);
@@ -170,13 +208,14 @@ Texture read_vdb(const std::string& path) {
     floats.push_back(grid);
   }
   const std::string shape_text = string_meta(*floats[0], kPrefix + "shape");
-  int w = 0, h = 0, d = 0, layers = 0;
   if (!shape_text.empty()) {
-    if (std::sscanf(shape_text.c_str(), "%dx%dx%dx%d", &w, &h, &d, &layers) != 4 || layers != 1 ||
-        w < 1 || h < 1 || d < 1)
-      throw IoError(fmt::format("{}: expected skybake:shape of the form WxHxDx1, got '{}'", path,
-                                shape_text));
-    box = openvdb::CoordBBox(openvdb::Coord(0), openvdb::Coord(w - 1, h - 1, d - 1));
+    const std::optional<Shape> s = parse_shape(shape_text);
+    if (!s || s->layers != 1)
+      throw IoError(fmt::format(
+          "{}: expected skybake:shape of the form WxHxDx1 with sizes from 1 to {}, got '{}'", path,
+          kMaxVdbSide, shape_text));
+    box = openvdb::CoordBBox(openvdb::Coord(0),
+                             openvdb::Coord(s->width - 1, s->height - 1, s->depth - 1));
   } else if (box.empty()) {
     throw IoError(fmt::format("{}: expected active voxels, got none", path));
   }
@@ -192,12 +231,30 @@ Texture read_vdb(const std::string& path) {
       if (it == floats.end())
         throw IoError(
             fmt::format("{}: expected a grid '{}' (skybake:channels), got none", path, name));
+      if (std::find(ordered.begin(), ordered.end(), *it) != ordered.end())
+        throw IoError(
+            fmt::format("{}: expected distinct grids in skybake:channels, got '{}' twice", path,
+                        name));
       ordered.push_back(*it);
     }
     floats = ordered;
   }
   std::vector<std::string> channels;
   for (const auto& grid : floats) channels.push_back(grid->getName());
+  // The dense copy: its size comes from the file's metadata or active voxels.
+  uint64_t voxels = 1;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int64_t side = int64_t(box.max()[axis]) - box.min()[axis] + 1;
+    if (side < 1 || side > kMaxVdbSide)
+      throw IoError(fmt::format("{}: expected a box of 1 to {} voxels per axis, got {}", path,
+                                kMaxVdbSide, side));
+    voxels *= uint64_t(side);
+  }
+  const uint64_t voxel_bytes = (floats.size() + 1) * sizeof(float);  // texture and plane
+  if (voxels > kMaxVdbDenseBytes / voxel_bytes)
+    throw IoError(fmt::format(
+        "{}: a dense copy of {} voxels x {} grids is over the {} GiB limit", path, voxels,
+        floats.size(), kMaxVdbDenseBytes >> 30));
   const openvdb::Coord dim = box.dim();
   Texture tex(dim.x(), dim.y(), dim.z(), 1, channels);
   for (auto it = floats[0]->beginMeta(); it != floats[0]->endMeta(); ++it)
