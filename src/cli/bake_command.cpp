@@ -1,11 +1,16 @@
 // skybake bake: load and validate every preset first (so a bad one stops the
 // run before anything is written), then bake each scene.
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
+#include <spdlog/sinks/stdout_sinks.h>
+#include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
@@ -47,9 +52,127 @@ nlohmann::json record_json(const OutputRecord& r, const std::string& scene_dir) 
           {"estimated_error", r.entry.estimated_error}};
 }
 
+// The farm log of -v: timestamped lines on stderr (spdlog), off otherwise.
+std::shared_ptr<spdlog::logger> make_log(bool verbose) {
+  auto log = std::make_shared<spdlog::logger>(
+      "skybake", std::make_shared<spdlog::sinks::stderr_sink_mt>());
+  log->set_pattern("%Y-%m-%dT%H:%M:%S.%e skybake[%P] %v");
+  log->set_level(verbose ? spdlog::level::info : spdlog::level::off);
+  return log;
+}
+
+std::string names_or_none(const std::vector<std::string>& names) {
+  return names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
+}
+
+// The products a scene computed only to feed others (not written).
+std::vector<std::string> computed_in_memory(const BakeSummary& s) {
+  std::vector<std::string> out;
+  for (const std::string& p : s.computed)
+    if (std::none_of(s.outputs.begin(), s.outputs.end(),
+                     [&](const OutputRecord& r) { return r.product == p && r.status == "baked"; }))
+      out.push_back(p);
+  return out;
+}
+
+// One `skybake bake`: every scene in turn, the line per output, the -v log,
+// the summary line (or the --json document) at the end.
+class BakeRun {
+ public:
+  BakeRun(const BakeArgs& args, size_t threads)
+      : args_(args),
+        progress_(!args.quiet && !args.json),
+        log_(make_log(args.verbose)),
+        report_({{"ok", true}, {"threads", threads}, {"scenes", nlohmann::json::array()}}) {}
+
+  void bake(const Scene& scene) {
+    const std::string scene_dir = (std::filesystem::path(args_.out_dir) / scene.name).string();
+    log_->info("{}: {} -> {}", scene.name, scene.file.string(), scene_dir);
+    const BakeSummary summary = bake_scene(scene, options_for(scene, scene_dir));
+    progress_.clear();
+    log_->info("{}: {:.3f} s; dependencies read back from disk: {}; computed in memory only: {}",
+               scene.name, summary.seconds, names_or_none(summary.loaded),
+               names_or_none(computed_in_memory(summary)));
+    for (const std::string& w : summary.warnings)
+      if (!args_.quiet && !args_.json)
+        std::fprintf(stderr, "skybake: warning: %s: %s\n", scene.name.c_str(), w.c_str());
+    warnings_ += summary.warnings.size();
+    report_["scenes"].push_back(scene_json(scene, summary, scene_dir));
+  }
+
+  // The summary line, or the --json document with the same numbers.
+  void finish(double seconds) {
+    if (args_.json) {
+      report_["summary"] = {{"baked", baked_},
+                            {"up_to_date", up_to_date_},
+                            {"warnings", warnings_},
+                            {"seconds", seconds}};
+      std::cout << report_.dump(2) << "\n";
+    } else if (!args_.quiet) {
+      std::printf("skybake: %zu baked, %zu up to date, %zu warning%s, %.2f s\n", baked_,
+                  up_to_date_, warnings_, warnings_ == 1 ? "" : "s", seconds);
+    }
+  }
+
+  spdlog::logger& log() { return *log_; }
+
+ private:
+  BakeOptions options_for(const Scene& scene, const std::string& scene_dir) {
+    BakeOptions options;
+    options.out_dir = args_.out_dir;
+    options.only = args_.only;
+    options.force = args_.force;
+    options.on_recorded = update_stamp;
+    options.on_progress = [this, &scene](const std::string& product, double f) {
+      progress_.update(scene.name + "/" + product, f);
+    };
+    options.on_output = [this, &scene, scene_dir](const OutputRecord& r) {
+      progress_.clear();
+      (r.status == "baked" ? baked_ : up_to_date_) += 1;
+      log_output(scene, r);
+      if (!args_.quiet && !args_.json) print_output(r, scene_dir);
+    };
+    return options;
+  }
+
+  void log_output(const Scene& scene, const OutputRecord& r) {
+    if (r.status == "baked")
+      log_->info("{}/{}: baked in {:.3f} s ({})", scene.name, r.product, r.entry.bake_seconds,
+                 r.reason);
+    else
+      log_->info("{}/{}: {}", scene.name, r.product, r.reason);
+  }
+
+  static void print_output(const OutputRecord& r, const std::string& scene_dir) {
+    std::printf("%-10s %-18s %-12s %-40s %s\n", r.status == "baked" ? "baked" : "current",
+                r.product.c_str(), shape_string(r.entry).c_str(),
+                files_string(r.entry, scene_dir).c_str(),
+                r.status == "baked" ? fmt::format("{:.3f} s", r.entry.bake_seconds).c_str()
+                                    : r.reason.c_str());
+    std::fflush(stdout);
+  }
+
+  static nlohmann::json scene_json(const Scene& scene, const BakeSummary& summary,
+                                   const std::string& scene_dir) {
+    nlohmann::json outputs = nlohmann::json::array();
+    for (const OutputRecord& r : summary.outputs) outputs.push_back(record_json(r, scene_dir));
+    return {{"scene", scene.name},         {"preset", scene.file.string()},
+            {"folder", scene_dir},         {"outputs", outputs},
+            {"computed", summary.computed}, {"loaded", summary.loaded},
+            {"warnings", summary.warnings}, {"seconds", summary.seconds}};
+  }
+
+  const BakeArgs& args_;
+  ProgressLine progress_;
+  std::shared_ptr<spdlog::logger> log_;
+  nlohmann::json report_;
+  size_t baked_ = 0, up_to_date_ = 0, warnings_ = 0;
+};
+
 }  // namespace
 
 int run_bake(const BakeArgs& args) {
+  const auto t0 = std::chrono::steady_clock::now();
   std::vector<Scene> scenes;
   for (const auto& preset : expand_presets(args.presets)) scenes.push_back(load_scene(preset));
 
@@ -57,41 +180,12 @@ int run_bake(const BakeArgs& args) {
       args.threads > 0 ? size_t(args.threads) : size_t(tbb::info::default_concurrency());
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
 
-  nlohmann::json report = {{"ok", true}, {"threads", threads}, {"scenes", nlohmann::json::array()}};
-  ProgressLine progress(!args.quiet && !args.json);
-  for (const Scene& scene : scenes) {
-    BakeOptions options;
-    options.out_dir = args.out_dir;
-    options.only = args.only;
-    options.force = args.force;
-    options.on_recorded = update_stamp;
-    options.on_progress = [&](const std::string& product, double f) {
-      progress.update(scene.name + "/" + product, f);
-    };
-    const std::string scene_dir = (std::filesystem::path(args.out_dir) / scene.name).string();
-    options.on_output = [&](const OutputRecord& r) {
-      progress.clear();
-      if (args.quiet || args.json) return;
-      std::printf("%-10s %-18s %-12s %-40s %s\n", r.status == "baked" ? "baked" : "current",
-                  r.product.c_str(), shape_string(r.entry).c_str(),
-                  files_string(r.entry, scene_dir).c_str(),
-                  r.status == "baked" ? fmt::format("{:.3f} s", r.entry.bake_seconds).c_str()
-                                      : r.reason.c_str());
-      std::fflush(stdout);
-    };
-    const BakeSummary summary = bake_scene(scene, options);
-    progress.clear();
-    nlohmann::json outputs = nlohmann::json::array();
-    for (const OutputRecord& r : summary.outputs) outputs.push_back(record_json(r, scene_dir));
-    report["scenes"].push_back({{"scene", scene.name},
-                                {"preset", scene.file.string()},
-                                {"folder", scene_dir},
-                                {"outputs", outputs},
-                                {"computed", summary.computed},
-                                {"loaded", summary.loaded},
-                                {"seconds", summary.seconds}});
-  }
-  if (args.json) std::cout << report.dump(2) << "\n";
+  BakeRun run(args, threads);
+  run.log().info("bake {} scene{} into {} with {} thread{}{}", scenes.size(),
+                 scenes.size() == 1 ? "" : "s", args.out_dir, threads, threads == 1 ? "" : "s",
+                 args.force ? ", --force" : "");
+  for (const Scene& scene : scenes) run.bake(scene);
+  run.finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   return kExitOk;
 }
 

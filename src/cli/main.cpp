@@ -86,11 +86,15 @@ CLI::App* add_bake_command(CLI::App& app, BakeArgs& args) {
   add_threads_option(cmd, args.threads);
   cmd->add_flag("-f,--force", args.force, "Bake even outputs that are up to date");
   cmd->add_flag("-q,--quiet", args.quiet, "No progress, no line per output, no summary line");
+  cmd->add_flag("-v,--verbose", args.verbose,
+                "Log on stderr why each output is (not) baked, what was read back or computed "
+                "in memory, threads and timings");
   add_json_flag(cmd, args.json, "Print a machine-readable summary on stdout");
   cmd->footer(
       "\nOutputs are written to a temporary name and renamed when complete; "
       "DIR/<scene>/manifest.json records every output (files, shape, channels, "
-      "parameterization, input hash, bake time). Re-running an unchanged bake does no work.");
+      "parameterization, input hash, bake time). Re-running an unchanged bake does no work. "
+      "The last line counts the outputs baked and up to date, the warnings and the seconds.");
   return cmd;
 }
 

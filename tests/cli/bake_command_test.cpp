@@ -3,7 +3,10 @@
 // counts and the --json summary.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <fstream>
 #include <map>
+#include <regex>
 
 #include <nlohmann/json.hpp>
 
@@ -182,6 +185,152 @@ TEST(BakeCommand, EveryShippedPresetBakesFiniteFiles) {
     for (const auto& o : nlohmann::json::parse(r.out)["scenes"][0]["outputs"])
       for (const auto& f : o["files"]) EXPECT_TRUE(fs::exists(f["path"].get<std::string>()));
   }
+}
+
+}  // namespace
+
+namespace {
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  size_t start = 0;
+  for (size_t end; (end = text.find('\n', start)) != std::string::npos; start = end + 1)
+    lines.push_back(text.substr(start, end - start));
+  return lines;
+}
+
+TEST(BakeCommand, EndsWithOneSummaryLine) {
+  const fs::path out = fresh_dir("bake_summary");
+  const std::string only = "transmittance,multiscattering";
+  auto r = run_skybake({"bake", kEarth, "-o", out.string(), "--only", only});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::vector<std::string> lines = lines_of(r.out);
+  ASSERT_EQ(lines.size(), 3u) << r.out;
+  EXPECT_EQ(lines[0].substr(0, 24), "baked      transmittance");
+  EXPECT_TRUE(std::regex_match(lines[2],
+                               std::regex(R"(skybake: 2 baked, 0 up to date, 0 warnings, \d+\.\d\d s)")))
+      << lines[2];
+
+  r = run_skybake({"bake", kEarth, "-o", out.string(), "--only", only});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  lines = lines_of(r.out);
+  ASSERT_EQ(lines.size(), 3u) << r.out;
+  EXPECT_TRUE(std::regex_match(lines[2],
+                               std::regex(R"(skybake: 0 baked, 2 up to date, 0 warnings, \d+\.\d\d s)")))
+      << lines[2];
+
+  r = run_skybake({"bake", kEarth, "-o", out.string(), "--only", only, "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err, "");
+}
+
+TEST(BakeCommand, JsonCarriesTheSummaryNumbers) {
+  const fs::path out = fresh_dir("bake_summary_json");
+  ASSERT_EQ(run_skybake({"bake", kEarth, "-o", out.string(), "-q", "--only", "transmittance"})
+                .exit_code,
+            0);
+  const auto r = run_skybake({"bake", kEarth, "-o", out.string(), "--json", "--only",
+                              "transmittance,multiscattering"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);  // nothing but the document on stdout
+  const auto& summary = j["summary"];
+  EXPECT_EQ(summary["baked"], 1);
+  EXPECT_EQ(summary["up_to_date"], 1);
+  EXPECT_EQ(summary["warnings"], 0);
+  EXPECT_EQ(j["scenes"][0]["warnings"], nlohmann::json::array());
+  EXPECT_GE(summary["seconds"].get<double>(), j["scenes"][0]["seconds"].get<double>());
+  EXPECT_EQ(r.err, "");
+}
+
+// -v is the farm log: timestamped lines on stderr saying why each output was
+// (not) baked, what was read back or computed in memory, threads and times.
+TEST(BakeCommand, VerboseLogsWhyAndHow) {
+  const fs::path dir = fresh_dir("bake_verbose");
+  fs::copy(source_path("presets/atmospheres"), dir / "atmospheres");
+  fs::copy_file(kEarth, dir / "earth.json");
+  const std::string preset = (dir / "earth.json").string(), out = (dir / "out").string();
+  const std::regex line(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d\.\d{3} skybake\[\d+\] (.*))");
+  const auto log = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {"bake", preset, "-o", out, "-v", "-q"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = run_skybake(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "") << "-q: nothing on stdout";
+    std::string messages;
+    for (const std::string& l : lines_of(r.err)) {
+      std::smatch m;
+      EXPECT_TRUE(std::regex_match(l, m, line)) << l;
+      messages += m[1].str() + "\n";
+    }
+    return messages;
+  };
+  auto has = [](const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+  };
+
+  std::string m = log({"--only", "transmittance,multiscattering", "--threads", "1"});
+  EXPECT_TRUE(has(m, "bake 1 scene into " + out + " with 1 thread\n")) << m;
+  EXPECT_TRUE(has(m, "earth: " + preset + " -> " + out + "/earth\n")) << m;
+  EXPECT_TRUE(std::regex_search(m, std::regex(R"(earth/transmittance: baked in \d+\.\d{3} s \(not baked yet\)\n)")))
+      << m;
+  EXPECT_TRUE(has(m, "dependencies read back from disk: none; computed in memory only: none\n"))
+      << m;
+
+  m = log({"--only", "skyview", "--threads", "2"});
+  EXPECT_TRUE(has(m, "with 2 threads\n")) << m;
+  EXPECT_TRUE(has(m, "earth/skyview: baked in ")) << m;
+  EXPECT_TRUE(has(m, "dependencies read back from disk: transmittance, multiscattering; "
+                     "computed in memory only: none\n"))
+      << m;
+
+  fs::remove(dir / "out/earth/transmittance.dds");
+  m = log({"--only", "transmittance,multiscattering,skyview"});
+  EXPECT_TRUE(has(m, "(missing file transmittance.dds)\n")) << m;
+  EXPECT_TRUE(has(m, "earth/multiscattering: up to date\n")) << m;
+
+  std::string text = read_file(dir / "earth.json");
+  text.replace(text.find("[256, 64]"), 9, "[128, 32]");
+  std::ofstream(dir / "earth.json", std::ios::binary) << text;
+  m = log({"--only", "transmittance", "--force"});
+  EXPECT_TRUE(has(m, "with 1 thread, --force\n") || has(m, "threads, --force\n")) << m;
+  EXPECT_TRUE(std::regex_search(
+      m, std::regex(R"(earth/transmittance: baked in \S+ s \(inputs changed \(hash [0-9a-f]{16} -> [0-9a-f]{16}\)\)\n)")))
+      << m;
+  // The new transmittance is current on disk; multiscattering, which reads
+  // it, is stale and only computed in memory for skyview.
+  m = log({"--only", "skyview"});
+  EXPECT_TRUE(has(m, "dependencies read back from disk: transmittance; computed in memory only: "
+                     "multiscattering\n"))
+      << m;
+}
+
+TEST(BakeCommand, WithoutVerboseStderrStaysEmpty) {
+  const fs::path out = fresh_dir("bake_not_verbose");
+  const auto r = run_skybake({"bake", kEarth, "-o", out.string(), "--only", "transmittance"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+}
+
+// On a terminal the progress line shows the elapsed time and an ETA.
+TEST(BakeCommand, ProgressLineOnATerminalShowsElapsedAndEta) {
+  if (std::system("command -v script >/dev/null 2>&1") != 0) GTEST_SKIP() << "no script(1)";
+  // A sky-view table four times the preset's, so the bake lasts long enough
+  // (a few seconds on one thread) for an ETA.
+  const fs::path dir = fresh_dir("bake_progress");
+  fs::copy(source_path("presets/atmospheres"), dir / "atmospheres");
+  std::string text = read_file(kEarth);
+  text.replace(text.find("[192, 108]"), 10, "[384, 216]");
+  std::ofstream(dir / "earth.json", std::ios::binary) << text;
+  const fs::path typescript = dir / "typescript";
+  const std::string cmd = std::string(SKYBAKE_EXE) + " bake " + (dir / "earth.json").string() +
+                          " -o " + (dir / "out").string() + " --only skyview --threads 1";
+  const std::string shell = "script -qec '" + cmd + "' /dev/null >" + typescript.string() + " 2>&1";
+  ASSERT_EQ(std::system(shell.c_str()), 0) << read_file(typescript);
+  const std::string tty = read_file(typescript);
+  EXPECT_TRUE(std::regex_search(tty, std::regex(R"(earth/skyview \[[#.]{24}\] +\d+%  \S+ s, ETA \d)")))
+      << tty;
+  EXPECT_TRUE(std::regex_search(tty, std::regex(R"(skybake: 1 baked, 0 up to date, 0 warnings)"))) << tty;
 }
 
 }  // namespace
