@@ -122,6 +122,7 @@ class BakeRun {
     options.out_dir = args_.out_dir;
     options.only = args_.only;
     options.force = args_.force;
+    options.verify = args_.verify;
     options.on_recorded = update_stamp;
     options.on_progress = [this, &scene](const std::string& product, double f) {
       progress_.update(scene.name + "/" + product, f);

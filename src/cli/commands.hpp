@@ -14,6 +14,7 @@ struct BakeArgs {
   std::vector<std::string> only;
   int threads = 0;  // 0 = all cores
   bool force = false;
+  bool verify = false;  // hash every recorded file (pipeline/freshness.hpp)
   bool quiet = false;
   bool verbose = false;  // log reasons, reads, threads and timings on stderr
   bool json = false;

@@ -85,6 +85,8 @@ CLI::App* add_bake_command(CLI::App& app, BakeArgs& args) {
                   "when current on disk, else computed in memory");
   add_threads_option(cmd, args.threads);
   cmd->add_flag("-f,--force", args.force, "Bake even outputs that are up to date");
+  cmd->add_flag("--verify", args.verify,
+                "Hash every recorded file instead of trusting a matching size and time");
   cmd->add_flag("-q,--quiet", args.quiet, "No progress, no line per output, no summary line");
   cmd->add_flag("-v,--verbose", args.verbose,
                 "Log on stderr why each output is (not) baked, what was read back or computed "

@@ -15,6 +15,7 @@
 #include "cli/errors.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/bake_log.hpp"
 #include "io/manifest.hpp"
 #include "farm/catalog.hpp"
 #include "farm/farm_graph.hpp"
@@ -33,6 +34,7 @@ nlohmann::json scene_plan(const Scene& scene, const PlanArgs& args, bool print) 
   const ProductGraph graph = build_product_graph(scene, args.only);
   const fs::path dir = fs::path(args.out_dir) / scene.name;
   const Manifest manifest = read_manifest(dir / "manifest.json");
+  const BakeLog log = read_bake_log(dir / "bake_log.json");
   nlohmann::json nodes = nlohmann::json::array();
   if (print)
     std::printf("scene %s (%s) -> %s\n", scene.name.c_str(), scene.file.c_str(),
@@ -40,7 +42,7 @@ nlohmann::json scene_plan(const Scene& scene, const PlanArgs& args, bool print) 
   for (const GraphNode& node : graph.nodes) {
     std::vector<std::string> deps;
     for (size_t d : node.deps) deps.push_back(graph.nodes[d].info->name);
-    const Freshness fresh = node.requested ? check_freshness(node, manifest, dir)
+    const Freshness fresh = node.requested ? check_freshness(node, manifest, dir, {&log, false})
                                            : Freshness{false, "dependency, computed in memory"};
     const std::vector<std::string> files =
         node.requested ? output_files(node.spec) : std::vector<std::string>{};

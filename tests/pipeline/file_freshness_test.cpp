@@ -147,3 +147,30 @@ TEST_F(FileFreshness, MissingLogCostsAHashNotARebake) {
 }
 
 }  // namespace
+
+namespace {
+
+// The same through the command line: plan names the reason, `bake --verify`
+// catches the edit whose time was put back.
+TEST_F(FileFreshness, PlanNamesTheReasonAndBakeVerifyRepairs) {
+  const fs::path dds = scene_dir() / "transmittance.dds";
+  const int64_t t = stat_file(dds).mtime_ns;
+  overwrite_byte(dds, 200);
+  set_mtime_ns(dds, t);
+  const std::string preset = scene_.file.string(), out = (dir_ / "out").string();
+  auto plan = test::run_skybake({"plan", preset, "-o", out, "--json"});
+  ASSERT_EQ(plan.exit_code, 0) << plan.err;
+  EXPECT_EQ(plan.out.find("changed content"), std::string::npos) << "size and time match";
+  auto bake = test::run_skybake({"bake", preset, "-o", out, "--verify", "--json"});
+  ASSERT_EQ(bake.exit_code, 0) << bake.err;
+  const auto j = nlohmann::json::parse(bake.out);
+  std::string reason;
+  for (const auto& o : j["scenes"][0]["outputs"])
+    if (o["product"] == "transmittance") reason = o["status"].get<std::string>() + ": " + o["reason"].get<std::string>();
+  EXPECT_EQ(reason, "baked: file transmittance.dds changed content");
+  overwrite_byte(dds, 300);  // a plain edit changes the time: plan sees it without --verify
+  plan = test::run_skybake({"plan", preset, "-o", out, "--json"});
+  EXPECT_NE(plan.out.find("file transmittance.dds changed content"), std::string::npos) << plan.out;
+}
+
+}  // namespace
