@@ -8,7 +8,7 @@ packages=(
   libopenvdb-dev libopenvdb-tools libboost-iostreams-dev
   libopenimageio-dev openimageio-tools
   libopenexr-dev openexr libimath-dev
-  libglm-dev nlohmann-json3-dev rapidjson-dev libcli11-dev libtbb-dev
+  libglm-dev nlohmann-json3-dev rapidjson-dev libcli11-dev libtbb-dev zlib1g-dev
   libfmt-dev libspdlog-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libnvtt-bin

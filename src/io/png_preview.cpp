@@ -1,14 +1,18 @@
 // PNG previews: panel layout, automatic exposure, tone curves and sRGB
-// encoding as documented in png_preview.hpp.
+// encoding as documented in png_preview.hpp; our own PNG encoder over zlib.
 #include "io/png_preview.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
+#include <zlib.h>
 
 #include "core/error.hpp"
 
@@ -108,6 +112,90 @@ void draw_panel(std::vector<uint8_t>& rgb, const PreviewLayout& layout, const Te
     }
 }
 
+void put_u32(std::string& out, uint32_t v) {
+  const char b[4] = {char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+  out.append(b, 4);
+}
+
+// One chunk: length, type, data, CRC-32 of type and data (PNG spec sec. 5.3).
+void put_chunk(std::string& out, const char type[4], const std::string& data) {
+  put_u32(out, uint32_t(data.size()));
+  const size_t start = out.size();
+  out.append(type, 4);
+  out += data;
+  const auto* p = reinterpret_cast<const Bytef*>(out.data() + start);
+  put_u32(out, uint32_t(crc32(crc32(0L, Z_NULL, 0), p, uInt(out.size() - start))));
+}
+
+// Filter byte + filtered row (PNG spec sec. 9): every row tries the five
+// filters and keeps the one with the least sum of |signed bytes|, the usual
+// heuristic (deterministic: ties go to the lower filter type).
+void filter_rows(const std::vector<uint8_t>& rgb, int width, int height, std::string& out) {
+  const size_t stride = size_t(width) * 3;
+  std::vector<uint8_t> zero(stride, 0), trial(stride), best(stride);
+  out.reserve(out.size() + (stride + 1) * height);
+  for (int y = 0; y < height; ++y) {
+    const uint8_t* row = &rgb[y * stride];
+    const uint8_t* up = y > 0 ? &rgb[(y - 1) * stride] : zero.data();
+    uint64_t best_cost = ~uint64_t(0);
+    uint8_t best_type = 0;
+    for (uint8_t type = 0; type < 5; ++type) {
+      uint64_t cost = 0;
+      for (size_t i = 0; i < stride; ++i) {
+        const int a = i >= 3 ? row[i - 3] : 0, b = up[i], c = i >= 3 ? up[i - 3] : 0;
+        int predictor = 0;
+        switch (type) {
+          case 1: predictor = a; break;
+          case 2: predictor = b; break;
+          case 3: predictor = (a + b) / 2; break;
+          case 4: {
+            const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
+            predictor = pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
+            break;
+          }
+        }
+        trial[i] = uint8_t(row[i] - predictor);
+        cost += uint64_t(std::abs(int(int8_t(trial[i]))));
+      }
+      if (cost < best_cost) best_cost = cost, best_type = type, best.swap(trial);
+    }
+    out.push_back(char(best_type));
+    out.append(reinterpret_cast<const char*>(best.data()), stride);
+  }
+}
+
+// An RGB8 PNG: signature, IHDR, sRGB, one IDAT (zlib at a fixed level, so the
+// bytes depend only on the pixels), IEND. No time or text chunks.
+void write_png_rgb8(const std::string& path, const std::vector<uint8_t>& rgb, int width,
+                    int height) {
+  std::string ihdr;
+  put_u32(ihdr, uint32_t(width));
+  put_u32(ihdr, uint32_t(height));
+  ihdr += std::string("\x08\x02\x00\x00\x00", 5);  // 8-bit RGB, deflate, adaptive, no interlace
+  std::string raw;
+  filter_rows(rgb, width, height, raw);
+  uLongf packed_size = compressBound(uLong(raw.size()));
+  std::string idat(packed_size, '\0');
+  if (compress2(reinterpret_cast<Bytef*>(idat.data()), &packed_size,
+                reinterpret_cast<const Bytef*>(raw.data()), uLong(raw.size()), 6) != Z_OK)
+    throw IoError(fmt::format("{}: cannot compress the PNG pixels", path));
+  idat.resize(packed_size);
+
+  std::string file("\x89PNG\r\n\x1a\n", 8);
+  put_chunk(file, "IHDR", ihdr);
+  put_chunk(file, "sRGB", std::string(1, '\0'));  // perceptual rendering intent
+  put_chunk(file, "IDAT", idat);
+  put_chunk(file, "IEND", "");
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(file.data(), std::streamsize(file.size()));
+  out.close();
+  if (!out) {
+    const std::string reason = std::strerror(errno);
+    std::remove(path.c_str());
+    throw IoError(fmt::format("{}: cannot write PNG: {}", path, reason));
+  }
+}
+
 }  // namespace
 
 std::vector<int> preview_slices(int depth, int max_slices) {
@@ -150,19 +238,7 @@ void write_png_preview(const std::string& path, const Texture& tex, const Previe
   std::vector<uint8_t> rgb(size_t(layout.width) * layout.height * 3, 0);
   for (int k = 0; k < int(layout.panels.size()); ++k) draw_panel(rgb, layout, tex, opt, e, k);
 
-  auto out = OIIO::ImageOutput::create("png");
-  if (!out)
-    throw IoError(fmt::format("{}: cannot create a PNG writer: {}", path, OIIO::geterror()));
-  OIIO::ImageSpec spec(layout.width, layout.height, 3, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:ColorSpace", "sRGB");
-  bool ok = out->open(path, spec) && out->write_image(OIIO::TypeDesc::UINT8, rgb.data());
-  ok = out->close() && ok;
-  if (!ok) {
-    const std::string message = out->geterror();
-    out.reset();
-    std::remove(path.c_str());
-    throw IoError(fmt::format("{}: cannot write PNG: {}", path, message));
-  }
+  write_png_rgb8(path, rgb, layout.width, layout.height);
 }
 
 }  // namespace skybake

@@ -60,7 +60,7 @@ PreviewLayout preview_layout(const Texture& tex, const PreviewOptions& opt);
 
 // Writes the preview to exactly `path` as an RGB8 PNG.
 // Throws IoError (before creating the file) when a value is NaN/Inf or the
-// texture is empty, and when OpenImageIO fails (the partial file is removed).
+// texture is empty, and when the file cannot be written (the partial file is removed).
 void write_png_preview(const std::string& path, const Texture& tex, const PreviewOptions& opt = {});
 
 }  // namespace skybake
