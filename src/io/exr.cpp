@@ -1,4 +1,4 @@
-// EXR writer and reader through OpenImageIO; the file shapes and header
+// EXR writer and reader through OpenEXR; the file shapes and header
 // attributes are documented in exr.hpp.
 #include "io/exr.hpp"
 
@@ -13,9 +13,21 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputPart.h>
+#include <ImfIntAttribute.h>
+#include <ImfMultiPartInputFile.h>
+#include <ImfMultiPartOutputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfOutputPart.h>
+#include <ImfPartType.h>
+#include <ImfStringAttribute.h>
+#include <half.h>
 #include <fmt/format.h>
 
 #include "core/error.hpp"
@@ -25,9 +37,6 @@ namespace skybake {
 namespace {
 
 const std::string kPrefix = "skybake:";
-// A fixed stamp: OpenImageIO writes the current time when DateTime is unset
-// (and also when it is erased), which would break byte-identical output.
-const char* const kFixedDateTime = "1970:01:01 00:00:00";
 const char* const kReservedKeys[] = {"shape",      "channels",    "layout",       "atlas_columns",
                                      "atlas_rows", "slice_width", "slice_height", "slice_depth"};
 // Half values at or above this magnitude round to Inf (65504 + half an ulp).
@@ -86,23 +95,51 @@ void check_writable(const std::string& path, const Texture& tex, ExrPrecision pr
             kHalfOverflow, v));
 }
 
-// The header every part shares: channels, compression, fixed DateTime,
-// metadata and shape.
-OIIO::ImageSpec base_spec(const Texture& tex, int width, int height, ExrPrecision precision,
-                          const std::string& layout) {
-  const OIIO::TypeDesc format =
-      precision == ExrPrecision::half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
-  OIIO::ImageSpec spec(width, height, tex.channel_count(), format);
-  spec.channelnames = tex.channels;
-  spec.alpha_channel = tex.channel_index("A");
-  spec.z_channel = -1;
-  spec.attribute("compression", "zip");
-  spec.attribute("DateTime", kFixedDateTime);
-  for (const auto& [key, value] : tex.metadata) spec.attribute(kPrefix + key, value);
-  spec.attribute(kPrefix + "shape", shape_attribute(tex));
-  spec.attribute(kPrefix + "channels", join_channels(tex.channels));
-  spec.attribute(kPrefix + "layout", layout);
-  return spec;
+// The header every part shares: channels, compression, metadata and shape.
+Imf::Header base_header(const Texture& tex, int width, int height, ExrPrecision precision,
+                        const std::string& layout) {
+  Imf::Header header(width, height);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  const Imf::PixelType type = precision == ExrPrecision::half ? Imf::HALF : Imf::FLOAT;
+  for (const std::string& name : tex.channels) header.channels().insert(name, Imf::Channel(type));
+  for (const auto& [key, value] : tex.metadata)
+    header.insert(kPrefix + key, Imf::StringAttribute(value));
+  header.insert(kPrefix + "shape", Imf::StringAttribute(shape_attribute(tex)));
+  header.insert(kPrefix + "channels", Imf::StringAttribute(join_channels(tex.channels)));
+  header.insert(kPrefix + "layout", Imf::StringAttribute(layout));
+  return header;
+}
+
+// Interleaved pixels (float, or half for writing half files: OpenEXR
+// converts types when reading, not when writing) of `width` texels per row,
+// channels in `channels` order. `min_x`, `min_y`: the data window's origin,
+// the buffer's texel 0.
+template <class T>
+Imf::FrameBuffer frame_buffer(const std::vector<std::string>& channels, const T* pixels,
+                              int64_t width, int64_t min_x, int64_t min_y) {
+  const Imf::PixelType type = std::is_same_v<T, half> ? Imf::HALF : Imf::FLOAT;
+  const size_t x_stride = sizeof(T) * channels.size();
+  const size_t y_stride = x_stride * size_t(width);
+  // OpenEXR addresses texel (x, y) at base + x x_stride + y y_stride.
+  char* base = reinterpret_cast<char*>(const_cast<T*>(pixels)) -
+               (min_x * int64_t(x_stride) + min_y * int64_t(y_stride));
+  Imf::FrameBuffer fb;
+  for (size_t c = 0; c < channels.size(); ++c)
+    fb.insert(channels[c], Imf::Slice(type, base + c * sizeof(T), x_stride, y_stride));
+  return fb;
+}
+
+// The frame buffer of one part to write; half parts are rounded here
+// (Imath's float-to-half rounds to nearest even) into `halves`.
+Imf::FrameBuffer write_buffer(const Imf::Header& header, const std::vector<std::string>& channels,
+                              const float* pixels, std::vector<half>& halves) {
+  const Imath::Box2i& dw = header.dataWindow();
+  const int64_t width = dw.max.x + 1;
+  if (header.channels().begin().channel().type != Imf::HALF)
+    return frame_buffer(channels, pixels, width, 0, 0);
+  halves.resize(size_t(width) * size_t(dw.max.y + 1) * channels.size());
+  for (size_t i = 0; i < halves.size(); ++i) halves[i] = half(pixels[i]);
+  return frame_buffer(channels, halves.data(), width, 0, 0);
 }
 
 // Copies the slices of a volume into an atlas image (zero in unused cells).
@@ -120,25 +157,28 @@ std::vector<float> make_atlas(const Texture& tex, int columns, int rows) {
   return atlas;
 }
 
-// Writes the given parts (one spec and one pixel pointer each, float32 with
-// channels interleaved) as a single- or multi-part EXR.
-void write_parts(const std::string& path, std::vector<OIIO::ImageSpec>& specs,
-                 const std::vector<const float*>& pixels) {
-  auto out = OIIO::ImageOutput::create("openexr");
-  if (!out)
-    throw IoError(fmt::format("{}: cannot create an EXR writer: {}", path, OIIO::geterror()));
-  bool ok = specs.size() == 1 ? out->open(path, specs[0])
-                              : out->open(path, int(specs.size()), specs.data());
-  for (size_t i = 0; ok && i < specs.size(); ++i) {
-    if (i > 0) ok = out->open(path, specs[i], OIIO::ImageOutput::AppendSubimage);
-    ok = ok && out->write_image(OIIO::TypeDesc::FLOAT, pixels[i]);
-  }
-  ok = out->close() && ok;
-  if (!ok) {
-    const std::string message = out->geterror();
-    out.reset();
+// Writes the given parts (one header and one pixel pointer each, float32 with
+// channels interleaved in texture order) as a single- or multi-part EXR.
+void write_parts(const std::string& path, std::vector<Imf::Header>& headers,
+                 const std::vector<const float*>& pixels, const std::vector<std::string>& channels) {
+  std::vector<half> halves;
+  try {
+    if (headers.size() == 1) {
+      Imf::OutputFile out(path.c_str(), headers[0]);
+      out.setFrameBuffer(write_buffer(headers[0], channels, pixels[0], halves));
+      out.writePixels(headers[0].dataWindow().max.y + 1);
+    } else {
+      for (Imf::Header& h : headers) h.setType(Imf::SCANLINEIMAGE);
+      Imf::MultiPartOutputFile out(path.c_str(), headers.data(), int(headers.size()));
+      for (size_t i = 0; i < headers.size(); ++i) {
+        Imf::OutputPart part(out, int(i));
+        part.setFrameBuffer(write_buffer(headers[i], channels, pixels[i], halves));
+        part.writePixels(headers[i].dataWindow().max.y + 1);
+      }
+    }
+  } catch (const std::exception& e) {
     std::remove(path.c_str());
-    throw IoError(fmt::format("{}: cannot write EXR: {}", path, message));
+    throw IoError(fmt::format("{}: cannot write EXR: {}", path, e.what()));
   }
 }
 
@@ -153,19 +193,19 @@ int exr_atlas_columns(int depth) {
 void write_exr(const std::string& path, const Texture& tex, ExrPrecision precision,
                ExrVolumeLayout layout) {
   check_writable(path, tex, precision);
-  std::vector<OIIO::ImageSpec> specs;
+  std::vector<Imf::Header> specs;
   std::vector<const float*> pixels;
   std::vector<float> atlas;
   if (tex.is_volume() && layout == ExrVolumeLayout::atlas) {
     const int columns = exr_atlas_columns(tex.depth);
     const int rows = (tex.depth + columns - 1) / columns;
-    OIIO::ImageSpec spec =
-        base_spec(tex, columns * tex.width, rows * tex.height, precision, "atlas");
-    spec.attribute(kPrefix + "atlas_columns", columns);
-    spec.attribute(kPrefix + "atlas_rows", rows);
-    spec.attribute(kPrefix + "slice_width", tex.width);
-    spec.attribute(kPrefix + "slice_height", tex.height);
-    spec.attribute(kPrefix + "slice_depth", tex.depth);
+    Imf::Header spec =
+        base_header(tex, columns * tex.width, rows * tex.height, precision, "atlas");
+    spec.insert(kPrefix + "atlas_columns", Imf::IntAttribute(columns));
+    spec.insert(kPrefix + "atlas_rows", Imf::IntAttribute(rows));
+    spec.insert(kPrefix + "slice_width", Imf::IntAttribute(tex.width));
+    spec.insert(kPrefix + "slice_height", Imf::IntAttribute(tex.height));
+    spec.insert(kPrefix + "slice_depth", Imf::IntAttribute(tex.depth));
     atlas = make_atlas(tex, columns, rows);
     specs.push_back(spec);
     pixels.push_back(atlas.data());
@@ -174,16 +214,15 @@ void write_exr(const std::string& path, const Texture& tex, ExrPrecision precisi
     const int parts = volume ? tex.depth : tex.layers;
     for (int i = 0; i < parts; ++i) {
       specs.push_back(
-          base_spec(tex, tex.width, tex.height, precision, volume ? "slices" : "layers"));
-      specs.back().attribute("oiio:subimagename",
-                             fmt::format("{}{}", volume ? "slice" : "layer", i));
+          base_header(tex, tex.width, tex.height, precision, volume ? "slices" : "layers"));
+      specs.back().setName(fmt::format("{}{}", volume ? "slice" : "layer", i));
       pixels.push_back(volume ? tex.texel(0, 0, i, 0) : tex.texel(0, 0, 0, i));
     }
   } else {
-    specs.push_back(base_spec(tex, tex.width, tex.height, precision, "image"));
+    specs.push_back(base_header(tex, tex.width, tex.height, precision, "image"));
     pixels.push_back(tex.data.data());
   }
-  write_parts(path, specs, pixels);
+  write_parts(path, specs, pixels, tex.channels);
 }
 
 namespace {
@@ -191,6 +230,58 @@ namespace {
 struct Shape {
   int width = 0, height = 0, depth = 1, layers = 1;
 };
+
+// What the reader needs of one part's header, sizes in 64 bits (a forged data
+// window can span more than INT_MAX).
+struct PartInfo {
+  const Imf::Header* header = nullptr;
+  int64_t min_x = 0, min_y = 0, width = 0, height = 0;
+  int64_t channels = 0;
+  bool deep = false;
+  bool subsampled = false;
+};
+
+PartInfo part_info(const Imf::Header& h) {
+  PartInfo p;
+  p.header = &h;
+  const Imath::Box2i& dw = h.dataWindow();
+  p.min_x = dw.min.x;
+  p.min_y = dw.min.y;
+  p.width = int64_t(dw.max.x) - dw.min.x + 1;
+  p.height = int64_t(dw.max.y) - dw.min.y + 1;
+  for (auto it = h.channels().begin(); it != h.channels().end(); ++it) {
+    ++p.channels;
+    if (it.channel().xSampling != 1 || it.channel().ySampling != 1) p.subsampled = true;
+  }
+  p.deep = h.hasType() && (h.type() == Imf::DEEPSCANLINE || h.type() == Imf::DEEPTILE);
+  return p;
+}
+
+std::string string_attribute(const Imf::Header& h, const std::string& name,
+                             const std::string& fallback = "") {
+  const auto* a = h.findTypedAttribute<Imf::StringAttribute>(name);
+  return a ? a->value() : fallback;
+}
+
+int int_attribute(const Imf::Header& h, const std::string& name) {
+  const auto* a = h.findTypedAttribute<Imf::IntAttribute>(name);
+  return a ? a->value() : 0;
+}
+
+bool has_channel(const Imf::Header& h, const std::string& name) {
+  return h.channels().findChannel(name) != nullptr;
+}
+
+// A foreign file's channels: EXR stores them sorted by name; R, G, B, A come
+// first (in that order), then the others in file order.
+std::vector<std::string> file_channels(const Imf::Header& h) {
+  std::vector<std::string> out;
+  for (const char* rgba : {"R", "G", "B", "A"})
+    if (has_channel(h, rgba)) out.push_back(rgba);
+  for (auto it = h.channels().begin(); it != h.channels().end(); ++it)
+    if (std::find(out.begin(), out.end(), it.name()) == out.end()) out.push_back(it.name());
+  return out;
+}
 
 // Every size below comes from the file: products are taken in 64 bits and
 // saturate instead of wrapping, so no forged header can announce a small total.
@@ -225,17 +316,21 @@ constexpr uint64_t kMaxExrExpansion = 4096;
 constexpr uint64_t kExrExpansionFloor = uint64_t(64) << 20;
 constexpr uint64_t kMaxExrDecodedBytes = uint64_t(16) << 30;
 
-void check_decoded_size(const std::string& path, const std::vector<OIIO::ImageSpec>& specs) {
+void check_decoded_size(const std::string& path, const std::vector<PartInfo>& specs) {
   uint64_t decoded = 0;
   for (size_t i = 0; i < specs.size(); ++i) {
-    const OIIO::ImageSpec& s = specs[i];
-    if (s.width < 1 || s.height < 1 || s.depth != 1 || s.nchannels < 1)
-      throw IoError(fmt::format("{}: part {}: expected a 2D image with channels, got {}x{}x{} "
+    const PartInfo& s = specs[i];
+    if (s.width < 1 || s.height < 1 || s.width > std::numeric_limits<int>::max() ||
+        s.height > std::numeric_limits<int>::max() || s.channels < 1)
+      throw IoError(fmt::format("{}: part {}: expected a 2D image with channels, got {}x{}x1 "
                                 "with {} channels",
-                                path, i, s.width, s.height, s.depth, s.nchannels));
+                                path, i, s.width, s.height, s.channels));
     if (s.deep) throw IoError(fmt::format("{}: part {}: expected flat pixels, got deep data", path, i));
+    if (s.subsampled)
+      throw IoError(fmt::format("{}: part {}: expected full-resolution channels, got subsampled ones",
+                                path, i));
     const uint64_t part = mul_saturated(
-        mul_saturated(mul_saturated(uint64_t(s.width), uint64_t(s.height)), uint64_t(s.nchannels)),
+        mul_saturated(mul_saturated(uint64_t(s.width), uint64_t(s.height)), uint64_t(s.channels)),
         sizeof(float));
     decoded = part > kU64Max - decoded ? kU64Max : decoded + part;
   }
@@ -255,51 +350,39 @@ void check_decoded_size(const std::string& path, const std::vector<OIIO::ImageSp
 }
 
 // Reads one part as float32 with the channels in `channels` order.
-std::vector<float> read_part(const std::string& path, OIIO::ImageInput& in, int part,
-                             const std::vector<std::string>& channels) {
-  if (!in.seek_subimage(part, 0))
-    throw IoError(fmt::format("{}: expected a part {}, got none", path, part));
-  const OIIO::ImageSpec& spec = in.spec();
-  std::vector<float> file(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
-  if (!in.read_image(part, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, file.data()))
-    throw IoError(fmt::format("{}: cannot read part {}: {}", path, part, in.geterror()));
-  std::vector<int> from;
-  for (const std::string& name : channels) {
-    const int c = spec.channelindex(name);
-    if (c < 0)
+std::vector<float> read_part(const std::string& path, Imf::MultiPartInputFile& in, int part,
+                             const PartInfo& info, const std::vector<std::string>& channels) {
+  for (const std::string& name : channels)
+    if (!has_channel(*info.header, name))
       throw IoError(
           fmt::format("{}: expected a channel '{}' in part {}, got none", path, name, part));
-    from.push_back(c);
-  }
-  const size_t texels = size_t(spec.width) * spec.height, nc = channels.size();
-  std::vector<float> out(texels * nc);
-  for (size_t t = 0; t < texels; ++t)
-    for (size_t c = 0; c < nc; ++c) out[t * nc + c] = file[t * spec.nchannels + from[c]];
+  std::vector<float> out(size_t(info.width) * size_t(info.height) * channels.size());
+  Imf::InputPart input(in, part);
+  input.setFrameBuffer(frame_buffer(channels, out.data(), info.width, info.min_x, info.min_y));
+  input.readPixels(int(info.min_y), int(info.min_y + info.height - 1));
   return out;
 }
 
-void expect_part_size(const std::string& path, const OIIO::ImageSpec& spec, int part,
-                      int64_t width, int64_t height) {
+void expect_part_size(const std::string& path, const PartInfo& spec, int part, int64_t width,
+                      int64_t height) {
   if (spec.width != width || spec.height != height)
     throw IoError(fmt::format("{}: expected part {} of {}x{}, got {}x{}", path, part, width, height,
                               spec.width, spec.height));
 }
 
-}  // namespace
-
-Texture read_exr(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw IoError(fmt::format("{}: cannot read EXR: {}", path, OIIO::geterror()));
-  std::vector<OIIO::ImageSpec> specs;
-  for (int s = 0; in->seek_subimage(s, 0); ++s) specs.push_back(in->spec());
+Texture read_exr_file(const std::string& path) {
+  Imf::MultiPartInputFile in(path.c_str());
+  std::vector<PartInfo> specs;
+  for (int s = 0; s < in.parts(); ++s) specs.push_back(part_info(in.header(s)));
   if (specs.empty()) throw IoError(fmt::format("{}: expected at least one part, got none", path));
   // Every skybake:* attribute is checked against the parts' real sizes, and
   // those against the file size, before the texture is allocated.
   check_decoded_size(path, specs);
-  const OIIO::ImageSpec& head = specs.at(0);
+  const PartInfo& head_info = specs.at(0);
+  const Imf::Header& head = *head_info.header;
 
-  Shape shape{head.width, head.height, 1, int(specs.size())};
-  const std::string shape_text = head.get_string_attribute(kPrefix + "shape");
+  Shape shape{int(head_info.width), int(head_info.height), 1, int(specs.size())};
+  const std::string shape_text = string_attribute(head, kPrefix + "shape");
   if (!shape_text.empty()) {
     const std::optional<Shape> parsed = parse_shape(shape_text);
     if (!parsed)
@@ -309,27 +392,27 @@ Texture read_exr(const std::string& path) {
     shape = *parsed;
   }
   const std::string layout =
-      head.get_string_attribute(kPrefix + "layout", specs.size() > 1 ? "layers" : "image");
-  const std::string channel_text = head.get_string_attribute(kPrefix + "channels");
+      string_attribute(head, kPrefix + "layout", specs.size() > 1 ? "layers" : "image");
+  const std::string channel_text = string_attribute(head, kPrefix + "channels");
   const std::vector<std::string> channels =
-      channel_text.empty() ? head.channelnames : split_channels(channel_text);
+      channel_text.empty() ? file_channels(head) : split_channels(channel_text);
   for (size_t c = 0; c < channels.size(); ++c)
-    if (head.channelindex(channels[c]) < 0 ||
+    if (!has_channel(head, channels[c]) ||
         std::find(channels.begin(), channels.begin() + c, channels[c]) != channels.begin() + c)
       throw IoError(fmt::format(
           "{}: expected skybake:channels to name distinct channels of the file, got '{}'", path,
           channels[c]));
   int columns = 0;
   if (layout == "atlas") {
-    columns = head.get_int_attribute(kPrefix + "atlas_columns");
-    const int rows = head.get_int_attribute(kPrefix + "atlas_rows");
+    columns = int_attribute(head, kPrefix + "atlas_columns");
+    const int rows = int_attribute(head, kPrefix + "atlas_rows");
     if (shape.layers != 1)
       throw IoError(fmt::format("{}: expected 1 layer in an atlas (skybake:shape), got {}", path,
                                 shape.layers));
     if (columns < 1 || rows < 1 || int64_t(columns) * rows < shape.depth)
       throw IoError(fmt::format("{}: expected an atlas of at least {} cells, got {}x{}", path,
                                 shape.depth, columns, rows));
-    expect_part_size(path, head, 0, int64_t(columns) * shape.width,
+    expect_part_size(path, head_info, 0, int64_t(columns) * shape.width,
                      int64_t(rows) * shape.height);
   } else {
     const uint64_t parts = uint64_t(shape.depth) * uint64_t(shape.layers);
@@ -341,15 +424,16 @@ Texture read_exr(const std::string& path) {
       expect_part_size(path, specs[i], int(i), shape.width, shape.height);
   }
   Texture tex(shape.width, shape.height, shape.depth, shape.layers, channels);
-  for (const OIIO::ParamValue& p : head.extra_attribs) {
-    const std::string name = p.name().string();
-    if (name.rfind(kPrefix, 0) != 0 || p.type() != OIIO::TypeString) continue;
+  for (auto it = head.begin(); it != head.end(); ++it) {
+    const std::string name = it.name();
+    const auto* value = dynamic_cast<const Imf::StringAttribute*>(&it.attribute());
+    if (name.rfind(kPrefix, 0) != 0 || !value) continue;
     const std::string key = name.substr(kPrefix.size());
-    if (!is_reserved(key)) tex.metadata[key] = p.get_string();
+    if (!is_reserved(key)) tex.metadata[key] = value->value();
   }
 
   if (layout == "atlas") {
-    const std::vector<float> atlas = read_part(path, *in, 0, tex.channels);
+    const std::vector<float> atlas = read_part(path, in, 0, head_info, tex.channels);
     const size_t nc = tex.channels.size(), atlas_width = size_t(columns) * tex.width;
     for (int z = 0; z < tex.depth; ++z) {
       const size_t x0 = size_t(z % columns) * tex.width, y0 = size_t(z / columns) * tex.height;
@@ -361,12 +445,24 @@ Texture read_exr(const std::string& path) {
     return tex;
   }
   for (size_t i = 0; i < specs.size(); ++i) {
-    const std::vector<float> part = read_part(path, *in, int(i), tex.channels);
+    const std::vector<float> part = read_part(path, in, int(i), specs[i], tex.channels);
     // Parts are slices (layers == 1) or layers (depth == 1): either way the
     // part index is the slab index of the texture layout.
     std::copy(part.begin(), part.end(), tex.data.begin() + i * part.size());
   }
   return tex;
+}
+
+}  // namespace
+
+Texture read_exr(const std::string& path) {
+  try {
+    return read_exr_file(path);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {  // OpenEXR's Iex exceptions, bad_alloc
+    throw IoError(fmt::format("{}: cannot read EXR: {}", path, e.what()));
+  }
 }
 
 }  // namespace skybake

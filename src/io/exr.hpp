@@ -1,4 +1,4 @@
-// OpenEXR output and input for Textures, through OpenImageIO: half or float,
+// OpenEXR output and input for Textures, through OpenEXR's C++ library: half or float,
 // channel names, metadata as header attributes, 3D as one part per slice or
 // as a slice atlas with the layout recorded in the header.
 //
@@ -23,9 +23,8 @@
 //   skybake:atlas_columns, skybake:atlas_rows, skybake:slice_width,
 //   skybake:slice_height, skybake:slice_depth
 //                          ints, atlas layout only.
-//   DateTime (capDate)     fixed "1970:01:01 00:00:00": OpenImageIO stamps the
-//                          current time otherwise (docs/architecture.md
-//                          "Determinism").
+// No time stamp: OpenEXR writes no DateTime attribute (docs/architecture.md
+// "Determinism").
 // Metadata keys may therefore not be one of the structural names above
 // (shape, channels, layout, atlas_*, slice_*); the writer refuses them.
 #pragma once
@@ -43,7 +42,7 @@ enum class ExrVolumeLayout { atlas, multipart };
 // Half output rounds to nearest even. Throws IoError (before creating the
 // file) when a value is NaN/Inf or, for half, would round to Inf (|v| >=
 // 65520); when the texture is empty or both a volume and an array; or when
-// OpenImageIO fails (the partial file is removed). Throws
+// OpenEXR fails (the partial file is removed). Throws
 // Error when a metadata key is reserved (a programmer error).
 void write_exr(const std::string& path, const Texture& tex, ExrPrecision precision,
                ExrVolumeLayout layout = ExrVolumeLayout::atlas);
@@ -51,8 +50,8 @@ void write_exr(const std::string& path, const Texture& tex, ExrPrecision precisi
 // Reads an EXR written by write_exr back into a Texture (shape, channel order
 // and metadata, with the "skybake:" prefix stripped and the structural
 // attributes left out). A foreign EXR reads as a 2D texture (one part) or a
-// 2D array (several parts of one size) with the channels in file order and
-// no metadata. Throws IoError when the file cannot be read or its parts do
+// 2D array (several parts of one size) with the channels in file order (R,
+// G, B, A first) and no metadata. Throws IoError when the file cannot be read or its parts do
 // not match its skybake:* attributes.
 Texture read_exr(const std::string& path);
 
