@@ -1,7 +1,9 @@
-// VDB writer and reader: one dense FloatGrid per channel (layout in vdb.hpp).
+// VDB writer and reader: one dense FloatGrid per channel (layout in vdb.hpp),
+// built into the VDB plugin (vdb_plugin.hpp), never into skybake_io.
 // The only translation unit of src/ that includes OpenVDB (its headers cost
 // 4-12 s per file; docs/architecture.md "Build").
 #include "io/vdb.hpp"
+#include "io/vdb_plugin.hpp"
 
 #include <sys/stat.h>
 
@@ -159,7 +161,7 @@ std::string string_meta(const openvdb::GridBase& grid, const std::string& name) 
 
 }  // namespace
 
-void write_vdb(const std::string& path, const Texture& tex, double voxel_size) {
+void write_vdb_file(const std::string& path, const Texture& tex, double voxel_size) {
   check_writable(path, tex, voxel_size);
   init_openvdb();
   auto xform = openvdb::math::Transform::createLinearTransform(voxel_size);
@@ -178,7 +180,7 @@ void write_vdb(const std::string& path, const Texture& tex, double voxel_size) {
   }
 }
 
-Texture read_vdb(const std::string& path) {
+Texture read_vdb_file(const std::string& path) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
     throw IoError(fmt::format("{}: expected a regular file", path));

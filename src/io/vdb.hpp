@@ -21,6 +21,9 @@
 // Determinism: OpenVDB writes a random UUID into the file header; we replace
 // it with one derived from a hash of the rest of the file, so the same
 // texture gives byte-identical files (and distinct contents distinct UUIDs).
+// Both functions run in the VDB plugin, libskybake_vdb.so, opened on first
+// use (vdb_plugin.hpp); when it cannot be loaded they throw IoError naming
+// every path tried.
 #pragma once
 
 #include <string>
