@@ -12,6 +12,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <type_traits>
 #include <vector>
@@ -27,8 +28,10 @@
 #include <ImfOutputPart.h>
 #include <ImfPartType.h>
 #include <ImfStringAttribute.h>
+#include <ImfThreading.h>
 #include <half.h>
 #include <fmt/format.h>
+#include <tbb/global_control.h>
 
 #include "core/error.hpp"
 
@@ -93,6 +96,29 @@ void check_writable(const std::string& path, const Texture& tex, ExrPrecision pr
         throw IoError(fmt::format(
             "{}: expected values below {} in magnitude for half output, got {}; use float32", path,
             kHalfOverflow, v));
+}
+
+Imf::Compression imf_compression(ExrCompression c) {
+  switch (c) {
+    case ExrCompression::none: return Imf::NO_COMPRESSION;
+    case ExrCompression::zip: return Imf::ZIP_COMPRESSION;
+    case ExrCompression::zips: return Imf::ZIPS_COMPRESSION;
+    case ExrCompression::piz: return Imf::PIZ_COMPRESSION;
+  }
+  return Imf::ZIP_COMPRESSION;
+}
+
+// OpenEXR's thread pool (compression and decompression of line blocks) as
+// large as TBB may be (--threads); the bytes do not depend on it, blocks are
+// written in order.
+int exr_threads() {
+  const int n = int(
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  const int threads = n > 1 ? n : 0;  // 0: the calling thread only, no pool
+  static std::mutex resize;
+  const std::lock_guard<std::mutex> lock(resize);
+  if (Imf::globalThreadCount() != threads) Imf::setGlobalThreadCount(threads);
+  return threads;
 }
 
 // The header every part shares: channels, compression, metadata and shape.
@@ -164,12 +190,13 @@ void write_parts(const std::string& path, std::vector<Imf::Header>& headers,
   std::vector<half> halves;
   try {
     if (headers.size() == 1) {
-      Imf::OutputFile out(path.c_str(), headers[0]);
+      Imf::OutputFile out(path.c_str(), headers[0], exr_threads());
       out.setFrameBuffer(write_buffer(headers[0], channels, pixels[0], halves));
       out.writePixels(headers[0].dataWindow().max.y + 1);
     } else {
       for (Imf::Header& h : headers) h.setType(Imf::SCANLINEIMAGE);
-      Imf::MultiPartOutputFile out(path.c_str(), headers.data(), int(headers.size()));
+      Imf::MultiPartOutputFile out(path.c_str(), headers.data(), int(headers.size()),
+                                   /*overrideSharedAttributes=*/false, exr_threads());
       for (size_t i = 0; i < headers.size(); ++i) {
         Imf::OutputPart part(out, int(i));
         part.setFrameBuffer(write_buffer(headers[i], channels, pixels[i], halves));
@@ -184,6 +211,14 @@ void write_parts(const std::string& path, std::vector<Imf::Header>& headers,
 
 }  // namespace
 
+ExrCompression exr_compression_from_name(const std::string& name) {
+  if (name == "none") return ExrCompression::none;
+  if (name == "zip") return ExrCompression::zip;
+  if (name == "zips") return ExrCompression::zips;
+  if (name == "piz") return ExrCompression::piz;
+  throw Error(fmt::format("expected an EXR compression of none, zip, zips or piz, got '{}'", name));
+}
+
 int exr_atlas_columns(int depth) {
   int columns = 1;
   while (columns * columns < depth) ++columns;
@@ -191,7 +226,7 @@ int exr_atlas_columns(int depth) {
 }
 
 void write_exr(const std::string& path, const Texture& tex, ExrPrecision precision,
-               ExrVolumeLayout layout) {
+               ExrVolumeLayout layout, ExrCompression compression) {
   check_writable(path, tex, precision);
   std::vector<Imf::Header> specs;
   std::vector<const float*> pixels;
@@ -222,6 +257,7 @@ void write_exr(const std::string& path, const Texture& tex, ExrPrecision precisi
     specs.push_back(base_header(tex, tex.width, tex.height, precision, "image"));
     pixels.push_back(tex.data.data());
   }
+  for (Imf::Header& header : specs) header.compression() = imf_compression(compression);
   write_parts(path, specs, pixels, tex.channels);
 }
 
@@ -371,7 +407,7 @@ void expect_part_size(const std::string& path, const PartInfo& spec, int part, i
 }
 
 Texture read_exr_file(const std::string& path) {
-  Imf::MultiPartInputFile in(path.c_str());
+  Imf::MultiPartInputFile in(path.c_str(), exr_threads());
   std::vector<PartInfo> specs;
   for (int s = 0; s < in.parts(); ++s) specs.push_back(part_info(in.header(s)));
   if (specs.empty()) throw IoError(fmt::format("{}: expected at least one part, got none", path));

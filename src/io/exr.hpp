@@ -11,7 +11,8 @@
 //                           ceil(depth / columns); unused cells are 0.
 //   volume, multipart       a multi-part EXR, part z named "slice<z>".
 // Channels keep the texture's names ("R", "G", "B", "A" or any other name).
-// Compression is zip (lossless; zlib output is deterministic).
+// Compression: zip by default (16 lines per block), or zips (1 line), piz or
+// none, all lossless; every one gives the same bytes for any thread count.
 //
 // Header attributes (every part of a multi-part file carries all of them):
 //   skybake:<key>          string, one per Texture::metadata entry.
@@ -37,6 +38,10 @@ namespace skybake {
 
 enum class ExrPrecision { half, float32 };
 enum class ExrVolumeLayout { atlas, multipart };
+enum class ExrCompression { none, zip, zips, piz };
+
+// "none", "zip", "zips" or "piz"; throws Error otherwise.
+ExrCompression exr_compression_from_name(const std::string& name);
 
 // Writes `tex` to exactly `path` (no temporary file: the caller renames).
 // Half output rounds to nearest even. Throws IoError (before creating the
@@ -44,8 +49,11 @@ enum class ExrVolumeLayout { atlas, multipart };
 // 65520); when the texture is empty or both a volume and an array; or when
 // OpenEXR fails (the partial file is removed). Throws
 // Error when a metadata key is reserved (a programmer error).
+// Compression and decompression run on OpenEXR's thread pool, sized to TBB's
+// allowed parallelism (--threads).
 void write_exr(const std::string& path, const Texture& tex, ExrPrecision precision,
-               ExrVolumeLayout layout = ExrVolumeLayout::atlas);
+               ExrVolumeLayout layout = ExrVolumeLayout::atlas,
+               ExrCompression compression = ExrCompression::zip);
 
 // Reads an EXR written by write_exr back into a Texture (shape, channel order
 // and metadata, with the "skybake:" prefix stripped and the structural

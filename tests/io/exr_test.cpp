@@ -10,7 +10,9 @@
 #include <iterator>
 
 #include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include "core/error.hpp"
 #include "support/run.hpp"
@@ -257,6 +259,36 @@ TEST(Exr, ReservedMetadataKeysAreRefused) {
   tex.metadata["shape"] = "mine";
   EXPECT_THROW(write_exr(path, tex, ExrPrecision::float32), Error);
   EXPECT_FALSE(fs::exists(path));
+}
+
+TEST(Exr, EveryCompressionIsLosslessAndNamedInTheHeader) {
+  const Texture tex = make_texture(37, 19, 5, 1, {"R", "G", "B", "A"});
+  for (const char* name : {"none", "zip", "zips", "piz"}) {
+    const std::string path = tmp_path("compression", std::string(name) + ".exr");
+    write_exr(path, tex, ExrPrecision::float32, ExrVolumeLayout::atlas,
+              exr_compression_from_name(name));
+    const auto parts = read_with_oiio(path);
+    ASSERT_EQ(parts.size(), 1u);
+    EXPECT_EQ(parts[0].spec.get_string_attribute("compression"), name);
+    expect_textures_equal(read_exr(path), tex);
+  }
+  EXPECT_THROW(exr_compression_from_name("rle"), Error);
+}
+
+TEST(Exr, BytesDoNotDependOnTheThreadCount) {
+  const Texture tex = make_texture(64, 80, 1, 3, {"R", "G", "B"});
+  for (ExrCompression c : {ExrCompression::zip, ExrCompression::zips, ExrCompression::piz}) {
+    std::string bytes[2];
+    for (int threads : {1, 2}) {
+      const tbb::global_control cap(tbb::global_control::max_allowed_parallelism, threads);
+      const std::string path =
+          tmp_path("threads", fmt::format("{}_{}.exr", int(c), threads));
+      write_exr(path, tex, ExrPrecision::half, ExrVolumeLayout::atlas, c);
+      bytes[threads - 1] = skybake::test::read_file(path);
+    }
+    EXPECT_GT(bytes[0].size(), 0u);
+    EXPECT_TRUE(bytes[0] == bytes[1]) << int(c);
+  }
 }
 
 }  // namespace
