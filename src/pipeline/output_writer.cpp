@@ -36,7 +36,8 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
                          const ProductInfo& info, const OutputSpec& spec) {
   if (format == "exr") {
     const bool half = spec.precision == "half";
-    write_exr(tmp, tex, half ? ExrPrecision::half : ExrPrecision::float32);
+    write_exr(tmp, tex, half ? ExrPrecision::half : ExrPrecision::float32, ExrVolumeLayout::atlas,
+              exr_compression_from_name(option_string(spec, "exr_compression", "zip")));
     return half ? "half" : "float";
   }
   if (format == "dds") {

@@ -38,6 +38,9 @@ const std::vector<std::string> kCommonOutputKeys = {"product", "name",      "siz
 // Keys that never change an output: left out of Scene.resolved (the hash input).
 const std::vector<std::string> kNonSemanticKeys = {"$schema", "description"};
 
+// Output keys of the file writers, which every product takes too.
+const std::vector<std::string> kWriterOutputKeys = {"exr_compression"};
+
 // Where a JSON subtree came from: the file and the subtree's pointer in it.
 struct Source {
   std::string file;
@@ -290,11 +293,14 @@ void product_options(json& out, const ProductInfo& info, const Source& src) {
   json options = json::object();
   for (auto& [key, v] : out.items())
     if (std::find(kCommonOutputKeys.begin(), kCommonOutputKeys.end(), key) ==
-        kCommonOutputKeys.end())
+            kCommonOutputKeys.end() &&
+        std::find(kWriterOutputKeys.begin(), kWriterOutputKeys.end(), key) ==
+            kWriterOutputKeys.end())
       options[key] = v;
   const std::string schema = "products/" + info.name + ".schema.json";
   const bool has_schema = schema_exists(schema);
   std::vector<std::string> known = kCommonOutputKeys;
+  known.insert(known.end(), kWriterOutputKeys.begin(), kWriterOutputKeys.end());
   if (has_schema) {
     for (const std::string& k : schema_property_names(schema)) known.push_back(k);
     if (auto bad = validate_against_schema(options, schema)) {
@@ -371,6 +377,9 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
                            info->name, fmt::join(allowed, ", ")));
   }
   spec.precision = out.value("precision", std::string("float"));
+  if (out.contains("exr_compression") &&
+      std::find(spec.formats.begin(), spec.formats.end(), "exr") == spec.formats.end())
+    src.fail("/exr_compression", "is only used with \"exr\" in formats");
   if (out.contains("dds_format") &&
       std::find(spec.formats.begin(), spec.formats.end(), "dds") == spec.formats.end())
     src.fail("/dds_format", "is only used with \"dds\" in formats");

@@ -30,6 +30,9 @@ OutputSpec default_spec(const ProductInfo& info) {
 
 namespace {
 
+// Keys of an output object read only by the file writers.
+bool is_writer_key(const std::string& key) { return key == "exr_compression"; }
+
 // Keys of an output object that shape files but not texture values.
 bool is_file_key(const std::string& key) {
   return key == "name" || key == "formats" || key == "precision" || key == "dds_format" ||
@@ -46,7 +49,8 @@ void compute_hashes(const Scene& scene, GraphNode& node, const std::vector<Graph
   for (int s : node.spec.size) value.add(std::to_string(s));
   nlohmann::json values = nlohmann::json::object();
   nlohmann::json files = nlohmann::json::object();
-  for (auto& [key, v] : node.spec.options.items()) (is_file_key(key) ? files : values)[key] = v;
+  for (auto& [key, v] : node.spec.options.items())
+    (is_file_key(key) || is_writer_key(key) ? files : values)[key] = v;
   value.add(values.dump());
   for (size_t d : node.deps) value.add(nodes[d].value_hash);
   node.value_hash = value.hex();

@@ -5,6 +5,7 @@
 // not even the formats written before it, nor a half-replaced old version.
 #include "pipeline/output_writer.hpp"
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -99,6 +100,21 @@ TEST(OutputWriter, EveryFormatIsWrittenUnderItsFinalNameAndReadsBackEqual) {
   EXPECT_TRUE(temporaries(dir).empty());
   EXPECT_EQ(test::list_files(dir), (std::vector<std::string>{"volume.dds", "volume.exr",
                                                              "volume.preview.png", "volume.vdb"}));
+}
+
+TEST(OutputWriter, ExrCompressionIsTheOutputsOwn) {
+  const fs::path dir = test::fresh_dir("output_writer_exr_compression");
+  const Texture tex = rgba_volume();
+  for (const char* compression : {"none", "zip", "zips", "piz"}) {
+    OutputSpec spec = spec_of(compression, {"exr"});
+    spec.options["exr_compression"] = compression;
+    write_outputs(tex, volume_product(), spec, dir);
+    const std::string path = (dir / (std::string(compression) + ".exr")).string();
+    auto in = OIIO::ImageInput::open(path);
+    ASSERT_TRUE(in) << OIIO::geterror();
+    EXPECT_EQ(in->spec().get_string_attribute("compression"), compression);
+    expect_same_texels(read_texture_file(path).texture, tex, path);
+  }
 }
 
 TEST(OutputWriter, HalfPrecisionIsWithinHalfRounding) {
