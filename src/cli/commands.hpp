@@ -51,7 +51,7 @@ int run_info(const InfoArgs& args);
 
 struct CheckTilingArgs {
   std::vector<std::string> files;
-  double tolerance = 0.1;  // a face passes when seam / interior jump <= 1 + tolerance
+  double tolerance = 0.25;  // values margin of the seam over the median face (core/tiling.hpp)
   bool quiet = false;
   bool json = false;
 };

@@ -168,16 +168,17 @@ CLI::App* add_check_tiling_command(CLI::App& app, CheckTilingArgs& args) {
       "check-tiling", "Check that baked 2D/3D textures tile (DDS, EXR, VDB); exit 1 if not.");
   cmd->add_option("files", args.files, "Texture files written by skybake")->required();
   cmd->add_option("-t,--tolerance", args.tolerance,
-                  "A face passes when its seam jump <= (1 + T) x the largest interior "
-                  "jump along that axis")
+                  "The seam's jump score may exceed the median interior face's by this "
+                  "fraction, or by 4 spreads of the interior faces if more")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1000.0));
   cmd->add_flag("-q,--quiet", args.quiet, "One line per file");
-  add_json_flag(cmd, args.json, "Print the ratios as JSON on stdout");
+  add_json_flag(cmd, args.json, "Print the scores as JSON on stdout");
   cmd->footer(
-      "\nFor each axis and channel: the largest jump between neighbours across the wrapped "
-      "face against the largest jump between interior neighbours (the ratio). A tileable "
-      "texture's seam is just another neighbour face (ratio near or below 1).");
+      "\nEvery mip level, array layer, axis and channel: the jump and the turn of slope across "
+      "the wrapped face, each against the faces beside it, compared with the same scores of the "
+      "interior faces. Exit 1 when a seam stands out, or when level 0 is too small or too rough "
+      "(white noise) for a seam to show. See docs/clouds.md \"Checking that a texture tiles\".");
   return cmd;
 }
 

@@ -406,7 +406,7 @@ void expect_part_size(const std::string& path, const PartInfo& spec, int part, i
                               spec.width, spec.height));
 }
 
-Texture read_exr_file(const std::string& path) {
+Texture read_exr_file(const std::string& path, ExrShape shape_from) {
   Imf::MultiPartInputFile in(path.c_str(), exr_threads());
   std::vector<PartInfo> specs;
   for (int s = 0; s < in.parts(); ++s) specs.push_back(part_info(in.header(s)));
@@ -418,7 +418,8 @@ Texture read_exr_file(const std::string& path) {
   const Imf::Header& head = *head_info.header;
 
   Shape shape{int(head_info.width), int(head_info.height), 1, int(specs.size())};
-  const std::string shape_text = string_attribute(head, kPrefix + "shape");
+  const bool recorded = shape_from == ExrShape::recorded;
+  const std::string shape_text = recorded ? string_attribute(head, kPrefix + "shape") : "";
   if (!shape_text.empty()) {
     const std::optional<Shape> parsed = parse_shape(shape_text);
     if (!parsed)
@@ -427,8 +428,8 @@ Texture read_exr_file(const std::string& path) {
           std::numeric_limits<int>::max(), shape_text));
     shape = *parsed;
   }
-  const std::string layout =
-      string_attribute(head, kPrefix + "layout", specs.size() > 1 ? "layers" : "image");
+  const std::string stored = specs.size() > 1 ? "layers" : "image";
+  const std::string layout = recorded ? string_attribute(head, kPrefix + "layout", stored) : stored;
   const std::string channel_text = string_attribute(head, kPrefix + "channels");
   const std::vector<std::string> channels =
       channel_text.empty() ? file_channels(head) : split_channels(channel_text);
@@ -491,9 +492,9 @@ Texture read_exr_file(const std::string& path) {
 
 }  // namespace
 
-Texture read_exr(const std::string& path) {
+Texture read_exr(const std::string& path, ExrShape shape) {
   try {
-    return read_exr_file(path);
+    return read_exr_file(path, shape);
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {  // OpenEXR's Iex exceptions, bad_alloc

@@ -61,7 +61,12 @@ void write_exr(const std::string& path, const Texture& tex, ExrPrecision precisi
 // 2D array (several parts of one size) with the channels in file order (R,
 // G, B, A first) and no metadata. Throws IoError when the file cannot be read or its parts do
 // not match its skybake:* attributes.
-Texture read_exr(const std::string& path);
+// ExrShape::as_stored ignores skybake:shape and skybake:layout and reads the
+// parts as they are, like a foreign EXR (channel order and metadata are still
+// taken from the attributes): for a copy whose pixels no longer match what it
+// records, e.g. cropped by another tool, which check-tiling still measures.
+enum class ExrShape { recorded, as_stored };
+Texture read_exr(const std::string& path, ExrShape shape = ExrShape::recorded);
 
 // Columns of the slice atlas of a volume with `depth` slices: ceil(sqrt(depth)).
 int exr_atlas_columns(int depth);

@@ -1,6 +1,7 @@
 #include "io/texture_file.hpp"
 
 #include <filesystem>
+#include <iterator>
 
 #include <fmt/format.h>
 
@@ -52,6 +53,8 @@ LoadedTexture load_dds(const std::string& path) {
   out.encoding = dxgi_format_name(image.format);
   out.mip_levels = int(image.mips.size());
   out.texture = std::move(image.mips.front());
+  out.lower_levels.assign(std::make_move_iterator(image.mips.begin() + 1),
+                          std::make_move_iterator(image.mips.end()));
   out.details = {{"flags", fmt::format("0x{:08x}", h.flags)},
                  {"pitch_or_linear_size", h.pitch_or_linear_size},
                  {"mip_map_count", h.mip_map_count},

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -16,6 +17,7 @@ struct LoadedTexture {
   std::string format;    // "exr", "dds", "vdb"
   std::string encoding;  // "half", "float", DXGI format name...
   int mip_levels = 1;
+  std::vector<Texture> lower_levels;  // mip levels 1, 2, ... of a DDS mip chain; else empty
   nlohmann::json details = nlohmann::json::object();  // format-specific header fields
 };
 
