@@ -73,7 +73,7 @@ LoadedTexture load_dds(const std::string& path) {
 LoadedTexture read_texture_file(const std::string& path) {
   const std::string ext = fs::path(path).extension().string();
   if (!fs::exists(path)) throw IoError(fmt::format("{}: no such file", path));
-  // Readers open what they are given: a FIFO would block them, a device never end.
+  // Readers open what they are given: a FIFO would block them, a device would never end.
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
     throw IoError(fmt::format("{}: expected a regular file", path));

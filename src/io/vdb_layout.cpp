@@ -14,6 +14,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <set>
 #include <vector>
 
 #include <fmt/format.h>
@@ -178,14 +179,17 @@ void tree(Walker& w, uint32_t compression, bool half, uint64_t block_pos) {
   constexpr uint64_t kTileBytes = 12 + 4 + 1, kChildBytes = 12 + 2 * 4096 + 1;
   if (tiles > w.left() / kTileBytes || children > w.left() / kChildBytes)
     w.fail(fmt::format("{} root tiles and {} children do not fit in the file", tiles, children));
-  // The root table: a later entry at the same origin replaces an earlier one.
+  // The root table: a child at a tile's origin replaces the tile.
   std::map<Coord, std::vector<uint16_t>> table;
   for (uint32_t i = 0; i < tiles; ++i) {
     table[coord(w, "root tile")].clear();
     w.skip(5, "root tile value");
   }
+  std::set<Coord> child_origins;
   for (uint32_t i = 0; i < children; ++i) {
     const Coord origin = coord(w, "root child");
+    // OpenVDB would drop (and leak) the first child at a repeated origin.
+    if (!child_origins.insert(origin).second) w.fail("two root children at one origin");
     std::vector<uint16_t> leaves;
     internal_node<5>(w, compression, half, leaves);
     table[origin] = std::move(leaves);

@@ -1,0 +1,74 @@
+// Writes small genuine files for the fuzzers' seed corpora, through the
+// project's own writers: `fuzz_seeds DIR` fills DIR/dds, DIR/exr, DIR/vdb and
+// DIR/manifest (each file a few hundred bytes to a few KiB). The preset
+// seeds are the shipped presets, copied by scripts/fuzz.sh.
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/dds.hpp"
+#include "io/exr.hpp"
+#include "io/manifest.hpp"
+#include "io/vdb.hpp"
+
+namespace fs = std::filesystem;
+using namespace skybake;
+
+namespace {
+
+Texture filled(int w, int h, int d, int layers, int channels) {
+  static const std::vector<std::string> rgba = {"R", "G", "B", "A"};
+  Texture t(w, h, d, layers, {rgba.begin(), rgba.begin() + channels});
+  for (size_t i = 0; i < t.data.size(); ++i) t.data[i] = float(i % 17) / 16.0f;
+  set_meta(t.metadata, "product", "seed");
+  return t;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: fuzz_seeds DIR\n");
+    return 2;
+  }
+  const fs::path dir = argv[1];
+  for (const char* sub : {"dds", "exr", "vdb", "manifest"}) fs::create_directories(dir / sub);
+
+  const std::vector<Texture> shapes = {filled(4, 2, 1, 1, 4), filled(3, 3, 1, 2, 1),
+                                       filled(2, 2, 4, 1, 3)};
+  int n = 0;
+  for (const Texture& t : shapes) {
+    for (ExrPrecision p : {ExrPrecision::half, ExrPrecision::float32})
+      for (ExrVolumeLayout l : {ExrVolumeLayout::atlas, ExrVolumeLayout::multipart})
+        write_exr((dir / "exr" / ("seed" + std::to_string(n++) + ".exr")).string(), t, p, l);
+    for (DdsFormat f : dds_formats()) {
+      if (t.channel_count() > dds_component_count(f)) continue;
+      write_dds((dir / "dds" / ("seed" + std::to_string(n++) + ".dds")).string(), {t}, f);
+    }
+    if (!t.is_array())
+      write_vdb((dir / "vdb" / ("seed" + std::to_string(n++) + ".vdb")).string(), t, 0.5);
+  }
+  // A chain of mips in DDS.
+  const Texture top = filled(4, 4, 1, 1, 4);
+  write_dds((dir / "dds" / "mips.dds").string(), {top, filled(2, 2, 1, 1, 4), filled(1, 1, 1, 1, 4)},
+            DdsFormat::R16G16B16A16_FLOAT);
+
+  Manifest m;
+  m.scene = "seed";
+  m.preset = "presets/seed.json";
+  m.tool_version = "0";
+  ManifestEntry e;
+  e.product = "transmittance";
+  e.name = "transmittance";
+  e.files = {{"transmittance.exr", "exr", "float", 1234, "0123456789abcdef"},
+             {"transmittance.dds", "dds", "R32G32B32A32_FLOAT", 148, "fedcba9876543210"}};
+  e.dimensions = {256, 64};
+  e.channels = {"R", "G", "B"};
+  e.metadata = {{"parameterization", "bruneton"}, {"mu_min", -0.2}};
+  e.input_hash = "d5358e9113d6403a";
+  e.estimated_error = {{"max", 0.001}, {"method", "halving"}};
+  m.entries[e.name] = e;
+  write_manifest(dir / "manifest" / "manifest.json", m);
+  return 0;
+}
