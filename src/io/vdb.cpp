@@ -180,13 +180,11 @@ void write_vdb_file(const std::string& path, const Texture& tex, double voxel_si
   }
 }
 
-Texture read_vdb_file(const std::string& path) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
-    throw IoError(fmt::format("{}: expected a regular file", path));
-  init_openvdb();
-  // Every length OpenVDB will trust is checked against the file first.
-  check_vdb_layout(path);
+namespace {
+
+// Every grid of the file, as float grids, and the box of their active voxels.
+std::vector<openvdb::FloatGrid::Ptr> read_float_grids(const std::string& path,
+                                                      openvdb::CoordBBox& active) {
   openvdb::GridPtrVecPtr grids;
   try {
     openvdb::io::File file(path);
@@ -198,52 +196,59 @@ Texture read_vdb_file(const std::string& path) {
   }
   if (!grids || grids->empty())
     throw IoError(fmt::format("{}: expected at least one grid, got none", path));
-
   std::vector<openvdb::FloatGrid::Ptr> floats;
-  openvdb::CoordBBox box;
   for (const auto& base : *grids) {
     auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
     if (!grid)
       throw IoError(fmt::format("{}: expected float grids, got a {} grid '{}'", path, base->type(),
                                 base->getName()));
-    box.expand(grid->evalActiveVoxelBoundingBox());
+    active.expand(grid->evalActiveVoxelBoundingBox());
     floats.push_back(grid);
   }
-  const std::string shape_text = string_meta(*floats[0], kPrefix + "shape");
-  if (!shape_text.empty()) {
-    const std::optional<Shape> s = parse_shape(shape_text);
-    if (!s || s->layers != 1)
-      throw IoError(fmt::format(
-          "{}: expected skybake:shape of the form WxHxDx1 with sizes from 1 to {}, got '{}'", path,
-          kMaxVdbSide, shape_text));
-    box = openvdb::CoordBBox(openvdb::Coord(0),
-                             openvdb::Coord(s->width - 1, s->height - 1, s->depth - 1));
-  } else if (box.empty()) {
-    throw IoError(fmt::format("{}: expected active voxels, got none", path));
+  return floats;
+}
+
+// The texture's box: skybake:shape when the file records it, else the active voxels.
+openvdb::CoordBBox texture_box(const std::string& path, const openvdb::FloatGrid& first,
+                               const openvdb::CoordBBox& active) {
+  const std::string shape_text = string_meta(first, kPrefix + "shape");
+  if (shape_text.empty()) {
+    if (active.empty()) throw IoError(fmt::format("{}: expected active voxels, got none", path));
+    return active;
   }
-  // Put the grids in channel order when the file records it.
+  const std::optional<Shape> s = parse_shape(shape_text);
+  if (!s || s->layers != 1)
+    throw IoError(fmt::format(
+        "{}: expected skybake:shape of the form WxHxDx1 with sizes from 1 to {}, got '{}'", path,
+        kMaxVdbSide, shape_text));
+  return openvdb::CoordBBox(openvdb::Coord(0),
+                            openvdb::Coord(s->width - 1, s->height - 1, s->depth - 1));
+}
+
+// The grids in channel order when the file records it (skybake:channels).
+std::vector<openvdb::FloatGrid::Ptr> in_channel_order(
+    const std::string& path, const std::vector<openvdb::FloatGrid::Ptr>& floats) {
   const std::string order = string_meta(*floats[0], kPrefix + "channels");
-  if (!order.empty()) {
-    std::vector<openvdb::FloatGrid::Ptr> ordered;
-    for (size_t start = 0, end = 0; end != std::string::npos; start = end + 1) {
-      end = order.find(',', start);
-      const std::string name = order.substr(start, end - start);
-      const auto it = std::find_if(floats.begin(), floats.end(),
-                                   [&](const auto& g) { return g->getName() == name; });
-      if (it == floats.end())
-        throw IoError(
-            fmt::format("{}: expected a grid '{}' (skybake:channels), got none", path, name));
-      if (std::find(ordered.begin(), ordered.end(), *it) != ordered.end())
-        throw IoError(
-            fmt::format("{}: expected distinct grids in skybake:channels, got '{}' twice", path,
-                        name));
-      ordered.push_back(*it);
-    }
-    floats = ordered;
+  if (order.empty()) return floats;
+  std::vector<openvdb::FloatGrid::Ptr> ordered;
+  for (size_t start = 0, end = 0; end != std::string::npos; start = end + 1) {
+    end = order.find(',', start);
+    const std::string name = order.substr(start, end - start);
+    const auto it = std::find_if(floats.begin(), floats.end(),
+                                 [&](const auto& g) { return g->getName() == name; });
+    if (it == floats.end())
+      throw IoError(
+          fmt::format("{}: expected a grid '{}' (skybake:channels), got none", path, name));
+    if (std::find(ordered.begin(), ordered.end(), *it) != ordered.end())
+      throw IoError(fmt::format(
+          "{}: expected distinct grids in skybake:channels, got '{}' twice", path, name));
+    ordered.push_back(*it);
   }
-  std::vector<std::string> channels;
-  for (const auto& grid : floats) channels.push_back(grid->getName());
-  // The dense copy: its size comes from the file's metadata or active voxels.
+  return ordered;
+}
+
+// The dense copy's size comes from the file: refuse it before allocating.
+void check_dense_size(const std::string& path, const openvdb::CoordBBox& box, size_t grids) {
   uint64_t voxels = 1;
   for (int axis = 0; axis < 3; ++axis) {
     const int64_t side = int64_t(box.max()[axis]) - box.min()[axis] + 1;
@@ -252,11 +257,16 @@ Texture read_vdb_file(const std::string& path) {
                                 kMaxVdbSide, side));
     voxels *= uint64_t(side);
   }
-  const uint64_t voxel_bytes = (floats.size() + 1) * sizeof(float);  // texture and plane
+  const uint64_t voxel_bytes = (grids + 1) * sizeof(float);  // texture and plane
   if (voxels > kMaxVdbDenseBytes / voxel_bytes)
-    throw IoError(fmt::format(
-        "{}: a dense copy of {} voxels x {} grids is over the {} GiB limit", path, voxels,
-        floats.size(), kMaxVdbDenseBytes >> 30));
+    throw IoError(fmt::format("{}: a dense copy of {} voxels x {} grids is over the {} GiB limit",
+                              path, voxels, grids, kMaxVdbDenseBytes >> 30));
+}
+
+Texture dense_texture(const openvdb::CoordBBox& box,
+                      const std::vector<openvdb::FloatGrid::Ptr>& floats) {
+  std::vector<std::string> channels;
+  for (const auto& grid : floats) channels.push_back(grid->getName());
   const openvdb::Coord dim = box.dim();
   Texture tex(dim.x(), dim.y(), dim.z(), 1, channels);
   for (auto it = floats[0]->beginMeta(); it != floats[0]->endMeta(); ++it)
@@ -264,7 +274,6 @@ Texture read_vdb_file(const std::string& path) {
         it->first != kPrefix + "channels" &&
         it->second->typeName() == openvdb::StringMetadata::staticTypeName())
       tex.metadata[it->first.substr(kPrefix.size())] = it->second->str();
-
   std::vector<float> plane(tex.texel_count());
   const size_t nc = channels.size();
   for (size_t c = 0; c < nc; ++c) {
@@ -273,6 +282,23 @@ Texture read_vdb_file(const std::string& path) {
     for (size_t t = 0; t < plane.size(); ++t) tex.data[t * nc + c] = plane[t];
   }
   return tex;
+}
+
+}  // namespace
+
+Texture read_vdb_file(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+    throw IoError(fmt::format("{}: expected a regular file", path));
+  init_openvdb();
+  // Every length OpenVDB will trust is checked against the file first.
+  check_vdb_layout(path);
+  openvdb::CoordBBox active;
+  const std::vector<openvdb::FloatGrid::Ptr> floats = read_float_grids(path, active);
+  const openvdb::CoordBBox box = texture_box(path, *floats[0], active);
+  const std::vector<openvdb::FloatGrid::Ptr> ordered = in_channel_order(path, floats);
+  check_dense_size(path, box, ordered.size());
+  return dense_texture(box, ordered);
 }
 
 }  // namespace skybake
