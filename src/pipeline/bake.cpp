@@ -92,6 +92,7 @@ class SceneBake {
     if (ec)
       throw IoError(fmt::format("{}: cannot create folder: {}", summary_.scene_dir.string(),
                                 ec.message()));
+    sweep_stale_temporaries(summary_.scene_dir);  // left by killed bakes
   }
 
   // Stale requested nodes, then everything they read (reverse topological order).

@@ -82,14 +82,16 @@ std::vector<ManifestFile> write_outputs(const Texture& tex, const ProductInfo& i
   const std::vector<std::string> names = output_files(spec);
   for (size_t i = 0; i < spec.formats.size(); ++i) {
     pending.push_back(std::make_unique<AtomicFile>(scene_dir / names[i]));
-    const std::filesystem::path& tmp = pending.back()->temp_path();
     ManifestFile record;
     record.path = names[i];
     record.format = spec.formats[i];
-    record.encoding = write_format(spec.formats[i], tmp.string(), tex, info, spec);
-    // Size and content as written, so freshness notices a truncated or edited file.
-    record.size = stat_file(tmp).size;
-    record.hash = hash_file(tmp);
+    // Errors name the output, not its temporary.
+    pending.back()->write([&](const std::filesystem::path& tmp) {
+      record.encoding = write_format(spec.formats[i], tmp.string(), tex, info, spec);
+      // Size and content as written, so freshness notices a truncated or edited file.
+      record.size = stat_file(tmp).size;
+      record.hash = hash_file(tmp);
+    });
     files.push_back(record);
   }
   for (auto& p : pending) p->commit();
