@@ -154,6 +154,26 @@ TEST(HostileExr, HugeHeaderInATinyFileIsRefusedBeforeAllocationInUnderASecond) {
   EXPECT_EQ(r.exit_code, 4) << r.err;
 }
 
+// Found by exr_reader_fuzz: OpenEXR allocated a string attribute's declared
+// size (1.8 GB in a 731-byte file, 15 s) before finding the file too short.
+TEST(HostileExr, AttributeSizeLargerThanTheFileIsRefusedBeforeOpenExr) {
+  const std::string path = write_exr_with("attribute_size", 4, 4, {{"layout", "image"}});
+  std::ifstream in(path, std::ios::binary);
+  std::vector<char> b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  const std::string key("skybake:layout\0string\0", 22);
+  const auto it = std::search(b.begin(), b.end(), key.begin(), key.end());
+  ASSERT_NE(it, b.end());
+  const int32_t huge = 1811939425;
+  std::memcpy(&*(it + long(key.size())), &huge, 4);
+  std::ofstream(path, std::ios::binary | std::ios::trunc).write(b.data(), std::streamsize(b.size()));
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string why = refusal(path);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1.0);
+  EXPECT_THAT(why, HasSubstr(path + ": not an EXR skybake can read safely: attribute "
+                                    "'skybake:layout' of part 0 declares 1811939425 bytes"));
+}
+
 TEST(HostileExr, GenuineAtlasStillReads) {
   Texture tex(3, 2, 5, 1, {"R", "G"});
   for (size_t i = 0; i < tex.data.size(); ++i) tex.data[i] = float(i);
