@@ -10,7 +10,11 @@ namespace skybake {
 glm::dvec4 sample_bilinear(const Texture& tex, double u, double v, int z, int layer, bool wrap_u) {
   const auto axis = [](double coord, int n, bool wrap, int& i0, int& i1, double& f) {
     double x = coord * n - 0.5;
-    if (!wrap) x = std::clamp(x, 0.0, double(n - 1));
+    // A coordinate that is not finite reads the first texel, and a wrapped
+    // one is brought into [0, n) first: no index ever leaves the texture.
+    if (!std::isfinite(x)) x = 0.0;
+    if (wrap) x -= n * std::floor(x / n);
+    else x = std::clamp(x, 0.0, double(n - 1));
     const double x0 = std::floor(x);
     f = x - x0;
     if (wrap) {

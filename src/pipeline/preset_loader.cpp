@@ -20,7 +20,9 @@
 #include "core/error.hpp"
 #include "core/safe_input.hpp"
 #include "core/suggest.hpp"
+#include "io/dds.hpp"
 #include "pipeline/cloud_products.hpp"
+#include "pipeline/output_budget.hpp"
 #include "pipeline/product_tables.hpp"
 #include "pipeline/schema_validator.hpp"
 
@@ -281,6 +283,84 @@ Atmosphere atmosphere_from(const json& planet, const Source& psrc, const json& a
   return a;
 }
 
+// The longest a file or folder name can be on the file systems skybake writes
+// to (NAME_MAX); a preset is refused here, not by the first write.
+constexpr size_t kMaxFileNameBytes = 255;
+
+// A name becomes a folder or file name: refuses control characters (a NUL
+// would cut it short: "ea\0rth" is the folder "ea") and names too long for
+// a file system.
+void check_name_bytes(const std::string& name, const std::string& longest_suffix,
+                      const Source& src, const std::string& pointer) {
+  for (size_t i = 0; i < name.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(name[i]);
+    if (c < 0x20 || c == 0x7F)
+      src.fail(pointer, fmt::format("must not contain control characters, got U+{:04X} at byte {}",
+                                    unsigned(c), i));
+  }
+  if (name.size() + longest_suffix.size() > kMaxFileNameBytes)
+    src.fail(pointer, fmt::format("expected at most {} bytes per file name, got {} for the "
+                                  "name{}",
+                                  kMaxFileNameBytes, name.size() + longest_suffix.size(),
+                                  longest_suffix.empty() ? "" : " and '" + longest_suffix + "'"));
+}
+
+std::string gib(std::uint64_t bytes) { return fmt::format("{:.1f} GiB", double(bytes) / double(1ull << 30)); }
+
+// The texture with its layers against the output budget, then the memory its
+// bake peaks at against the bake budget (output_budget.hpp).
+void check_output_budget(const OutputSpec& spec, const Source& src) {
+  const int layers = output_layers(spec);
+  const std::uint64_t bytes = output_texture_bytes(spec);
+  if (layers > 1 && bytes > kMaxOutputBytes)
+    src.fail("/size", fmt::format("{} texels x {} layers ({}) need {} at 4 float32 channels, "
+                                  "over the {} GiB budget of one output",
+                                  fmt::join(spec.size, "x"), layers,
+                                  spec.product == "skyview" ? "one per view" : "one per panel",
+                                  gib(bytes), kMaxOutputBytes >> 30));
+  const std::uint64_t peak = output_peak_bytes(spec);
+  if (peak > kMaxBakeBytes)
+    src.fail("/size", fmt::format("baking {} {} ({} at 4 float32 channels) and writing {} takes "
+                                  "about {} of memory ({}x its texture), over the {} GiB budget "
+                                  "of a bake",
+                                  fmt::join(spec.size, "x"), spec.product, gib(bytes),
+                                  fmt::join(spec.formats, ", "), gib(peak), working_factor(spec),
+                                  kMaxBakeBytes >> 30));
+}
+
+// Every texture of a scene stays in memory until the scene is baked; the
+// largest bake's working memory comes on top.
+void check_scene_budget(const std::vector<OutputSpec>& outputs, const Source& src) {
+  std::uint64_t held = 0, extra = 0;
+  size_t largest = 0;
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    // Each output is within the bake budget already, so no sum overflows.
+    const std::uint64_t bytes = output_texture_bytes(outputs[i]);
+    const std::uint64_t more = output_peak_bytes(outputs[i]) - bytes;
+    held += bytes;
+    if (more > extra) extra = more, largest = i;
+  }
+  if (held + extra <= kMaxBakeBytes) return;
+  src.fail("/outputs", fmt::format("the textures of the outputs take {} together and stay in "
+                                   "memory until the scene is baked; with the {} more that "
+                                   "baking {} takes, that is over the {} GiB budget of a bake",
+                                   gib(held), gib(extra), outputs[largest].pointer,
+                                   kMaxBakeBytes >> 30));
+}
+
+// A DDS format with fewer components than the product's texture has channels.
+void check_dds_format(const OutputSpec& spec, const Source& src) {
+  if (!spec.options.contains("dds_format")) return;
+  const std::string name = spec.options["dds_format"].get<std::string>();
+  const int components = dds_component_count(dds_format_from_name(name));
+  const int channels = output_channels(spec);
+  if (channels > components)
+    src.fail("/dds_format", fmt::format("expected a format with at least {} channels ({} has "
+                                        "{}), got {} ({} channel{})",
+                                        channels, spec.product, channels, name, components,
+                                        components == 1 ? "" : "s"));
+}
+
 std::string to_lower_ascii(std::string s) {
   for (char& ch : s)
     if (ch >= 'A' && ch <= 'Z') ch = char(ch - 'A' + 'a');
@@ -345,6 +425,12 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
 
   if (!out.contains("name")) out["name"] = info->name;
   spec.name = out["name"].get<std::string>();
+  std::string longest_suffix;
+  for (const std::string& format : out.value("formats", info->default_formats)) {
+    const std::string suffix = format == "png" ? ".preview.png" : "." + format;
+    if (suffix.size() > longest_suffix.size()) longest_suffix = suffix;
+  }
+  check_name_bytes(spec.name, longest_suffix, src, "/name");
   // Case-insensitive: out/<scene>/Sky.exr and sky.exr are one file on some
   // systems. Checked before the product so that both rules are reachable with
   // one product; a clash of default names hints at the product rule too.
@@ -384,6 +470,8 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
       std::find(spec.formats.begin(), spec.formats.end(), "dds") == spec.formats.end())
     src.fail("/dds_format", "is only used with \"dds\" in formats");
   spec.options = out;
+  check_dds_format(spec, src);
+  check_output_budget(spec, src);
   // Product-specific rules the schema cannot say (e.g. a noise octave finer
   // than two voxels), checked before anything is allocated.
   if (info->check)
@@ -414,6 +502,11 @@ void check_output_size(const ProductInfo& product, const std::vector<int>& size,
   for (size_t k = 0; k < size.size(); ++k) {
     const std::string at = pointer + token(k);
     if (size[k] < 1) throw PresetError(file, at, fmt::format("must be >= 1, got {}", size[k]));
+    const std::vector<int>& min_size = product_limits(product.name).min_size;
+    if (k < min_size.size() && size[k] < min_size[k])
+      throw PresetError(file, at,
+                        fmt::format("must be >= {} (smallest {} axis '{}'), got {}", min_size[k],
+                                    product.name, product.axes[k], size[k]));
     if (k < product.max_size.size() && size[k] > product.max_size[k])
       throw PresetError(file, at,
                         fmt::format("must be <= {} (largest {} axis '{}'), got {}",
@@ -437,6 +530,7 @@ Scene load_scene(const fs::path& file) {
   json doc = parse_preset(*text, display, "scene");
   const Source scene_src{display, ""};
   validate(doc, "scene.schema.json", scene_src);
+  check_name_bytes(doc["name"].get<std::string>(), "", scene_src, "/name");
 
   std::vector<fs::path> sources = {file};
   // Planet and atmosphere come together or not at all (a scene of cloud
@@ -480,6 +574,7 @@ Scene load_scene(const fs::path& file) {
     scene.outputs.push_back(
         output_from(outputs[i], i, display, products, names, scene.has_atmosphere,
                     doc.contains("clouds")));
+  check_scene_budget(scene.outputs, scene_src);
   scene.resolved = std::move(doc);
   return scene;
 }
