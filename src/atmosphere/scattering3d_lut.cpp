@@ -493,6 +493,8 @@ Scattering3dTextures bake_scattering3d(const Atmosphere& atm, const Texture& tra
   Scattering3dTextures out;
   out.shape = shape;
   out.orders_used = 1;
+  out.single_rayleigh = rayleigh;
+  out.single_mie = mie;
   Scattering3dIteration orders(atm, transmittance_lut, spec, phases, std::move(rayleigh),
                                std::move(mie));
   for (int k = 2; k <= last_order; ++k) {

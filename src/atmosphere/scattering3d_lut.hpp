@@ -121,6 +121,9 @@ struct Scattering3dTextures {
   Texture scattering;     // RGBA or RGB (see the opening comment)
   Texture mie;            // RGB S_M, always filled
   Texture gathering_sum;  // height_size x sun_size RGB, sum of G_1..G_{N-1} (gathering_lut.hpp)
+  // Order 1 alone, phase-free RGB S_R and S_M: what the bake's error
+  // measurement reads (the single-scattering part of the table).
+  Texture single_rayleigh, single_mie;
   Scattering3dShape shape;
   int orders_used = 0;
   double last_residual = 1.0;     // 1 when only single scattering was baked

@@ -252,6 +252,7 @@ BrunetonTextures bake_bruneton(const Atmosphere& atm, const Texture& transmittan
   Texture irradiance = orders.take_irradiance(out.tail_factor, out.direct_irradiance);
   assemble_bruneton_outputs(atm, spec, orders.accumulated(), std::move(single.mie),
                             std::move(irradiance), out);
+  out.single_rayleigh = std::move(single.rayleigh);
   if (ctx.on_progress) ctx.on_progress(1.0);
   return out;
 }

@@ -119,6 +119,7 @@ struct BrunetonSpec {
 struct BrunetonTextures {
   Texture scattering;         // RGBA (combined_mie_alpha) or RGB
   Texture single_mie;         // RGB, always filled
+  Texture single_rayleigh;    // RGB S_R of order 1 (the single-scattering pass), for measurement
   Texture irradiance;         // RGB
   Texture direct_irradiance;  // RGB
   ScatteringShape shape;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "atmosphere/direct_single_scattering.hpp"
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/phase.hpp"
 #include "core/math.hpp"
@@ -31,36 +32,6 @@ std::vector<double> ray_breakpoints(const Atmosphere& atm, const std::vector<dou
       if (crossing > 0.0 && crossing < d) s.push_back(crossing);
   }
   return s;
-}
-
-// Distances along the view ray (r, mu) where the ray toward the sun (mu_s,
-// nu at the viewer) is tangent to the sphere of radius `radius`: the
-// distance from the planet's centre to the sun ray equals it with the
-// tangent point ahead, i.e.
-//   r_s^2 - (r mu_s + s nu)^2 = radius^2 and r mu_s + s nu < 0,
-// a quadratic a s^2 + b s + c = 0. For the ground's radius this is the edge
-// of the planet's shadow, where Vis jumps; for a kink altitude, the sun's
-// optical depth has a square-root kink there (its ray starts or stops
-// crossing that sphere).
-std::vector<double> sun_ray_tangencies(double radius, double r, double mu, double mu_s, double nu) {
-  const double a = 1.0 - nu * nu;
-  const double b = 2.0 * r * (mu - mu_s * nu);
-  const double c = (r - radius) * (r + radius) - r * r * mu_s * mu_s;
-  std::vector<double> roots;
-  if (std::abs(a) < 1e-12) {
-    if (b != 0.0) roots.push_back(-c / b);
-  } else {
-    const double discriminant = b * b - 4.0 * a * c;
-    if (discriminant >= 0.0) {
-      const double q = -0.5 * (b + std::copysign(std::sqrt(discriminant), b));
-      roots.push_back(q / a);
-      if (q != 0.0) roots.push_back(c / q);
-    }
-  }
-  std::vector<double> out;
-  for (double s : roots)
-    if (s > 0.0 && r * mu_s + s * nu < 0.0) out.push_back(s);
-  return out;
 }
 
 QuadratureResult<glm::dvec3> optical_depth(const Atmosphere& atm, const std::vector<double>& kinks,
@@ -159,6 +130,9 @@ QuadratureResult<glm::dvec3> single_scattering(const Atmosphere& atm, double r, 
     return source * glm::exp(-(view.value + sun.value));
   };
 
+  // The edge of the planet's shadow, where Vis jumps, and where the sun ray
+  // becomes tangent to a kink altitude's sphere, where the sun's optical
+  // depth has a square-root kink (its ray starts or stops crossing it).
   std::vector<double> breakpoints = ray_breakpoints(atm, kinks, r, mu, d);
   for (double s : sun_ray_tangencies(rb, r, mu, mu_s, nu)) breakpoints.push_back(s);
   for (double h : kinks)

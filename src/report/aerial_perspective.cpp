@@ -34,21 +34,15 @@ struct AerialQuery {
 std::vector<AerialQuery> aerial_queries(const ReportInputs& in, const AerialPerspectiveSetup& setup,
                                         const AerialPerspectiveSpec& op) {
   const Atmosphere& atm = in.scene.atmosphere;
-  const glm::dvec3 position(0.0, 0.0, atm.bottom_radius_m + std::max(op.camera.altitude_m, 0.0));
   const glm::dvec3 sun_dir = sun_direction(op.sun_zenith_rad, op.sun_azimuth_rad);
   std::vector<AerialQuery> q(size_t(setup.aerial_queries));
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
-    q[i].screen_uv = {query_unit(i, 30), query_unit(i, 31)};
-    const glm::dvec3 dir = view_dir_from_screen_uv(op.camera, q[i].screen_uv);
-    // An engine reads the volume at the depth of a visible surface, which is
-    // never past the ground.
-    const AtmosphereSpan span = clip_ray_to_atmosphere(atm, position, dir);
-    const double reach =
-        span.exits_on_ground ? std::min(span.t_exit, op.depth_range_m) : op.depth_range_m;
-    q[i].distance_m = query_unit(i, 32) * reach;
-    const ScatteringResult ref =
-        integrate_scattered_luminance(atm, in.transmittance, &in.multiscattering, position, dir,
-                                      sun_dir, q[i].distance_m, setup.aerial_reference_steps);
+    const AerialQueryPoint point = aerial_query(atm, op, i);
+    q[i].screen_uv = point.screen_uv;
+    q[i].distance_m = point.distance_m;
+    const ScatteringResult ref = integrate_scattered_luminance(
+        atm, in.transmittance, &in.multiscattering, point.position, point.view_dir, sun_dir,
+        q[i].distance_m, setup.aerial_reference_steps);
     const glm::dvec3& t = ref.transmittance;
     q[i].reference = glm::dvec4(ref.luminance, (t.x + t.y + t.z) / 3.0);
   });

@@ -75,12 +75,11 @@ glm::dvec3 reference_indirect_irradiance(const Atmosphere& atm, double r, double
 std::vector<IrradianceQuery> irradiance_queries(const ReportInputs& in,
                                                 const IrradianceSetup& setup, double mu_s_min) {
   const Atmosphere& atm = in.scene.atmosphere;
-  const double top = atm.top_radius_m - atm.bottom_radius_m;
   std::vector<IrradianceQuery> q(size_t(setup.irradiance_queries));
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
-    const double u = query_unit(i, 60);
-    q[i].r = atm.bottom_radius_m + top * u * u;
-    q[i].mu_s = mu_s_min + (1.0 - mu_s_min) * query_unit(i, 61);
+    const RadiusCosine point = irradiance_query(atm, i, mu_s_min);
+    q[i].r = point.r;
+    q[i].mu_s = point.mu;
     const double c = sun_average_cosine(q[i].mu_s, atm.sun_angular_radius_rad);
     if (c > 0.0)
       q[i].direct =

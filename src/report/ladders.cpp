@@ -1,11 +1,7 @@
 #include "report/ladders.hpp"
 
-#include <cmath>
-
 #include <fmt/format.h>
 
-#include "atmosphere/geometry.hpp"
-#include "core/math.hpp"
 #include "report/stats.hpp"
 
 namespace skybake {
@@ -45,22 +41,6 @@ nlohmann::json run_ladder(const std::string& product, const nlohmann::json& axes
   }
   const std::vector<size_t> front = mark_pareto(ladder);
   return {{"axes", axes}, {"ladder", ladder}, {"operating_point", op}, {"pareto", front}};
-}
-
-ViewQuery view_query(const Atmosphere& atm, size_t index, uint32_t first_dim, double mu_s_min) {
-  ViewQuery q;
-  const double u = query_unit(index, first_dim);
-  q.altitude_m = (atm.top_radius_m - atm.bottom_radius_m) * u * u;
-  q.r = atm.bottom_radius_m + q.altitude_m;
-  q.mu = 2.0 * query_unit(index, first_dim + 1) - 1.0;
-  q.mu_s = mu_s_min + (1.0 - mu_s_min) * query_unit(index, first_dim + 2);
-  q.nu = nu_from_azimuth(q.mu, q.mu_s, 2.0 * kPi * query_unit(index, first_dim + 3));
-  q.hits_ground = ray_intersects_ground(atm.bottom_radius_m, q.r, q.mu);
-  return q;
-}
-
-double nu_from_azimuth(double mu, double mu_s, double phi) {
-  return clamp_cosine(mu * mu_s + safe_sqrt((1.0 - mu * mu) * (1.0 - mu_s * mu_s)) * std::cos(phi));
 }
 
 }  // namespace skybake

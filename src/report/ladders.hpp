@@ -42,6 +42,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "atmosphere/query_points.hpp"
 #include "report/setup.hpp"
 
 namespace skybake {
@@ -63,21 +64,5 @@ nlohmann::json run_ladder(const std::string& product, const nlohmann::json& axes
 
 // "size=256x64 steps=40"
 std::string settings_label(const nlohmann::json& settings);
-
-// One query point of the precomputed-scattering ladders (scattering,
-// single_mie, scattering3d): altitude top * u^2 (terrain sits low), mu
-// uniform in [-1, 1], mu_s uniform in [mu_s_min, 1], the sun's azimuth
-// around the view uniform in [0, 2 pi) and the nu it gives; hashed from
-// query_unit(index, first_dim .. first_dim + 3), so each ladder keeps its own
-// points.
-struct ViewQuery {
-  double altitude_m = 0.0, r = 0.0, mu = 0.0, mu_s = 0.0, nu = 0.0;
-  bool hits_ground = false;
-};
-ViewQuery view_query(const Atmosphere& atm, size_t index, uint32_t first_dim, double mu_s_min);
-
-// cos of the angle between a view of zenith cosine mu and a sun of zenith
-// cosine mu_s, phi apart in azimuth.
-double nu_from_azimuth(double mu, double mu_s, double phi);
 
 }  // namespace skybake

@@ -33,8 +33,9 @@ std::vector<MultiscatteringQuery> multiscattering_queries(const ReportInputs& in
       fibonacci_sphere_directions(setup.multiscattering_reference_directions);
   std::vector<MultiscatteringQuery> q(size_t(setup.multiscattering_queries));
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
-    q[i].r = atm.bottom_radius_m + query_unit(i, 10) * (atm.top_radius_m - atm.bottom_radius_m);
-    q[i].mu_s = 2.0 * query_unit(i, 11) - 1.0;
+    const RadiusCosine point = multiscattering_query(atm, i);
+    q[i].r = point.r;
+    q[i].mu_s = point.mu;
     q[i].reference = compute_multiscattering(atm, in.reference_transmittance, q[i].r, q[i].mu_s,
                                              dirs, setup.multiscattering_reference_steps)
                          .psi_ms;

@@ -68,7 +68,7 @@ std::vector<Scattering3dQuery> scattering3d_queries(const ReportInputs& in,
   const int azimuths = setup.scattering3d_reference_azimuths;
   std::vector<Scattering3dQuery> q(size_t(setup.scattering3d_queries));
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
-    const ViewQuery v = view_query(atm, i, 70, kScattering3dMuSMin);
+    const ViewQuery v = view_query(atm, i, kScattering3dQueryDim, kScattering3dMuSMin);
     q[i].h = v.altitude_m, q[i].mu = v.mu, q[i].mu_s = v.mu_s, q[i].nu = v.nu;
     q[i].hits_ground = v.hits_ground;
     const double r = v.r;

@@ -41,7 +41,7 @@ std::vector<MieQuery> single_mie_queries(const ReportInputs& in, int count, doub
   const Atmosphere& atm = in.scene.atmosphere;
   std::vector<MieQuery> q(static_cast<size_t>(count));
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
-    const ViewQuery v = view_query(atm, i, 50, mu_s_min);
+    const ViewQuery v = view_query(atm, i, kSingleMieQueryDim, mu_s_min);
     q[i].r = v.r, q[i].mu = v.mu, q[i].mu_s = v.mu_s, q[i].nu = v.nu;
     q[i].hits_ground = v.hits_ground;
     q[i].reference = reference_single_scattering_phase_free(atm, q[i].r, q[i].mu, q[i].mu_s,

@@ -47,16 +47,16 @@ glm::dvec3 layer_sun(const SkyviewView& v) {
 std::vector<SkyviewQuery> skyview_queries(const ReportInputs& in, const SkyviewSetup& setup,
                                           const SkyviewLutSpec& op) {
   const Atmosphere& atm = in.scene.atmosphere;
-  const int layers = int(op.views.size());
   std::vector<SkyviewQuery> q(size_t(setup.skyview_queries));
   IntegrationOptions fine;
   fine.distribution = op.distribution;
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
     SkyviewQuery& s = q[i];
-    s.layer = std::min(int(query_unit(i, 20) * layers), layers - 1);
+    const SkyviewQueryPoint point = skyview_query(atm, op.views, i);
+    s.layer = point.layer;
+    s.r = point.r;
+    s.view = point.view;
     const SkyviewView& v = op.views[size_t(s.layer)];
-    s.r = atm.bottom_radius_m + std::max(v.altitude_m, 0.0);
-    s.view = {2.0 * query_unit(i, 21) - 1.0, 2.0 * kPi * query_unit(i, 22)};
     const glm::dvec3 position(0.0, 0.0, s.r), dir = skyview_vector_from_direction(s.view);
     s.reference =
         integrate_scattered_luminance(atm, in.transmittance, &in.multiscattering, position, dir,

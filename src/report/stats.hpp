@@ -12,40 +12,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/error_stats.hpp"
 #include "core/texture.hpp"
 
 namespace skybake {
 
-// Relative error of a value against its reference, with a floor on the
-// denominator so that values that are nearly black (transmittance through a
-// dense horizon, a sky-view layer at night) do not dominate:
-//   rel = |value - ref| / max(|ref|, floor_fraction * max |ref| over the set).
-// The same convention as the manifest's estimated errors (error_estimates.hpp).
-struct ErrorStats {
-  size_t samples = 0;
-  double max_abs = 0.0;  // largest |value - ref|, units of the quantity
-  double max_rel = 0.0;  // largest rel
-  double rms_rel = 0.0;  // sqrt(mean rel^2)
-  nlohmann::json json() const;
-};
-
-constexpr double kRelativeFloor = 1e-3;
-
-class ErrorTally {
- public:
-  void add(double value, double reference) { pairs_.push_back({value, reference}); }
-  void add(const ErrorTally& other);
-  ErrorStats stats(double floor_fraction = kRelativeFloor) const;
-  size_t size() const { return pairs_.size(); }
-
- private:
-  std::vector<std::pair<double, double>> pairs_;
-};
-
-// A deterministic pseudo-random number in [0, 1) for query `index` and
-// coordinate `dim` (a hash, splitmix64: no shared generator state, so the
-// query set is the same for any thread count and any run).
-double query_unit(uint64_t index, uint32_t dim);
+// ErrorStats, ErrorTally and query_unit are core/error_stats.hpp's: the bake
+// measures its tables with the same statistics at the same points.
 
 // Mean wall seconds of one call of `bake`: repeated until at least
 // min_seconds in total have passed (at most max_runs times), because the

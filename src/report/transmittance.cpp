@@ -29,12 +29,10 @@ struct TransmittanceQuery {
 std::vector<TransmittanceQuery> transmittance_queries(const ReportInputs& in, int count) {
   const Atmosphere& atm = in.scene.atmosphere;
   std::vector<TransmittanceQuery> q(static_cast<size_t>(count));
-  // Any table size maps the unit square the same way: the mapping's inverse
-  // is exact, so a 2x2 "table" turns (x_mu, x_r) into (r, mu).
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
-    const glm::dvec2 uv(texel_coord_from_unit(query_unit(i, 0), 2),
-                        texel_coord_from_unit(query_unit(i, 1), 2));
-    r_mu_from_transmittance_uv(atm, uv, 2, 2, q[i].r, q[i].mu);
+    const RadiusCosine point = transmittance_query(atm, i);
+    q[i].r = point.r;
+    q[i].mu = point.mu;
     q[i].reference =
         reference_transmittance_to_top(atm, q[i].r, q[i].mu, in.level.quadrature_tolerance).value;
   });
