@@ -23,6 +23,7 @@ int run_bake(const BakeArgs& args);
 
 struct ValidateArgs {
   std::vector<std::string> presets;
+  bool strict = false;  // keys that have no effect are errors (exit 1), not warnings
   bool quiet = false;
   bool json = false;
 };

@@ -104,10 +104,16 @@ CLI::App* add_bake_command(CLI::App& app, BakeArgs& args) {
 CLI::App* add_validate_command(CLI::App& app, ValidateArgs& args) {
   CLI::App* cmd =
       app.add_subcommand("validate", "Check presets against schemas/ and the semantic rules.");
-  cmd->add_option("presets", args.presets, "Preset files (JSON)")->required();
-  cmd->add_flag("-q,--quiet", args.quiet, "Print only errors");
+  cmd->add_option("presets", args.presets,
+                  "Preset files (JSON) of any kind: scene, planet, atmosphere or clouds, by "
+                  "their $schema")
+      ->required();
+  cmd->add_flag("--strict", args.strict, "Keys that have no effect are errors, not warnings");
+  cmd->add_flag("-q,--quiet", args.quiet, "Print only errors and warnings");
   add_json_flag(cmd, args.json, "Print results as JSON on stdout");
-  cmd->footer("\nExit 0 when every preset is valid, 1 otherwise; 4 when a file does not exist.");
+  cmd->footer("\nEvery problem of a file is listed (the first 20). Exit 0 when every preset is "
+              "valid (warnings on stderr: keys that have no effect), 1 otherwise or with a "
+              "warning under --strict; 4 when a file does not exist.");
   return cmd;
 }
 

@@ -1,5 +1,8 @@
-// skybake validate: schema and semantic checks of each preset; one line per
-// file; exit 0 when all are valid, 1 otherwise (every file is checked).
+// skybake validate: schema and semantic checks of each preset, of the kind
+// its $schema names (scene, planet, atmosphere, clouds); every problem of a
+// file in one error (pipeline/preset_loader.hpp), keys that have no effect
+// as warnings (errors under --strict); exit 0 when all are valid, 1
+// otherwise (every file is checked).
 #include <cstdio>
 #include <iostream>
 
@@ -12,17 +15,48 @@
 
 namespace skybake::cli {
 
+namespace {
+
+nlohmann::json problems_json(const std::vector<PresetProblem>& problems) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const PresetProblem& p : problems)
+    list.push_back({{"file", p.file}, {"pointer", p.pointer}, {"rule", p.rule}});
+  return list;
+}
+
+}  // namespace
+
 int run_validate(const ValidateArgs& args) {
   require_files(args.presets);
   int status = kExitOk;
   nlohmann::json results = nlohmann::json::array();
   for (const std::string& preset : args.presets) {
     try {
-      const Scene scene = load_scene(preset);
-      results.push_back({{"preset", preset}, {"valid", true}, {"scene", scene.name}});
-      if (!args.quiet && !args.json)
-        std::printf("ok      %s (scene '%s', %zu outputs)\n", preset.c_str(), scene.name.c_str(),
-                    scene.outputs.size());
+      const PresetCheck check = check_preset(preset);
+      nlohmann::json result = {{"preset", preset},
+                               {"valid", true},
+                               {"kind", check.kind},
+                               {"warnings", problems_json(check.warnings)}};
+      if (check.kind == "scene") result["scene"] = check.scene_name;
+      if (args.strict && !check.warnings.empty()) {
+        // Under --strict the warnings are this file's errors.
+        const PresetError e(check.warnings);
+        status = kExitFailure;
+        result["valid"] = false;
+        result["problems"] = result["warnings"];
+        result["message"] = e.what();
+        if (!args.json) std::fprintf(stderr, "skybake: error: %s\n", e.what());
+      } else if (!args.json) {
+        for (const PresetProblem& w : check.warnings)
+          std::fprintf(stderr, "skybake: warning: %s\n", w.line().c_str());
+      }
+      results.push_back(result);
+      if (args.quiet || args.json || !result["valid"].get<bool>()) continue;
+      if (check.kind == "scene")
+        std::printf("ok      %s (scene '%s', %zu outputs)\n", preset.c_str(),
+                    check.scene_name.c_str(), check.outputs);
+      else
+        std::printf("ok      %s (%s preset)\n", preset.c_str(), check.kind.c_str());
     } catch (const PresetError& e) {
       status = kExitFailure;
       results.push_back({{"preset", preset},
@@ -30,6 +64,7 @@ int run_validate(const ValidateArgs& args) {
                          {"file", e.file()},
                          {"pointer", e.pointer()},
                          {"rule", e.rule()},
+                         {"problems", problems_json(e.problems())},
                          {"message", e.what()}});
       if (!args.json) std::fprintf(stderr, "skybake: error: %s\n", e.what());
     } catch (const IoError& e) {

@@ -53,6 +53,36 @@ struct Source {
   }
 };
 
+// The problems of one preset and of the files it references, collected so
+// that one run reports all of them (PresetError lists the first
+// kMaxListedProblems and counts the rest).
+class Problems {
+ public:
+  void add(const Source& src, const std::string& pointer, const std::string& rule) {
+    list_.push_back({src.file, src.prefix + pointer, rule});
+  }
+  // Runs `check`; the problems of a PresetError it throws are kept instead,
+  // and false is returned.
+  template <typename Check>
+  bool collect(Check&& check) {
+    try {
+      check();
+      return true;
+    } catch (const PresetError& e) {
+      list_.insert(list_.end(), e.problems().begin(), e.problems().end());
+      return false;
+    }
+  }
+  bool empty() const { return list_.empty(); }
+  size_t size() const { return list_.size(); }
+  void throw_if_any() const {
+    if (!list_.empty()) throw PresetError(list_);
+  }
+
+ private:
+  std::vector<PresetProblem> list_;
+};
+
 std::string token(const std::string& key) {
   return (json::json_pointer() / key).to_string();
 }
@@ -110,8 +140,40 @@ json parse_preset(const std::string& text, const std::string& display, const std
   return doc;
 }
 
-void validate(const json& doc, const std::string& schema, const Source& src) {
-  if (auto bad = validate_against_schema(doc, schema)) src.fail(bad->pointer, bad->rule);
+// Schema violations looked for in one document before giving up.
+constexpr size_t kMaxSchemaViolations = 100;
+
+// Throws a PresetError listing every violation of `schema` in `doc` (named in
+// `src`). `patched`, if given, first receives the document with each
+// offending value replaced by one the schema accepts (null when there is
+// none), so that the checks of the sections without violations can still run.
+void validate(const json& doc, const std::string& schema, const Source& src,
+              json* patched = nullptr) {
+  const std::vector<SchemaViolation> all =
+      validate_against_schema_all(doc, schema, kMaxSchemaViolations, patched);
+  if (all.empty()) return;
+  std::vector<PresetProblem> problems;
+  for (const SchemaViolation& v : all)
+    problems.push_back({src.file, src.prefix + v.pointer, v.rule});
+  throw PresetError(problems);
+}
+
+// The top-level keys of `doc` (and "outputs/<i>" for single outputs) whose
+// value `patched` changed: their semantic checks would judge stand-ins.
+std::set<std::string> patched_sections(const json& doc, const json& patched) {
+  std::set<std::string> changed;
+  for (auto& [key, value] : patched.items())
+    if (!doc.contains(key) || doc[key] != value) changed.insert(key);
+  for (auto& [key, value] : doc.items())
+    if (!patched.contains(key)) changed.insert(key);
+  if (changed.count("outputs") && doc.contains("outputs") && doc["outputs"].is_array() &&
+      patched["outputs"].is_array() && doc["outputs"].size() == patched["outputs"].size()) {
+    changed.erase("outputs");
+    for (size_t i = 0; i < doc["outputs"].size(); ++i)
+      if (doc["outputs"][i] != patched["outputs"][i])
+        changed.insert("outputs/" + std::to_string(i));
+  }
+  return changed;
 }
 
 void strip_non_semantic(json& obj) {
@@ -251,35 +313,51 @@ void check_top_radius(const json& planet, const Source& psrc, const json& atm, c
                                           psrc.file, values));
 }
 
-Atmosphere atmosphere_from(const json& planet, const Source& psrc, const json& atm,
-                           const Source& asrc) {
-  check_top_radius(planet, psrc, atm, asrc);
-  Atmosphere a;
-  a.bottom_radius_m = number(planet, "radius_km", psrc, "") * 1e3;
-  a.top_radius_m = number(atm, "top_radius_km", asrc, "") * 1e3;
-  a.ground_albedo = rgb(planet, "ground_albedo", psrc, "");
-  a.sun_illuminance = rgb(atm["sun"], "illuminance", asrc, "/sun");
-  a.sun_angular_radius_rad = number(atm["sun"], "angular_radius_rad", asrc, "/sun");
+// The components of `atm` into `a`, each checked on its own.
+void add_components(Atmosphere& a, const json& atm, const Source& asrc, Problems& problems) {
   if (atm.contains("rayleigh"))
-    add_component(
-        a, component_from("rayleigh", atm["rayleigh"], PhaseKind::rayleigh, asrc, "/rayleigh"));
+    problems.collect([&] {
+      add_component(
+          a, component_from("rayleigh", atm["rayleigh"], PhaseKind::rayleigh, asrc, "/rayleigh"));
+    });
   if (atm.contains("mie"))
-    add_component(a, component_from("mie", atm["mie"], PhaseKind::cornette_shanks, asrc, "/mie"));
+    problems.collect([&] {
+      add_component(a,
+                    component_from("mie", atm["mie"], PhaseKind::cornette_shanks, asrc, "/mie"));
+    });
   if (atm.contains("ozone"))
-    add_component(a, component_from("ozone", atm["ozone"], PhaseKind::none, asrc, "/ozone"));
+    problems.collect([&] {
+      add_component(a, component_from("ozone", atm["ozone"], PhaseKind::none, asrc, "/ozone"));
+    });
   std::set<std::string> names = {"rayleigh", "mie", "ozone"};
   const json extra = atm.value("extra", json::array());
-  for (size_t i = 0; i < extra.size(); ++i) {
-    const std::string at = "/extra" + token(i);
-    const std::string name = extra[i]["name"].get<std::string>();
-    if (!names.insert(name).second)
-      asrc.fail(at + "/name", fmt::format("component name '{}' is already used", name));
-    MediumComponent c = component_from(name, extra[i], PhaseKind::none, asrc, at);
-    if (c.phase == PhaseKind::none && c.scattering_per_m != glm::dvec3(0.0))
-      asrc.fail(at + "/phase",
-                "a component that scatters needs a phase function (scattering_per_m is not zero)");
-    add_component(a, std::move(c));
-  }
+  for (size_t i = 0; i < extra.size(); ++i)
+    problems.collect([&] {
+      const std::string at = "/extra" + token(i);
+      const std::string name = extra[i]["name"].get<std::string>();
+      if (!names.insert(name).second)
+        asrc.fail(at + "/name", fmt::format("component name '{}' is already used", name));
+      MediumComponent c = component_from(name, extra[i], PhaseKind::none, asrc, at);
+      if (c.phase == PhaseKind::none && c.scattering_per_m != glm::dvec3(0.0))
+        asrc.fail(at + "/phase",
+                  "a component that scatters needs a phase function (scattering_per_m is not "
+                  "zero)");
+      add_component(a, std::move(c));
+    });
+}
+
+Atmosphere atmosphere_from(const json& planet, const Source& psrc, const json& atm,
+                           const Source& asrc, Problems& problems) {
+  problems.collect([&] { check_top_radius(planet, psrc, atm, asrc); });
+  Atmosphere a;
+  problems.collect([&] {
+    a.bottom_radius_m = number(planet, "radius_km", psrc, "") * 1e3;
+    a.top_radius_m = number(atm, "top_radius_km", asrc, "") * 1e3;
+    a.ground_albedo = rgb(planet, "ground_albedo", psrc, "");
+    a.sun_illuminance = rgb(atm["sun"], "illuminance", asrc, "/sun");
+    a.sun_angular_radius_rad = number(atm["sun"], "angular_radius_rad", asrc, "/sun");
+  });
+  add_components(a, atm, asrc, problems);
   return a;
 }
 
@@ -368,8 +446,9 @@ std::string to_lower_ascii(std::string s) {
 }
 
 // Checks the product-specific keys of output `out` against the product's
-// schema and fills their defaults.
-void product_options(json& out, const ProductInfo& info, const Source& src) {
+// schema and fills their defaults; false, with the problems in `problems`,
+// when they break it.
+bool product_options(json& out, const ProductInfo& info, const Source& src, Problems& problems) {
   json options = json::object();
   for (auto& [key, v] : out.items())
     if (std::find(kCommonOutputKeys.begin(), kCommonOutputKeys.end(), key) ==
@@ -383,24 +462,33 @@ void product_options(json& out, const ProductInfo& info, const Source& src) {
   known.insert(known.end(), kWriterOutputKeys.begin(), kWriterOutputKeys.end());
   if (has_schema) {
     for (const std::string& k : schema_property_names(schema)) known.push_back(k);
-    if (auto bad = validate_against_schema(options, schema)) {
-      if (bad->keyword != "additionalProperties") src.fail(bad->pointer, bad->rule);
-      const std::string key = json::json_pointer(bad->pointer).back();
-      src.fail(bad->pointer, fmt::format("unknown key '{}'{}", key, did_you_mean(key, known)));
+    const std::vector<SchemaViolation> all =
+        validate_against_schema_all(options, schema, kMaxSchemaViolations);
+    for (const SchemaViolation& bad : all) {
+      if (bad.keyword != "additionalProperties") {
+        problems.add(src, bad.pointer, bad.rule);
+        continue;
+      }
+      const std::string key = json::json_pointer(bad.pointer).back();
+      problems.add(src, bad.pointer,
+                   fmt::format("unknown key '{}'{}", key, did_you_mean(key, known)));
     }
+    if (!all.empty()) return false;
     apply_schema_defaults(options, schema);
   } else if (!options.empty()) {
-    const std::string key = options.begin().key();
-    src.fail(token(key), fmt::format("unknown key '{}'{} ({} takes no options)", key,
-                                     did_you_mean(key, known), info.name));
+    for (auto& [key, v] : options.items())
+      problems.add(src, token(key), fmt::format("unknown key '{}'{} ({} takes no options)", key,
+                                                did_you_mean(key, known), info.name));
+    return false;
   }
   for (auto& [key, v] : options.items()) out[key] = v;
+  return true;
 }
 
 OutputSpec output_from(json& out, size_t index, const std::string& file,
                        std::map<std::string, size_t>& products,
                        std::map<std::string, size_t>& names, bool has_atmosphere,
-                       bool has_clouds) {
+                       bool has_clouds, Problems& problems) {
   OutputSpec spec;
   spec.pointer = "/outputs" + token(index);
   const Source src{file, spec.pointer};
@@ -412,16 +500,18 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
                                      product_names().empty()
                                          ? "none registered"
                                          : fmt::format("{}", fmt::join(product_names(), ", "))));
-  product_options(out, *info, src);
+  const bool options_ok = product_options(out, *info, src, problems);
   const auto& sections = info->scene_sections;
   if (!has_clouds && std::find(sections.begin(), sections.end(), "clouds") != sections.end())
-    src.fail("/product", fmt::format("'{}' needs the scene's clouds section (inline or a file of "
-                                     "presets/clouds/), and this scene has none",
-                                     info->name));
+    problems.add(src, "/product",
+                 fmt::format("'{}' needs the scene's clouds section (inline or a file of "
+                             "presets/clouds/), and this scene has none",
+                             info->name));
   if (!has_atmosphere && std::find(sections.begin(), sections.end(), "atmosphere") != sections.end())
-    src.fail("/product", fmt::format("'{}' needs the scene's planet and atmosphere, and this scene "
-                                     "has neither",
-                                     info->name));
+    problems.add(src, "/product",
+                 fmt::format("'{}' needs the scene's planet and atmosphere, and this scene "
+                             "has neither",
+                             info->name));
 
   if (!out.contains("name")) out["name"] = info->name;
   spec.name = out["name"].get<std::string>();
@@ -438,45 +528,109 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
   if (!fresh) {
     const auto earlier = products.find(spec.product);
     const bool same_product = earlier != products.end() && earlier->second == clash->second;
-    src.fail("/name", fmt::format("output name '{}' is already used by /outputs/{}{}", spec.name,
-                                  clash->second,
-                                  same_product ? " (for the same product: a scene bakes each "
-                                                 "product at most once)"
-                                               : ""));
+    problems.add(src, "/name",
+                 fmt::format("output name '{}' is already used by /outputs/{}{}", spec.name,
+                             clash->second,
+                             same_product ? " (for the same product: a scene bakes each "
+                                            "product at most once)"
+                                          : ""));
   }
   if (!products.emplace(spec.product, index).second)
-    src.fail("/product", fmt::format("product '{}' is already baked by /outputs/{}; a scene bakes "
-                                     "each product at most once",
-                                     spec.product, products[spec.product]));
+    problems.add(src, "/product",
+                 fmt::format("product '{}' is already baked by /outputs/{}; a scene bakes "
+                             "each product at most once",
+                             spec.product, products[spec.product]));
 
   if (!out.contains("size")) out["size"] = info->default_size;
   spec.size = out["size"].get<std::vector<int>>();
-  check_output_size(*info, spec.size, file, spec.pointer + "/size");
+  const bool size_ok =
+      problems.collect([&] { check_output_size(*info, spec.size, file, spec.pointer + "/size"); });
 
   if (!out.contains("formats")) out["formats"] = info->default_formats;
   spec.formats = out["formats"].get<std::vector<std::string>>();
   for (size_t k = 0; k < spec.formats.size(); ++k) {
     const auto& allowed = info->allowed_formats;
     if (std::find(allowed.begin(), allowed.end(), spec.formats[k]) == allowed.end())
-      src.fail("/formats" + token(k),
-               fmt::format("format '{}' is not available for {} (allowed: {})", spec.formats[k],
-                           info->name, fmt::join(allowed, ", ")));
+      problems.add(src, "/formats" + token(k),
+                   fmt::format("format '{}' is not available for {} (allowed: {})",
+                               spec.formats[k], info->name, fmt::join(allowed, ", ")));
   }
   spec.precision = out.value("precision", std::string("float"));
   if (out.contains("exr_compression") &&
       std::find(spec.formats.begin(), spec.formats.end(), "exr") == spec.formats.end())
-    src.fail("/exr_compression", "is only used with \"exr\" in formats");
+    problems.add(src, "/exr_compression", "is only used with \"exr\" in formats");
   if (out.contains("dds_format") &&
       std::find(spec.formats.begin(), spec.formats.end(), "dds") == spec.formats.end())
-    src.fail("/dds_format", "is only used with \"dds\" in formats");
+    problems.add(src, "/dds_format", "is only used with \"dds\" in formats");
   spec.options = out;
   check_dds_format(spec, src);
-  check_output_budget(spec, src);
+  if (size_ok) check_output_budget(spec, src);  // a size already refused is not budgeted
   // Product-specific rules the schema cannot say (e.g. a noise octave finer
   // than two voxels), checked before anything is allocated.
-  if (info->check)
-    for (const ProductProblem& problem : info->check(spec)) src.fail(problem.pointer, problem.rule);
+  if (info->check && options_ok && size_ok)
+    for (const ProductProblem& problem : info->check(spec))
+      problems.add(src, problem.pointer, problem.rule);
   return spec;
+}
+
+bool contains(const std::vector<std::string>& list, const std::string& item) {
+  return std::find(list.begin(), list.end(), item) != list.end();
+}
+
+// Keys written in a valid scene that change nothing (docs/presets.md
+// "Keys that have no effect"); `written` is the scene before defaults.
+std::vector<PresetProblem> no_effect_warnings(const json& written, const Scene& scene,
+                                              const std::string& file) {
+  std::vector<PresetProblem> warnings;
+  auto warn = [&](const std::string& pointer, const std::string& rule) {
+    warnings.push_back({file, pointer, "has no effect: " + rule});
+  };
+  auto read_by_an_output = [&](const std::string& section) {
+    for (const OutputSpec& o : scene.outputs)
+      if (contains(find_product(o.product)->scene_sections, section)) return true;
+    return false;
+  };
+  if (written.contains("clouds") && !read_by_an_output("clouds"))
+    warn("/clouds", "no output reads the clouds section (weather, cloud_types, height_gradients "
+                    "and cirrus do)");
+  if (written.contains("atmosphere") && !read_by_an_output("atmosphere"))
+    warn("/atmosphere", "no output reads the planet and atmosphere (the atmosphere tables do)");
+  for (size_t i = 0; i < scene.outputs.size(); ++i) {
+    const json& out = written["outputs"][i];
+    const OutputSpec& spec = scene.outputs[i];
+    const ProductInfo& info = *find_product(spec.product);
+    const std::string at = "/outputs" + token(i);
+    const bool exr = contains(spec.formats, "exr"), dds = contains(spec.formats, "dds");
+    const bool float_dds = dds && !out.contains("dds_format") && info.default_dds_format.empty();
+    if (out.contains("precision") && !exr && !float_dds) {
+      const std::string dds_format = out.contains("dds_format")
+                                         ? out["dds_format"].get<std::string>()
+                                         : info.default_dds_format == "unorm8"
+                                               ? "8-bit unorm (the product's default)"
+                                               : info.default_dds_format;
+      warn(at + "/precision",
+           fmt::format("precision sets EXR channels and DDS float formats, and this output "
+                       "writes {}",
+                       dds ? "no EXR and its DDS in " + dds_format
+                           : fmt::format("only {}", fmt::join(spec.formats, ", "))));
+    }
+    if (out.contains("mips") && !dds)
+      warn(at + "/mips", "mips are the DDS mip chain, and this output writes no DDS");
+    if (spec.options.contains("tolerance")) {
+      const bool converging = spec.options["tolerance"].get<double>() > 0.0;
+      for (const char* key : {"max_orders", "tail"})
+        if (out.contains(key) && !converging)
+          warn(at + "/" + key,
+               fmt::format("{} applies when orders run until they converge (tolerance > 0), and "
+                           "tolerance is 0: exactly 'orders' orders are computed",
+                           key));
+      if (out.contains("orders") && converging)
+        warn(at + "/orders",
+             "with tolerance > 0 orders run until they converge (up to max_orders), so 'orders' "
+             "is not used");
+    }
+  }
+  return warnings;
 }
 
 }  // namespace
@@ -529,54 +683,135 @@ Scene load_scene(const fs::path& file) {
   if (!text) throw IoError(fmt::format("{}: cannot read preset: {}", display, why));
   json doc = parse_preset(*text, display, "scene");
   const Source scene_src{display, ""};
-  validate(doc, "scene.schema.json", scene_src);
-  check_name_bytes(doc["name"].get<std::string>(), "", scene_src, "/name");
+  // Every problem of the scene and the files it references is collected;
+  // a section whose schema is broken (in the scene or in its own file) is
+  // not checked further, since its values are stand-ins.
+  Problems problems;
+  std::set<std::string> broken;
+  json patched;
+  if (!problems.collect([&] { validate(doc, "scene.schema.json", scene_src, &patched); })) {
+    if (patched.is_null()) problems.throw_if_any();
+    broken = patched_sections(doc, patched);
+    doc = std::move(patched);
+  }
+  if (!broken.count("name"))
+    problems.collect([&] { check_name_bytes(doc["name"].get<std::string>(), "", scene_src, "/name"); });
 
   std::vector<fs::path> sources = {file};
   // Planet and atmosphere come together or not at all (a scene of cloud
   // noise needs neither); products that need them say so below.
   const bool has_planet = doc.contains("planet"), has_atmosphere = doc.contains("atmosphere");
   if (has_planet != has_atmosphere)
-    scene_src.fail("", has_planet ? "missing required key 'atmosphere' (a planet needs its "
-                                    "atmosphere; an empty one is {\"top_radius_km\": ...})"
-                                  : "missing required key 'planet' (an atmosphere needs its planet)");
+    problems.add(scene_src, "",
+                 has_planet ? "missing required key 'atmosphere' (a planet needs its "
+                              "atmosphere; an empty one is {\"top_radius_km\": ...})"
+                            : "missing required key 'planet' (an atmosphere needs its planet)");
   for (const char* key : {"planet", "atmosphere", "clouds"})
     if (doc.contains(key) && doc[key].is_string())
       sources.push_back((file.parent_path() / doc[key].get<std::string>()).lexically_normal());
 
-  Source planet_src, atmosphere_src;
-  if (has_planet) {
-    inline_section(doc, "planet", file, display, planet_src);
-    inline_section(doc, "atmosphere", file, display, atmosphere_src);
+  Source planet_src, atmosphere_src, clouds_src;
+  for (const char* key : {"planet", "atmosphere", "clouds"}) {
+    if (!doc.contains(key)) continue;
+    Source& src = key[0] == 'p' ? planet_src : key[0] == 'a' ? atmosphere_src : clouds_src;
+    if (!problems.collect([&] { inline_section(doc, key, file, display, src); }))
+      broken.insert(key);
   }
-  Source clouds_src;
-  if (doc.contains("clouds")) inline_section(doc, "clouds", file, display, clouds_src);
+  // What the preset says before defaults: which keys were written.
+  const json written = doc;
   strip_non_semantic(doc);
   apply_schema_defaults(doc, "scene.schema.json");
   // Rules of the clouds section a schema cannot say (ramp order, the rain
   // rule's headroom), named in the file the section came from.
-  if (doc.contains("clouds"))
+  if (doc.contains("clouds") && !broken.count("clouds"))
     for (const ProductProblem& p : clouds_section_problems(doc["clouds"]))
-      clouds_src.fail(p.pointer, p.rule);
+      problems.add(clouds_src, p.pointer, p.rule);
 
   Scene scene;
   scene.file = file;
   scene.sources = std::move(sources);
   scene.name = doc["name"].get<std::string>();
-  scene.has_atmosphere = has_planet;
-  if (has_planet)
+  scene.has_atmosphere = has_planet && has_atmosphere;
+  if (scene.has_atmosphere && !broken.count("planet") && !broken.count("atmosphere"))
     scene.atmosphere =
-        atmosphere_from(doc["planet"], planet_src, doc["atmosphere"], atmosphere_src);
+        atmosphere_from(doc["planet"], planet_src, doc["atmosphere"], atmosphere_src, problems);
 
   std::map<std::string, size_t> products, names;
   json& outputs = doc["outputs"];
-  for (size_t i = 0; i < outputs.size(); ++i)
-    scene.outputs.push_back(
-        output_from(outputs[i], i, display, products, names, scene.has_atmosphere,
-                    doc.contains("clouds")));
-  check_scene_budget(scene.outputs, scene_src);
+  if (!broken.count("outputs"))
+    for (size_t i = 0; i < outputs.size(); ++i) {
+      if (broken.count("outputs/" + std::to_string(i))) continue;
+      problems.collect([&] {
+        scene.outputs.push_back(output_from(outputs[i], i, display, products, names,
+                                            has_planet || has_atmosphere, doc.contains("clouds"),
+                                            problems));
+      });
+    }
+  if (problems.empty())  // every output within its own budgets
+    problems.collect([&] { check_scene_budget(scene.outputs, scene_src); });
+  problems.throw_if_any();
+  scene.warnings = no_effect_warnings(written, scene, display);
   scene.resolved = std::move(doc);
   return scene;
+}
+
+PresetCheck check_preset(const fs::path& file) {
+  const std::string display = file.string();
+  std::string why;
+  const std::optional<std::string> text = read_text(file, why);
+  if (!text) throw IoError(fmt::format("{}: cannot read preset: {}", display, why));
+  json doc;
+  if (auto bad = parse_strict_json(*text, doc)) throw PresetError(display, bad->pointer, bad->rule);
+  PresetCheck check;
+  check.kind = "scene";
+  if (doc.is_object() && doc.contains("$schema") && doc["$schema"].is_string()) {
+    // Only the file name counts: the preset is checked against our own copy.
+    const std::string schema = doc["$schema"].get<std::string>();
+    const std::string name = schema.substr(schema.find_last_of("/\\") + 1);
+    check.kind.clear();
+    for (const char* kind : {"scene", "planet", "atmosphere", "clouds"})
+      if (name == std::string(kind) + ".schema.json") check.kind = kind;
+    if (check.kind.empty())
+      throw PresetError(display, "/$schema",
+                        fmt::format("expected the schema of a skybake preset (scene, planet, "
+                                    "atmosphere or clouds .schema.json), got '{}'",
+                                    schema));
+  }
+  if (check.kind == "scene") {
+    const Scene scene = load_scene(file);
+    check.scene_name = scene.name;
+    check.outputs = scene.outputs.size();
+    check.warnings = scene.warnings;
+    return check;
+  }
+  const Source src{display, ""};
+  if (!doc.is_object())
+    src.fail("", fmt::format("expected an object ({}), got {}", a_preset(check.kind),
+                             describe_json(doc)));
+  const std::string schema = check.kind + ".schema.json";
+  Problems problems;
+  if (!problems.collect([&] { validate(doc, schema, src); })) problems.throw_if_any();
+  strip_non_semantic(doc);
+  apply_schema_defaults(doc, schema);
+  if (check.kind == "clouds")
+    for (const ProductProblem& p : clouds_section_problems(doc))
+      problems.add(src, p.pointer, p.rule);
+  if (check.kind == "atmosphere") {
+    Atmosphere atmosphere;
+    problems.collect([&] {
+      number(doc, "top_radius_km", src, "");
+      rgb(doc["sun"], "illuminance", src, "/sun");
+      number(doc["sun"], "angular_radius_rad", src, "/sun");
+    });
+    add_components(atmosphere, doc, src, problems);
+  }
+  if (check.kind == "planet")
+    problems.collect([&] {
+      number(doc, "radius_km", src, "");
+      rgb(doc, "ground_albedo", src, "");
+    });
+  problems.throw_if_any();
+  return check;
 }
 
 }  // namespace skybake

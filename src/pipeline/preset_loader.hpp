@@ -7,8 +7,10 @@
 // memory budget, unique products and names, allowed formats).
 //
 // Every user error is a PresetError naming the file that holds the mistake,
-// the JSON pointer inside it and the rule; nothing is allocated for an output
-// before its size has passed the budget.
+// the JSON pointer inside it and the rule; one error lists every problem
+// found in the preset and the files it references (schema violations, then
+// the semantic checks of the sections whose schema holds); nothing is
+// allocated for an output before its size has passed the budget.
 #pragma once
 
 #include <cstdint>
@@ -28,6 +30,22 @@ namespace skybake {
 // Throws IoError when `file` cannot be read, PresetError for any invalid
 // content (including a referenced file that is missing or invalid).
 Scene load_scene(const std::filesystem::path& file);
+
+// What `skybake validate` learns of a preset file of any kind.
+struct PresetCheck {
+  std::string kind;                     // "scene", "planet", "atmosphere" or "clouds"
+  std::string scene_name;               // scenes only
+  size_t outputs = 0;                   // scenes only
+  std::vector<PresetProblem> warnings;  // keys that have no effect (Scene::warnings)
+};
+
+// Checks a preset of the kind its "$schema" names by file name (scene,
+// planet, atmosphere or clouds .schema.json; a scene when there is none)
+// against that schema of schemas/ and the semantic rules of that kind (a
+// scene through load_scene). Throws IoError when the file cannot be read,
+// PresetError listing every problem found, also for a "$schema" that names
+// none of them.
+PresetCheck check_preset(const std::filesystem::path& file);
 
 // Memory budget of one output, checked before anything is allocated.
 constexpr std::uint64_t kMaxOutputBytes = std::uint64_t(2) << 30;  // 2 GiB

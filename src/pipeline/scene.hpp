@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "atmosphere/medium.hpp"
+#include "core/error.hpp"
 
 namespace skybake {
 
@@ -32,6 +33,8 @@ struct Scene {
   Atmosphere atmosphere;        // SI units; defaults when !has_atmosphere
   nlohmann::json resolved;      // the preset with references inlined (hash input)
   std::vector<OutputSpec> outputs;
+  // Keys written in the preset that change nothing (validate reports them).
+  std::vector<PresetProblem> warnings;
 
   const OutputSpec* find_output(const std::string& product) const {
     for (const OutputSpec& o : outputs)

@@ -5,11 +5,14 @@
 // its '#').
 #include "pipeline/schema_validator.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -422,6 +425,160 @@ std::optional<SchemaViolation> validate_against_schema(const json& doc, const st
   validator.GetInvalidDocumentPointer().Stringify(pointer);
   const char* keyword = validator.GetInvalidSchemaKeyword();
   return explain(keyword ? keyword : "", pointer.GetString(), doc, Node{&file.tree, file.rel});
+}
+
+namespace {
+
+// A value the schema at `raw` accepts, to stand in for an invalid one.
+std::optional<json> stand_in(const Node& raw, int depth = 0) {
+  const Node n = resolve_refs(raw);
+  if (depth > 16 || !n.j || !n.j->is_object()) return std::nullopt;
+  const json& s = *n.j;
+  if (s.contains("default")) return s["default"];
+  if (s.contains("enum") && s["enum"].is_array() && !s["enum"].empty()) return s["enum"][0];
+  std::string type;
+  if (s.contains("type")) type = s["type"].is_array() ? s["type"][0].get<std::string>()
+                                                      : s["type"].get<std::string>();
+  if (type == "object" || (type.empty() && s.contains("properties"))) {
+    json object = json::object();
+    const json properties = s.value("properties", json::object());
+    for (const json& key : s.value("required", json::array())) {
+      const std::string k = key.get<std::string>();
+      if (!properties.contains(k)) return std::nullopt;
+      const std::optional<json> v = stand_in(Node{&s["properties"][k], n.file}, depth + 1);
+      if (!v) return std::nullopt;
+      object[k] = *v;
+    }
+    if (object.empty() && s.value("minProperties", 0) > 0 && !properties.empty()) {
+      const std::string k = properties.begin().key();
+      const std::optional<json> v = stand_in(Node{&s["properties"][k], n.file}, depth + 1);
+      if (!v) return std::nullopt;
+      object[k] = *v;
+    }
+    return object;
+  }
+  if (type == "array") {
+    json array = json::array();
+    for (int i = 0; i < s.value("minItems", 0); ++i) {
+      const json* items = s.contains("items") ? &s["items"] : nullptr;
+      if (items && items->is_array())
+        items = size_t(i) < items->size() ? &(*items)[size_t(i)] : nullptr;
+      const std::optional<json> v = items ? stand_in(Node{items, n.file}, depth + 1) : json();
+      if (!v) return std::nullopt;
+      array.push_back(*v);
+    }
+    return array;
+  }
+  if (type == "string") return std::string(size_t(std::max(1, s.value("minLength", 1))), 'a');
+  if (type == "integer" || type == "number") {
+    const bool has_lo = s.contains("minimum"), has_hi = s.contains("maximum");
+    const double lo = s.value("minimum", 0.0), hi = s.value("maximum", 0.0);
+    const bool open_lo = s.value("exclusiveMinimum", false);
+    const bool open_hi = s.value("exclusiveMaximum", false);
+    if (type == "integer") {
+      double v = has_lo ? std::ceil(lo) : has_hi ? std::floor(hi) : 0.0;
+      if (has_lo && open_lo && v == lo) v += 1.0;
+      if (!has_lo && has_hi && open_hi && v == hi) v -= 1.0;
+      return json(int64_t(v));
+    }
+    if (has_lo && has_hi) return json((lo + hi) / 2);
+    if (has_lo) return json(open_lo ? lo + 1.0 : lo);
+    if (has_hi) return json(open_hi ? hi - 1.0 : hi);
+    return json(0.0);
+  }
+  if (type == "boolean") return json(false);
+  if (type == "null") return json();
+  return std::nullopt;
+}
+
+// Replaces or removes what `v` points at in `doc` so that the schema accepts
+// it; false when nothing would.
+bool patch(json& doc, const SchemaViolation& v, const std::string& schema) {
+  std::lock_guard<std::mutex> lock(SchemaStore::mutex());
+  SchemaFile& file = SchemaStore::instance().get(schema);
+  const Node root{&file.tree, file.rel};
+  json::json_pointer at(v.pointer);
+  if (v.keyword == "additionalProperties") {
+    if (at.empty()) return false;
+    const std::string key = at.back();
+    at.pop_back();
+    if (!doc.contains(at) || !doc.at(at).is_object()) return false;
+    json& object = doc.at(at);
+    // A misspelled required key is read as the key it was meant to be, so
+    // that the same mistake is not reported again as a missing key.
+    const Node node = node_at(root, at.to_string());
+    const std::string* meant =
+        closest_name(key, v.allowed_keys, std::max<size_t>(2, key.size() / 3));
+    bool required = false;
+    if (meant && node.j && node.j->is_object())
+      for (const json& r : node.j->value("required", json::array()))
+        required = required || r == *meant;
+    if (required && !object.contains(*meant)) object[*meant] = object[key];
+    object.erase(key);
+    return true;
+  }
+  if (!doc.contains(at)) return false;
+  if (v.keyword == "uniqueItems" && !at.empty()) {  // `at` is the repeated item: drop it
+    const std::string index = at.back();
+    json::json_pointer array = at.parent_pointer();
+    if (doc.at(array).is_array()) {
+      doc.at(array).erase(std::stoul(index));
+      return true;
+    }
+  }
+  json& value = doc.at(at);
+  if (v.keyword == "required" && value.is_object()) {
+    const Node node = node_at(root, v.pointer);
+    if (!node.j || !node.j->is_object()) return false;
+    for (const json& key : node.j->value("required", json::array())) {
+      const std::string k = key.get<std::string>();
+      if (value.contains(k)) continue;
+      const std::optional<json> stand = stand_in(child_node(node, k));
+      if (!stand) return false;
+      value[k] = *stand;
+    }
+    return true;
+  }
+  if (at.empty()) return false;  // the document itself has the wrong shape
+  const Node node = node_at(root, v.pointer);
+  std::optional<json> stand = stand_in(node);
+  // An item of an array stands in by an allowed value its siblings do not
+  // hold, so that no duplicate is reported that the document does not have.
+  const json& parent = doc.at(at.parent_pointer());
+  if (parent.is_array() && node.j && node.j->contains("enum"))
+    for (const json& option : node.j->at("enum"))
+      if (std::find(parent.begin(), parent.end(), option) == parent.end()) {
+        stand = option;
+        break;
+      }
+  if (!stand || *stand == value) return false;
+  value = *stand;
+  return true;
+}
+
+}  // namespace
+
+std::vector<SchemaViolation> validate_against_schema_all(const json& doc, const std::string& schema,
+                                                         size_t max, json* patched) {
+  json work = doc;
+  std::vector<SchemaViolation> found;
+  bool valid = false;
+  while (found.size() < max) {
+    const std::optional<SchemaViolation> v = validate_against_schema(work, schema);
+    if (!v) {
+      valid = true;
+      break;
+    }
+    for (const SchemaViolation& seen : found)
+      if (seen.pointer == v->pointer && seen.keyword == v->keyword) {
+        if (patched) *patched = json();
+        return found;  // its stand-in did not satisfy the schema
+      }
+    found.push_back(*v);
+    if (!patch(work, *v, schema)) break;
+  }
+  if (patched) *patched = valid ? std::move(work) : json();
+  return found;
 }
 
 void apply_schema_defaults(json& doc, const std::string& schema) {

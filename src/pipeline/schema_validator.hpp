@@ -48,6 +48,17 @@ std::optional<SchemaViolation> parse_strict_json(const std::string& text, nlohma
 std::optional<SchemaViolation> validate_against_schema(const nlohmann::json& doc,
                                                        const std::string& schema);
 
+// Every violation of `doc` against `schema`, at most `max`: after each one the
+// offending value is replaced by one the schema accepts (its default, its
+// first enum value, its minimum, an object of its required keys...) or an
+// unknown key is dropped, and the document is validated again, so each
+// violation is found in the document as written. `patched` (optional)
+// receives the document with those replacements when it then passes the
+// schema, else null: when a value has no stand-in or `max` was reached.
+std::vector<SchemaViolation> validate_against_schema_all(const nlohmann::json& doc,
+                                                         const std::string& schema, size_t max,
+                                                         nlohmann::json* patched = nullptr);
+
 // Inserts the "default" of every property that `schema` declares and `doc`
 // lacks, recursively through present objects and array items (following
 // "$ref"). The schemas are the single source of defaults.

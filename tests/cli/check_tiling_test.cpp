@@ -116,7 +116,8 @@ TEST(CheckTiling, ShippedCloudsPresetsTileInEveryFile) {
   ASSERT_GE(files.size(), 20u);
   const auto r = check(files, true);
   EXPECT_EQ(r.exit_code, 0) << r.out;
-  for (const json& f : json::parse(r.out)["files"])
+  const json j = json::parse(r.out);
+  for (const json& f : j["files"])
     EXPECT_EQ(f["verdict"], "tiles") << f["file"] << " worst " << f["worst_ratio"];
 }
 
@@ -194,8 +195,8 @@ TEST(CheckTiling, CirrusStreaksAcrossTheFibresTileAndACropShows) {
     for (int x = 0; x < 512; ++x) {
       streaks.at(x, y, 0, 0, 0) = cirrus.at(x, y, 0, 0, 0);
       if (y > 0)
-        largest_jump = std::max(largest_jump, std::abs(cirrus.at(x, y, 0, 0, 0) -
-                                                       cirrus.at(x, y - 1, 0, 0, 0)));
+        largest_jump = std::max(largest_jump,
+                                std::abs(cirrus.at(x, y, 0, 0, 0) - cirrus.at(x, y - 1, 0, 0, 0)));
     }
   EXPECT_GT(largest_jump, 0.9f);
   const std::string whole = (dir / "streaks.exr").string();
@@ -205,8 +206,7 @@ TEST(CheckTiling, CirrusStreaksAcrossTheFibresTileAndACropShows) {
   // Crop 32 rows (1.5 cells of the fibres' first octave): the wrap now
   // joins rows that were not neighbours.
   Texture cropped(512, 480, 1, 1, {"R"});
-  std::copy(streaks.data.begin(), streaks.data.begin() + cropped.data.size(),
-            cropped.data.begin());
+  std::copy(streaks.data.begin(), streaks.data.begin() + cropped.data.size(), cropped.data.begin());
   const std::string file = (dir / "streaks_cropped.exr").string();
   write_exr(file, cropped, ExrPrecision::float32);
   const auto r = check({file}, true);
