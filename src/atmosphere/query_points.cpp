@@ -28,7 +28,7 @@ RadiusCosine multiscattering_query(const Atmosphere& atm, size_t index) {
 }
 
 SkyviewQueryPoint skyview_query(const Atmosphere& atm, const std::vector<SkyviewView>& views,
-                           size_t index) {
+                                size_t index) {
   const int layers = int(views.size());
   SkyviewQueryPoint q;
   q.layer = std::min(int(query_unit(index, 20) * layers), layers - 1);
@@ -37,7 +37,8 @@ SkyviewQueryPoint skyview_query(const Atmosphere& atm, const std::vector<Skyview
   return q;
 }
 
-AerialQueryPoint aerial_query(const Atmosphere& atm, const AerialPerspectiveSpec& spec, size_t index) {
+AerialQueryPoint aerial_query(const Atmosphere& atm, const AerialPerspectiveSpec& spec,
+                              size_t index) {
   AerialQueryPoint q;
   q.position = {0.0, 0.0, atm.bottom_radius_m + std::max(spec.camera.altitude_m, 0.0)};
   q.screen_uv = {query_unit(index, 30), query_unit(index, 31)};

@@ -41,7 +41,7 @@ struct SkyviewQueryPoint {
   SkyviewDirection view;
 };
 SkyviewQueryPoint skyview_query(const Atmosphere& atm, const std::vector<SkyviewView>& views,
-                           size_t index);
+                                size_t index);
 
 // Aerial perspective: screen position uniform, distance uniform between the
 // camera and the nearer of the depth range and the ground along that ray (an
@@ -52,7 +52,8 @@ struct AerialQueryPoint {
   glm::dvec3 position{0.0};  // the camera, planet-centred (local frame, z up)
   glm::dvec3 view_dir{0.0};
 };
-AerialQueryPoint aerial_query(const Atmosphere& atm, const AerialPerspectiveSpec& spec, size_t index);
+AerialQueryPoint aerial_query(const Atmosphere& atm, const AerialPerspectiveSpec& spec,
+                              size_t index);
 
 // A view of the precomputed-scattering tables (scattering, single_mie,
 // scattering3d): altitude top * u^2 (terrain sits low), mu uniform in

@@ -49,7 +49,8 @@ nlohmann::json record_json(const OutputRecord& r, const std::string& scene_dir) 
           {"layers", r.entry.layers},   {"channels", r.entry.channels},
           {"input_hash", r.entry.input_hash}, {"bake_seconds", r.entry.bake_seconds},
           {"error_seconds", r.entry.error_seconds},
-          {"estimated_error", r.entry.estimated_error}};
+          {"error", r.entry.error},     {"tiling", r.entry.tiling},
+          {"warnings", r.entry.warnings}};
 }
 
 // The farm log of -v: timestamped lines on stderr (spdlog), off otherwise.
@@ -93,9 +94,9 @@ class BakeRun {
     log_->info("{}: {:.3f} s; dependencies read back from disk: {}; computed in memory only: {}",
                scene.name, summary.seconds, names_or_none(summary.loaded),
                names_or_none(computed_in_memory(summary)));
+    // On stderr whatever --quiet and --json say: a farm's log must show them.
     for (const std::string& w : summary.warnings)
-      if (!args_.quiet && !args_.json)
-        std::fprintf(stderr, "skybake: warning: %s: %s\n", scene.name.c_str(), w.c_str());
+      std::fprintf(stderr, "skybake: warning: %s/%s\n", scene.name.c_str(), w.c_str());
     warnings_ += summary.warnings.size();
     report_["scenes"].push_back(scene_json(scene, summary, scene_dir));
   }
@@ -115,6 +116,7 @@ class BakeRun {
   }
 
   spdlog::logger& log() { return *log_; }
+  size_t warnings() const { return warnings_; }
 
  private:
   BakeOptions options_for(const Scene& scene, const std::string& scene_dir) {
@@ -187,7 +189,8 @@ int run_bake(const BakeArgs& args) {
                  args.force ? ", --force" : "");
   for (const Scene& scene : scenes) run.bake(scene);
   run.finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  return kExitOk;
+  // --strict: the files are written and recorded; the warnings fail the run.
+  return args.strict && run.warnings() > 0 ? kExitFailure : kExitOk;
 }
 
 }  // namespace skybake::cli

@@ -18,6 +18,7 @@ struct BakeArgs {
   bool quiet = false;
   bool verbose = false;  // log reasons, reads, threads and timings on stderr
   bool json = false;
+  bool strict = false;  // any warning exits 1, after the files are written and recorded
 };
 int run_bake(const BakeArgs& args);
 

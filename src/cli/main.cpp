@@ -88,7 +88,10 @@ CLI::App* add_bake_command(CLI::App& app, BakeArgs& args) {
   cmd->add_flag("-f,--force", args.force, "Bake even outputs that are up to date");
   cmd->add_flag("--verify", args.verify,
                 "Hash every recorded file instead of trusting a matching size and time");
-  cmd->add_flag("-q,--quiet", args.quiet, "No progress, no line per output, no summary line");
+  cmd->add_flag("--strict", args.strict,
+                "Exit 1 when any output has a warning (after writing and recording everything)");
+  cmd->add_flag("-q,--quiet", args.quiet,
+                "No progress, no line per output, no summary line (warnings still on stderr)");
   cmd->add_flag("-v,--verbose", args.verbose,
                 "Log on stderr why each output is (not) baked, what was read back or computed "
                 "in memory, threads and timings");

@@ -27,7 +27,8 @@ nlohmann::json to_json(const ManifestEntry& e) {
           {"files", files},             {"dimensions", e.dimensions},
           {"layers", e.layers},         {"channels", e.channels},
           {"metadata", e.metadata},     {"input_hash", e.input_hash},
-          {"estimated_error", e.estimated_error}};
+          {"error", e.error},           {"tiling", e.tiling},
+          {"warnings", e.warnings}};
 }
 
 ManifestEntry manifest_entry_from_json(const nlohmann::json& j) {
@@ -42,7 +43,9 @@ ManifestEntry manifest_entry_from_json(const nlohmann::json& j) {
   e.channels = j.value("channels", std::vector<std::string>{});
   e.metadata = j.value("metadata", nlohmann::json::object());
   e.input_hash = j.value("input_hash", "");
-  e.estimated_error = j.value("estimated_error", nlohmann::json());
+  e.error = j.value("error", nlohmann::json());
+  e.tiling = j.value("tiling", nlohmann::json());
+  e.warnings = j.value("warnings", nlohmann::json::array());
   return e;
 }
 
@@ -101,6 +104,8 @@ std::optional<std::string> entry_problem(const json& e, const std::string& at) {
   }
   if (e.contains("metadata") && !e["metadata"].is_object())
     return fmt::format("{}/metadata: expected an object", at);
+  if (e.contains("warnings") && !e["warnings"].is_array())
+    return fmt::format("{}/warnings: expected an array", at);
   if (e.contains("bake_seconds") && !e["bake_seconds"].is_number())
     return fmt::format("{}/bake_seconds: expected a number", at);
   return std::nullopt;

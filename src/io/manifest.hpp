@@ -32,7 +32,13 @@ struct ManifestEntry {
   std::vector<std::string> channels;
   nlohmann::json metadata = nlohmann::json::object();  // parameterization name and constants...
   std::string input_hash;
-  nlohmann::json estimated_error;  // null when exact; see pipeline/error_estimates.hpp
+  // {rms_rel, max_rel, queries, reference} of a table as an engine reads it
+  // (pipeline/error_measures.hpp); null for exact products and pictures.
+  nlohmann::json error;
+  // {tiles, worst_ratio, tolerance, statistic} of a tileable texture; else null.
+  nlohmann::json tiling;
+  // [{code, message, ...numbers}] (pipeline/warnings.hpp); empty when none.
+  nlohmann::json warnings = nlohmann::json::array();
   // Times vary from run to run: they go to the bake log (io/bake_log.hpp) and
   // to `bake --json`, never into manifest.json.
   double bake_seconds = 0.0;

@@ -5,7 +5,7 @@
 #include "atmosphere/sky_preview.hpp"
 #include "core/math.hpp"
 #include "pipeline/atmosphere_specs.hpp"
-#include "pipeline/error_estimates.hpp"
+#include "pipeline/error_measures.hpp"
 #include "pipeline/product_graph.hpp"
 #include "pipeline/product_options.hpp"
 #include "pipeline/product_tables.hpp"
@@ -142,11 +142,11 @@ namespace {
 ProductInfo atmosphere_product(std::string name, std::string summary, std::vector<std::string> axes,
                                std::vector<int> size, std::vector<int> max_size,
                                std::vector<std::string> dependencies, BakeFn bake,
-                               double ns_per_texel, EstimateFn estimate) {
+                               double ns_per_texel, MeasureFn measure) {
   ProductInfo p = atmosphere_lut_product(std::move(name), std::move(summary), std::move(axes),
                                          std::move(size), std::move(max_size),
                                          std::move(dependencies), std::move(bake), ns_per_texel);
-  p.estimate_error = std::move(estimate);
+  p.measure_error = std::move(measure);
   return p;
 }
 
@@ -156,21 +156,21 @@ void add_atmosphere_products(std::vector<ProductInfo>& r) {
   r.push_back(atmosphere_product(
       "transmittance", "transmittance to the top of the atmosphere, (mu, r), Hillaire 2020 5.2",
       {"mu", "r"}, {256, 64}, {4096, 4096}, {}, bake_transmittance, 7000.0,
-      estimate_transmittance_error));
+      measure_transmittance_error));
   r.push_back(atmosphere_product(
       "multiscattering",
       "multiple-scattering transfer Psi_ms, (sun zenith, altitude), Hillaire 2020 5.5",
       {"mu_s", "h"}, {32, 32}, {1024, 1024}, {"transmittance"}, bake_multiscattering, 130000.0,
-      estimate_multiscattering_error));
+      measure_multiscattering_error));
   r.push_back(atmosphere_product(
       "skyview", "sky-view lat/long LUT, one layer per (altitude, sun zenith), Hillaire 2020 5.3",
       {"azimuth", "latitude"}, {192, 108}, {4096, 4096}, {"transmittance", "multiscattering"},
-      bake_skyview, 1400.0 * 8, estimate_skyview_error));
+      bake_skyview, 1400.0 * 8, measure_skyview_error));
   ProductInfo ap = atmosphere_product(
       "aerial_perspective",
       "camera froxels: RGB in-scattering, A mean transmittance, Hillaire 2020 5.4",
       {"x", "y", "slice"}, {32, 32, 32}, {512, 512, 512}, {"transmittance", "multiscattering"},
-      bake_aerial_perspective, 150.0, estimate_aerial_perspective_error);
+      bake_aerial_perspective, 150.0, measure_aerial_perspective_error);
   ap.allowed_formats.push_back("vdb");
   r.push_back(std::move(ap));
   ProductInfo preview = atmosphere_product(

@@ -12,9 +12,11 @@
 #include "io/bake_log.hpp"
 #include "io/file_record.hpp"
 #include "io/output_readback.hpp"
+#include "pipeline/error_measures.hpp"
 #include "pipeline/freshness.hpp"
 #include "pipeline/output_writer.hpp"
 #include "pipeline/product_graph.hpp"
+#include "pipeline/warnings.hpp"
 
 namespace fs = std::filesystem;
 
@@ -137,6 +139,7 @@ class SceneBake {
       options_.on_recorded(summary_.scene_dir, node.spec.name, node.input_hash);
     const ManifestEntry& entry = before_.entries.at(node.spec.name);
     log_current_files(entry);
+    note_warnings(entry);
     OutputRecord rec{node.info->name, "up to date", reasons_[i], entry};
     if (options_.on_output) options_.on_output(rec);
     summary_.outputs.push_back(std::move(rec));
@@ -178,21 +181,32 @@ class SceneBake {
     return inputs;
   }
 
-  // Writes a computed output's files and measures its error estimate.
+  // Writes a computed output's files, measures its error (or tiling) and
+  // decides its warnings.
   void write(size_t i) {
     const GraphNode& node = graph_.nodes[i];
     const Texture& tex = *textures_[i];
     std::vector<ManifestFile> files = write_outputs(tex, *node.info, node.spec, summary_.scene_dir);
     OutputRecord rec{node.info->name, "baked", reasons_[i],
                      make_entry(node, tex, std::move(files), bake_seconds_)};
-    if (node.info->estimate_error) {
-      const auto t_estimate = Clock::now();
-      rec.entry.estimated_error = node.info->estimate_error(scene_, node.spec, inputs_of(node), tex);
-      rec.entry.error_seconds = seconds_since(t_estimate);
-    }
+    const auto t_measure = Clock::now();
+    if (node.info->measure_error)
+      rec.entry.error = node.info->measure_error(scene_, node.spec, inputs_of(node), tex);
+    if (node.info->tileable) rec.entry.tiling = tiling_record(tex);
+    rec.entry.error_seconds = seconds_since(t_measure);
+    for (const OutputWarning& w :
+         output_warnings(scene_, node.spec, tex, rec.entry.error, rec.entry.tiling))
+      rec.entry.warnings.push_back(w.json());
+    note_warnings(rec.entry);
     written_.push_back(rec.entry);
     if (options_.on_output) options_.on_output(rec);
     summary_.outputs.push_back(std::move(rec));
+  }
+
+  // An output's warnings, as the summary lists them: "<output>: <code>: <message>".
+  void note_warnings(const ManifestEntry& entry) {
+    for (const nlohmann::json& w : entry.warnings)
+      summary_.warnings.push_back(entry.name + ": " + warning_line(w));
   }
 
   // A current output's files were found as recorded: remember their times

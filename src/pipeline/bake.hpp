@@ -42,8 +42,9 @@ struct BakeSummary {
   std::vector<OutputRecord> outputs;
   std::vector<std::string> computed;  // products computed in memory, in order
   std::vector<std::string> loaded;    // current dependencies read back from disk
-  // Worth telling but not failing the bake; the CLI prints them and counts
-  // them on its summary line.
+  // Worth telling but not failing the bake (pipeline/warnings.hpp), one per
+  // warning of an output baked or found current: "<output>: <code>: <message>".
+  // The CLI prints them and counts them on its summary line.
   std::vector<std::string> warnings;
   double seconds = 0.0;
 };

@@ -16,6 +16,8 @@
 #include "core/hash.hpp"
 #include "core/math.hpp"
 #include "pipeline/atmosphere_specs.hpp"
+#include "pipeline/bruneton_families.hpp"
+#include "pipeline/error_measures.hpp"
 #include "pipeline/product_graph.hpp"
 #include "pipeline/product_options.hpp"
 #include "pipeline/product_tables.hpp"
@@ -90,6 +92,8 @@ std::string family_key(const Scene& scene, const OutputSpec& spec) {
   return h.add(spec.options.dump()).hex();
 }
 
+}  // namespace
+
 std::shared_ptr<const BrunetonTextures> bruneton_family(const Scene& scene, const ProductInputs& in,
                                                         const BakeContext& ctx) {
   static FamilyCache<BrunetonTextures> cache;
@@ -114,6 +118,8 @@ std::shared_ptr<const Scattering3dTextures> scattering3d_family(const Scene& sce
                              ctx);
   });
 }
+
+namespace {
 
 // Companions receive the main product's texture as an input but need the
 // transmittance LUT to re-bake on a cache miss: they depend on both.
@@ -173,29 +179,35 @@ void add_bruneton_products(std::vector<ProductInfo>& r) {
       {"r", "mu", "mu_s", "nu"}, {32, 128, 32, 8}, {128, 512, 128, 32}, {"transmittance"},
       bake_scattering, 6300.0);
   scattering.check = spec_rules<BrunetonSpec, bruneton_spec, check_bruneton_spec>;
+  scattering.measure_error = measure_scattering_error;
   r.push_back(std::move(scattering));
   ProductInfo single_mie = atmosphere_lut_product(
       "single_mie", "single Mie scattering of the 4D table (with \"mie\": \"separate\")",
       {"r", "mu", "mu_s", "nu"}, {32, 128, 32, 8}, {128, 512, 128, 32},
       {"transmittance", "scattering"}, bake_single_mie, 1.0);
   single_mie.check = size_follows("scattering", single_mie.default_size);
+  single_mie.measure_error = measure_single_mie_error;
   r.push_back(std::move(single_mie));
-  r.push_back(atmosphere_lut_product(
+  ProductInfo irradiance = atmosphere_lut_product(
       "irradiance", "ground irradiance (mu_s, r) of the 4D model: indirect, or + direct",
       {"mu_s", "r"}, {64, 16}, {1024, 1024}, {"transmittance", "scattering"}, bake_irradiance,
-      1.0));
+      1.0);
+  irradiance.measure_error = measure_irradiance_error;
+  r.push_back(std::move(irradiance));
   ProductInfo scattering3d = atmosphere_lut_product(
       "scattering3d",
       "azimuth-free (height, view zenith, sun zenith) scattering with gathering (Elek/Frostbite)",
       {"height", "view", "sun"}, {32, 128, 32}, {128, 512, 128}, {"transmittance"},
       bake_scattering3d_product, 7800.0);
   scattering3d.check = spec_rules<Scattering3dSpec, scattering3d_spec, check_scattering3d_spec>;
+  scattering3d.measure_error = measure_scattering3d_error;
   r.push_back(std::move(scattering3d));
   ProductInfo gathering = atmosphere_lut_product(
       "gathering_sum", "gathering LUT of the 3D model, sum over orders (height, sun zenith)",
       {"height", "sun"}, {32, 32}, {128, 128}, {"transmittance", "scattering3d"},
       bake_gathering_sum, 1.0);
   gathering.check = size_follows("scattering3d", gathering.default_size);
+  gathering.measure_error = measure_gathering_sum_error;
   r.push_back(std::move(gathering));
 }
 

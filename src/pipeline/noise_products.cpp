@@ -108,6 +108,7 @@ ProductInfo noise_product(std::string name, std::string summary, std::vector<std
   p.default_mips = true;
   p.preview_tiled = true;
   p.preview_split = true;
+  p.tileable = true;
   return p;
 }
 

@@ -34,8 +34,8 @@ using nlohmann::json;
 namespace {
 
 // Output keys every product takes; the rest belong to the product's schema.
-const std::vector<std::string> kCommonOutputKeys = {"product", "name",      "size",
-                                                    "formats", "precision", "dds_format"};
+const std::vector<std::string> kCommonOutputKeys = {"product",   "name",       "size",     "formats",
+                                                    "precision", "dds_format", "max_error"};
 
 // Keys that never change an output: left out of Scene.resolved (the hash input).
 const std::vector<std::string> kNonSemanticKeys = {"$schema", "description"};
@@ -562,6 +562,11 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
   if (out.contains("dds_format") &&
       std::find(spec.formats.begin(), spec.formats.end(), "dds") == spec.formats.end())
     problems.add(src, "/dds_format", "is only used with \"dds\" in formats");
+  if (out.contains("max_error") && !info->measure_error)
+    problems.add(src, "/max_error",
+                 fmt::format("the bake measures no error of {} (only of atmosphere "
+                             "tables), so max_error has nothing to limit",
+                             info->name));
   spec.options = out;
   check_dds_format(spec, src);
   if (size_ok) check_output_budget(spec, src);  // a size already refused is not budgeted

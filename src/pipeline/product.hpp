@@ -26,10 +26,10 @@ struct ProductProblem {
 };
 using CheckFn = std::function<std::vector<ProductProblem>(const OutputSpec&)>;
 
-// Estimated error of a baked texture against a finer computation of the same
-// quantity (pipeline/error_estimates.hpp); null when the product is exact.
-using EstimateFn = std::function<nlohmann::json(const Scene&, const OutputSpec&,
-                                                const ProductInputs&, const Texture&)>;
+// Measured error of a baked table as an engine reads it, against a reference
+// that does not use it (pipeline/error_measures.hpp): the manifest's "error".
+using MeasureFn = std::function<nlohmann::json(const Scene&, const OutputSpec&,
+                                               const ProductInputs&, const Texture&)>;
 
 using BakeFn = std::function<Texture(const Scene&, const OutputSpec&, const ProductInputs&,
                                      const BakeContext&)>;
@@ -57,7 +57,8 @@ struct ProductInfo {
   bool default_mips = false;     // DDS mip chain unless the output says "mips"
   bool preview_tiled = false;    // PNG preview repeats each panel 2x2 (tileable textures)
   bool preview_split = false;    // PNG preview shows each channel as its own grey panel
-  EstimateFn estimate_error;     // empty: exact (no discretisation to estimate)
+  MeasureFn measure_error;       // empty: exact, a picture, or tileable (below)
+  bool tileable = false;  // records check-tiling's verdict (error_measures.hpp tiling_record)
 };
 
 // All products, in a stable order (dependencies before dependents).

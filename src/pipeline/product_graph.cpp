@@ -33,10 +33,12 @@ namespace {
 // Keys of an output object read only by the file writers.
 bool is_writer_key(const std::string& key) { return key == "exr_compression"; }
 
-// Keys of an output object that shape files but not texture values.
+// Keys of an output object that shape files or the manifest's record but not
+// texture values (max_error decides a warning: its output is recorded again,
+// its dependents are not).
 bool is_file_key(const std::string& key) {
   return key == "name" || key == "formats" || key == "precision" || key == "dds_format" ||
-         key == "preview" || key == "mips";
+         key == "preview" || key == "mips" || key == "max_error";
 }
 
 void compute_hashes(const Scene& scene, GraphNode& node, const std::vector<GraphNode>& nodes) {

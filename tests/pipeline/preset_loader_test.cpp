@@ -329,6 +329,23 @@ TEST(PresetLoader, OutputSizeBudgetIsCheckedBeforeAllocation) {
   EXPECT_EQ(output_bytes({1 << 20, 1 << 20, 1 << 20, 1 << 20}), UINT64_MAX);  // saturates
 }
 
+TEST(PresetLoader, MaxErrorOnlyWhereTheBakeMeasuresAnError) {
+  const fs::path dir = scratch("max_error");
+  json scene = inline_earth();
+  scene["outputs"] = json::array({{{"product", "transmittance"}, {"max_error", 0.05}}});
+  const Scene loaded = load_scene(write(dir / "lut.json", scene.dump()));
+  EXPECT_DOUBLE_EQ(loaded.outputs.at(0).options.at("max_error").get<double>(), 0.05);
+
+  scene["outputs"][0]["max_error"] = 0;
+  EXPECT_EQ(load_error(write(dir / "zero.json", scene.dump())).pointer(), "/outputs/0/max_error");
+
+  const json noise = {{"name", "noise"},
+                      {"outputs", json::array({{{"product", "noise_detail"}, {"max_error", 0.1}}})}};
+  const PresetError e = load_error(write(dir / "noise.json", noise.dump()));
+  EXPECT_EQ(e.pointer(), "/outputs/0/max_error");
+  EXPECT_NE(e.rule().find("measures no error of noise_detail"), std::string::npos) << e.rule();
+}
+
 TEST(PresetLoader, SchemaDirCanBeOverriddenAtRunTime) {
   const fs::path dir = scratch("schema_dir");
   fs::copy(kRoot / "schemas", dir / "schemas", fs::copy_options::recursive);

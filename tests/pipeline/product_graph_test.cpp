@@ -74,6 +74,12 @@ TEST(ProductGraph, HashChangesWithAtmosphereButNotWithFileKeys) {
   d.resolved["description"] = "another description";
   EXPECT_EQ(build_product_graph(d, {}).nodes[0].input_hash, h0)
       << "keys no product reads do not invalidate";
+
+  Scene e = a;
+  e.outputs[0].options["max_error"] = 0.01;
+  const ProductGraph ge = build_product_graph(e, {});
+  EXPECT_EQ(ge.nodes[0].value_hash, v0) << "max_error does not change texture values";
+  EXPECT_NE(ge.nodes[0].input_hash, h0) << "max_error changes the recorded warnings";
 }
 
 TEST(ProductGraph, OnlyMustNameARequestedProduct) {
