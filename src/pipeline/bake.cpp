@@ -94,7 +94,10 @@ class SceneBake {
     if (ec)
       throw IoError(fmt::format("{}: cannot create folder: {}", summary_.scene_dir.string(),
                                 ec.message()));
-    sweep_stale_temporaries(summary_.scene_dir);  // left by killed bakes
+    // Left by killed bakes, beside the outputs and beside the stamps.
+    sweep_stale_temporaries(summary_.scene_dir);
+    if (fs::is_directory(summary_.scene_dir / ".stamps"))
+      sweep_stale_temporaries(summary_.scene_dir / ".stamps");
   }
 
   // Stale requested nodes, then everything they read (reverse topological order).
