@@ -41,6 +41,7 @@ struct PlanArgs {
   int threads = 1;          // --threads of each emitted task
   int chunk = 1;            // slurm: presets per array task
   int max_parallel = 0;     // slurm: array throttle
+  bool strict = false;      // emitted tasks run `bake --strict`
   std::string self;         // path of this executable
 };
 int run_plan(const PlanArgs& args);

@@ -132,6 +132,9 @@ void add_plan_emit_options(CLI::App* cmd, PlanArgs& args) {
       ->capture_default_str()
       ->check(CLI::Range(1, 1024))
       ->needs(emit);
+  cmd->add_flag("--strict", args.strict,
+               "Every emitted task runs `bake --strict`: a warning fails its task")
+      ->needs(emit);
   cmd->add_option("--chunk", args.chunk, "slurm: presets per array task")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000))

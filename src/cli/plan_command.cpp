@@ -88,6 +88,7 @@ int emit_plan(const std::vector<Scene>& scenes, const PlanArgs& args) {
   opt.threads = args.threads;
   opt.chunk = args.chunk;
   opt.max_parallel = args.max_parallel;
+  opt.strict = args.strict;
   write_or_print(args.emit == "ninja" ? emit_ninja(farm, opt) : emit_slurm(farm, opt),
                  args.emit_file);
   if (!args.emit_file.empty() && args.emit_file != "-")

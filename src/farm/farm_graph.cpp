@@ -154,8 +154,8 @@ std::string emit_ninja(const FarmGraph& graph, const EmitOptions& opt) {
   s += "rule bake\n";
   s += fmt::format(
       "  command = $launcher $skybake bake $preset --only $product -o $out_dir --threads {} "
-      "--quiet\n",
-      opt.threads);
+      "--quiet{}\n",
+      opt.threads, opt.strict ? " --strict" : "");
   s += "  description = bake $scene/$product\n";
   s += "  restat = 1\n\n";
   std::vector<std::string> all;
@@ -208,10 +208,10 @@ std::string emit_slurm(const FarmGraph& graph, const EmitOptions& opt) {
   s += ")\n";
   s += fmt::format("chunk={}\n", chunk);
   s += "first=$(( SLURM_ARRAY_TASK_ID * chunk ))\n";
-  s += fmt::format("{} bake \"${{presets[@]:first:chunk}}\" -o {} --threads {} --quiet\n",
+  s += fmt::format("{} bake \"${{presets[@]:first:chunk}}\" -o {} --threads {} --quiet{}\n",
                    shell_quote(opt.skybake),
                    shell_quote(fs::absolute(graph.out_dir).lexically_normal().string()),
-                   std::max(1, opt.threads));
+                   std::max(1, opt.threads), opt.strict ? " --strict" : "");
   return s;
 }
 

@@ -47,6 +47,7 @@ struct EmitOptions {
   int threads = 1;       // --threads for each task
   int chunk = 1;         // slurm: presets per array task
   int max_parallel = 0;  // slurm: %N array throttle; 0 = none
+  bool strict = false;   // each task runs `bake --strict`: a warning fails it
 };
 
 // A ninja file: one edge per node, `restat = 1` and stamp files so a task

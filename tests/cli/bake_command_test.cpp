@@ -3,6 +3,8 @@
 // counts and the --json summary.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -10,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/texture_file.hpp"
 #include "support/run.hpp"
 
 namespace fs = std::filesystem;
@@ -192,8 +195,23 @@ TEST(BakeCommand, EveryShippedPresetBakesFiniteFiles) {
   for (const std::string p : {"presets/mars.json", "presets/tiny_planet.json"}) {
     const auto r = run_skybake({"bake", source_path(p).string(), "-o", out.string(), "--json"});
     ASSERT_EQ(r.exit_code, 0) << p << ": " << r.err;
-    for (const auto& o : nlohmann::json::parse(r.out)["scenes"][0]["outputs"])
-      for (const auto& f : o["files"]) EXPECT_TRUE(fs::exists(f["path"].get<std::string>()));
+    // Held in a variable: a loop over a member of parse()'s temporary would
+    // read a destroyed object.
+    const nlohmann::json summary = nlohmann::json::parse(r.out);
+    int checked = 0;
+    for (const auto& o : summary["scenes"][0]["outputs"])
+      for (const auto& f : o["files"]) {
+        const std::string path = f["path"].get<std::string>();
+        ASSERT_TRUE(fs::exists(path)) << path;
+        if (f["format"] == "png") continue;  // a picture, not data
+        const skybake::Texture tex = skybake::read_texture_file(path).texture;
+        EXPECT_GT(tex.data.size(), 0u) << path;
+        EXPECT_TRUE(std::all_of(tex.data.begin(), tex.data.end(),
+                                [](float v) { return std::isfinite(v); }))
+            << path;
+        ++checked;
+      }
+    EXPECT_GE(checked, 4) << p << ": the summary lists too few files";
   }
 }
 
