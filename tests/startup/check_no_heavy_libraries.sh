@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
-# The skybake executable loads neither OpenImageIO nor OpenVDB at start-up:
-# neither is among its DT_NEEDED entries nor anywhere in what the dynamic
-# loader resolves (ldd); OpenVDB comes only with the VDB plugin beside it.
+# The skybake executable loads neither OpenImageIO nor OpenVDB nor libsquish
+# (and the OpenMP runtime it needs) at start-up: none is among its DT_NEEDED
+# entries nor anywhere in what the dynamic loader resolves (ldd); OpenVDB
+# comes only with the VDB plugin beside it, libsquish with the
+# block-compression plugin.
 #   check_no_heavy_libraries.sh SKYBAKE
 set -euo pipefail
 exe="$1"
 status=0
 needed="$(readelf -d "$exe" | grep NEEDED || true)"
 loaded="$(ldd "$exe")"
-for lib in libOpenImageIO libopenvdb; do
+for lib in libOpenImageIO libopenvdb libsquish libgomp; do
   if grep -q "$lib" <<<"$needed$loaded"; then
     echo "check_no_heavy_libraries: $exe loads $lib at start-up:" >&2
     grep "$lib" <<<"$needed$loaded" >&2
@@ -23,5 +25,13 @@ elif ! readelf -d "$plugin" | grep NEEDED | grep -q libopenvdb; then
   echo "check_no_heavy_libraries: $plugin does not link OpenVDB" >&2
   status=1
 fi
-[ $status -eq 0 ] && echo "check_no_heavy_libraries: $(wc -l <<<"$loaded") libraries, no OpenImageIO, no OpenVDB"
+bc_plugin="$(dirname "$exe")/libskybake_bc.so"
+if [ ! -f "$bc_plugin" ]; then
+  echo "check_no_heavy_libraries: no block-compression plugin beside the executable: $bc_plugin" >&2
+  status=1
+elif ! readelf -d "$bc_plugin" | grep NEEDED | grep -q libsquish; then
+  echo "check_no_heavy_libraries: $bc_plugin does not link libsquish" >&2
+  status=1
+fi
+[ $status -eq 0 ] && echo "check_no_heavy_libraries: $(wc -l <<<"$loaded") libraries, no OpenImageIO, no OpenVDB, no libsquish"
 exit $status
