@@ -33,19 +33,6 @@ constexpr int kIrradianceDirectionFactor = 4;
 constexpr int kDirectTransmittanceSteps = 200;
 const DirectScatteringSteps kDirectSteps{32, 16};
 
-// The single-scattering order of the family's table, stored as the table
-// stores it: RGB S_R, + A = S_M.r when Mie is in alpha, else S_M apart.
-struct FirstOrder {
-  Texture table;
-  Texture separate_mie;  // empty when Mie is in alpha
-};
-
-FirstOrder first_order(const BrunetonTextures& family) {
-  if (family.scattering.channel_count() >= 4)
-    return {with_mie_in_alpha(family.single_rayleigh, family.single_mie), Texture()};
-  return {family.single_rayleigh, family.single_mie};
-}
-
 std::string direct_reference() {
   return fmt::format(
       "single scattering integrated without a table (compute_single_scattering_direct: {} "

@@ -45,6 +45,21 @@ nlohmann::json error_record(const QueryReads& reads, const std::string& referenc
 // "mie": "alpha" stores its single-scattering order.
 Texture with_mie_in_alpha(const Texture& rayleigh, const Texture& mie);
 
+// The single-scattering order of a precomputed family's table (4D or 3D),
+// stored as the family's table stores it: RGB S_R, + A = S_M.r when Mie is in
+// alpha, else S_M apart.
+struct FirstOrder {
+  Texture table;
+  Texture separate_mie;  // empty when Mie is in alpha
+};
+
+template <class Family>
+FirstOrder first_order(const Family& family) {
+  if (family.scattering.channel_count() >= 4)
+    return {with_mie_in_alpha(family.single_rayleigh, family.single_mie), Texture()};
+  return {family.single_rayleigh, family.single_mie};
+}
+
 // One per atmosphere table (MeasureFn of product.hpp).
 nlohmann::json measure_transmittance_error(const Scene&, const OutputSpec&, const ProductInputs&,
                                            const Texture&);

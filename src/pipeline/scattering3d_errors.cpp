@@ -36,19 +36,6 @@ constexpr int kGatheringQueries = 32;
 constexpr int kGatheringBandFactor = 2;
 const DirectScatteringSteps kDirectSteps{32, 16};
 
-// The single-scattering order of the family's table, stored as the table
-// stores it: RGB S_R, + A = S_M.r when Mie is in alpha, else S_M apart.
-struct FirstOrder {
-  Texture table;
-  Texture separate_mie;  // empty when Mie is in alpha
-};
-
-FirstOrder first_order(const Scattering3dTextures& family) {
-  if (family.scattering.channel_count() >= 4)
-    return {with_mie_in_alpha(family.single_rayleigh, family.single_mie), Texture()};
-  return {family.single_rayleigh, family.single_mie};
-}
-
 // Order 1 at altitude h and sun mu_s on every view texel of `view_size`, in
 // a 2 x view_size x 2 table whose two rows and two sun texels hold the same
 // values: read at (h, mu_s), it interpolates in mu only.
