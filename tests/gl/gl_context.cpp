@@ -198,6 +198,10 @@ int ComputeProgram::uniform(const std::string& name) const {
   return location;
 }
 
+bool ComputeProgram::has_uniform(const std::string& name) const {
+  return glGetUniformLocation(id_, name.c_str()) >= 0;
+}
+
 void ComputeProgram::set(const std::string& name, float v) const {
   glProgramUniform1f(id_, uniform(name), v);
 }
@@ -215,6 +219,7 @@ void ComputeProgram::set(const std::string& name, const glm::vec4& v) const {
 }
 
 ComputeProgram compile_compute(const std::vector<std::string>& includes, const std::string& body) {
+  GlContext::shared();
   const std::string source = "#version 450 core\n" + runtime_source(includes) + body;
   const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
   const char* text = source.c_str();
@@ -266,6 +271,7 @@ void dispatch(const ComputeProgram& program, unsigned groups_x, unsigned groups_
 // --- Buffers --------------------------------------------------------------
 
 StorageBuffer::StorageBuffer(size_t bytes, const void* data) : bytes_(bytes) {
+  GlContext::shared();
   glCreateBuffers(1, &id_);
   std::vector<unsigned char> zeros;
   if (!data) {

@@ -9,6 +9,9 @@
 // GL test executable links libEGL and libOpenGL (tests/CMakeLists.txt); the
 // skybake executable and libraries never do.
 //
+// Every helper below opens the shared context first (GlContext::shared()),
+// so no GL call runs without one.
+//
 // Every failure throws GlError naming the step (eglInitialize, the shader's
 // info log with the source's line numbers, a GL error after a call), so a
 // test that cannot run fails with the reason instead of skipping.
@@ -76,6 +79,9 @@ class ComputeProgram {
   unsigned id() const { return id_; }
   // The location of a uniform; throws GlError when the program has none of that name.
   int uniform(const std::string& name) const;
+  // Whether the program has an active uniform of that name (the compiler
+  // drops the ones main never reads).
+  bool has_uniform(const std::string& name) const;
   // Sets a uniform (glProgramUniform*); throws GlError as uniform() does.
   void set(const std::string& name, float v) const;
   void set(const std::string& name, int v) const;

@@ -6,10 +6,13 @@
 // these tests fail with the EGL step that failed; they never skip.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "gl/gl_context.hpp"
+#include "core/texture_sampling.hpp"
 #include "io/dds.hpp"
 #include "support/run.hpp"
 
@@ -174,5 +177,46 @@ TEST(GlContext, DdsBytesUploadAsTheyAre) {
   expect_dds_round_trip(ramp_texture(3, 3, 3, 1, 1), DdsFormat::R8_UNORM, false, "r8_volume");
 }
 
+
+// llvmpipe's bilinear filter against the exact one (core/texture_sampling:
+// double weights) at float texture coordinates, on a texture whose
+// neighbouring texels differ by O(1): the error is the filter's weight
+// resolution. docs/runtime.md "Precision" quotes the numbers printed here.
+TEST(GlContext, LinearFilterWeightResolution) {
+  GlContext::shared();
+  for (const int n : {16, 64, 256}) {
+    Texture t(n, n, 1, 1, {"R"});
+    for (size_t i = 0; i < t.data.size(); ++i) t.data[i] = float((i * 7919u) % 13u) / 13.0f;
+    const GlTexture tex = upload_texture(t, {Filter::linear});
+    const int count = 1 << 16;
+    std::vector<float> uv(size_t(count) * 2);
+    for (int i = 0; i < count; ++i) {
+      uv[2 * i] = float((i * 0.6180339887498949) - std::floor(i * 0.6180339887498949));
+      uv[2 * i + 1] = float((i * 0.7548776662466927) - std::floor(i * 0.7548776662466927));
+    }
+    StorageBuffer in(uv);
+    StorageBuffer out(size_t(count) * sizeof(float));
+    ComputeProgram program = compile_compute({}, R"(
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer In { vec2 uv[]; };
+layout(std430, binding = 1) writeonly buffer Out { float values[]; };
+layout(binding = 0) uniform sampler2D tex;
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  values[i] = textureLod(tex, uv[i], 0.0).r;
+}
+)");
+    in.bind(0);
+    out.bind(1);
+    tex.bind(0);
+    dispatch(program, unsigned(count / 64));
+    const std::vector<float> v = out.read_floats();
+    double worst = 0.0;
+    for (int i = 0; i < count; ++i)
+      worst = std::max(worst, std::abs(v[i] - sample_bilinear(t, uv[2 * i], uv[2 * i + 1], 0, 0, false).x));
+    std::printf("[ measured ] bilinear on %dx%d: max |GL - exact| %.3g (texel steps up to 1)\n", n, n, worst);
+    EXPECT_LE(worst, 1e-6) << n;
+  }
+}
 }  // namespace
 }  // namespace skybake::gltest

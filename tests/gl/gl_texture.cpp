@@ -71,6 +71,7 @@ GlTexture& GlTexture::operator=(GlTexture&& other) noexcept {
 void GlTexture::bind(unsigned unit) const { glBindTextureUnit(unit, id_); }
 
 GlTexture upload_texture(const Texture& tex, const SamplerState& sampler, bool array) {
+  GlContext::shared();
   static const GLenum internal[] = {GL_R32F, GL_RG32F, GL_RGB32F, GL_RGBA32F};
   static const GLenum format[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
   const int c = tex.channel_count();
@@ -103,6 +104,7 @@ bool gl_format_from_dxgi(uint32_t dxgi_format, GlPixelFormat* out) {
 }
 
 GlTexture upload_dds(const std::string& path, const SamplerState& sampler, bool array) {
+  GlContext::shared();
   const DdsHeaderInfo h = read_dds_header(path);
   GlPixelFormat px;
   if (!h.has_dx10 || !gl_format_from_dxgi(h.dxgi_format, &px))

@@ -1,0 +1,178 @@
+// requires: atmosphere_common.glsl, transmittance.glsl
+// skybake runtime: Bruneton's precomputed scattering (Bruneton & Neyret 2008
+// sec. 4, in the layout and with the reads of Bruneton 2017
+// atmosphere/functions.glsl): sky radiance from the 4D table, its single
+// Mie part from a separate table or from the alpha channel, and ground
+// irradiance. C++: src/atmosphere/scattering_lut.hpp (lookup_scattering),
+// irradiance_lut.hpp (lookup_irradiance, compute_direct_irradiance);
+// docs/reference.md "Precomputed scattering", "Ground irradiance".
+//
+// The textures (docs/runtime.md "Precomputed scattering"):
+// - scattering.dds: a volume of width nu_size * mu_s_size, height mu_size,
+//   depth r_size; RGB (RGBA with Mie in alpha) linear float; trilinear,
+//   clamp to edge on every axis; no mips. The nu axis is blended here.
+// - single_mie.dds: the same shape, RGB; same sampler.
+// - irradiance.dds: 2D, RGB; bilinear, clamp to edge; no mips. By default
+//   the indirect part only: add compute_direct_irradiance.
+
+// The table's shape (manifest / metadata: r_size, mu_size, mu_s_size,
+// nu_size, mu_s_min).
+struct ScatteringShape {
+  int r_size;      // texels along r (texture depth)
+  int mu_size;     // texels along mu (texture height), even
+  int mu_s_size;   // texels along mu_s
+  int nu_size;     // slices along nu
+  float mu_s_min;  // lowest sun zenith cosine (cos 102 deg by default)
+};
+
+// u_mu_s: the distance from the ground to the top along mu_s, a = (d - d_min)
+// / (d_max - d_min) with d_min = Rt - Rb, d_max = H; A = a(mu_s_min);
+// x = max(1 - a / A, 0) / (1 + a) (Bruneton 2017
+// GetScatteringTextureUvwzFromRMuMuSNu).
+float scattering_u_from_mu_s(AtmosphereParameters atm, ScatteringShape shape, float mu_s) {
+  float rb = atm.bottom_radius, rt = atm.top_radius, H = horizon_distance(atm);
+  float d_min = rt - rb, d_max = H;
+  float A = (distance_to_top_boundary(rt, rb, shape.mu_s_min) - d_min) / (d_max - d_min);
+  float d = distance_to_top_boundary(rt, rb, clamp(mu_s, shape.mu_s_min, 1.0));
+  float a = (d - d_min) / (d_max - d_min);
+  return texel_coord_from_unit(clamp(max(1.0 - a / A, 0.0) / (1.0 + a), 0.0, 1.0), shape.mu_s_size);
+}
+
+// (u_nu, u_mu_s, u_mu, u_r) of (r, mu, mu_s, nu); ray_hits_ground picks the
+// half of the mu axis (ray_intersects_ground(Rb, r, mu) for a ray inside):
+//   u_r  = coord(rho / H, r_size)
+//   u_mu = ground: 0.5 - 0.5 coord((d - (r - Rb)) / (rho - (r - Rb)), mu_size / 2), d to the ground
+//          sky:    0.5 + 0.5 coord((d - (Rt - r)) / (rho + H - (Rt - r)), mu_size / 2), d to the top
+//   u_nu = (nu + 1) / 2, slices at nu = -1 + 2 k / (nu_size - 1).
+vec4 scattering_uvwz_from_r_mu_mu_s_nu(AtmosphereParameters atm, ScatteringShape shape, float r,
+                                       float mu, float mu_s, float nu, bool ray_hits_ground) {
+  float rb = atm.bottom_radius, rt = atm.top_radius, H = horizon_distance(atm);
+  r = clamp(r, rb, rt);
+  mu = clamp_cosine(mu);
+  float rho = safe_sqrt((r - rb) * (r + rb));
+  float u_r = texel_coord_from_unit(rho / H, shape.r_size);
+  float u_mu;
+  if (ray_hits_ground) {
+    float d = distance_to_bottom_boundary(rb, r, mu), d_min = r - rb, d_max = rho;
+    float x = d_max == d_min ? 0.0 : (d - d_min) / (d_max - d_min);
+    u_mu = 0.5 - 0.5 * texel_coord_from_unit(clamp(x, 0.0, 1.0), shape.mu_size / 2);
+  } else {
+    float d = distance_to_top_boundary(rt, r, mu), d_min = rt - r, d_max = rho + H;
+    float x = (d - d_min) / (d_max - d_min);
+    u_mu = 0.5 + 0.5 * texel_coord_from_unit(clamp(x, 0.0, 1.0), shape.mu_size / 2);
+  }
+  float u_mu_s = scattering_u_from_mu_s(atm, shape, mu_s);
+  float u_nu = 0.5 * (clamp_cosine(nu) + 1.0);
+  return vec4(u_nu, u_mu_s, u_mu, u_r);
+}
+
+// The 4D read (Bruneton 2017 GetScattering): trilinear within the two nu
+// slices around u_nu, blended linearly between them. Slice k spans
+// x in [k, k + 1) / nu_size of the texture; u_mu_s stays on its texel
+// centres, so the hardware's filter never mixes two slices.
+vec4 read_scattering(sampler3D table, ScatteringShape shape, vec4 uvwz) {
+  float x = clamp(uvwz.x, 0.0, 1.0) * float(shape.nu_size - 1);
+  float i0 = min(floor(x), float(shape.nu_size - 1));
+  float i1 = min(i0 + 1.0, float(shape.nu_size - 1));
+  float w = i0 == i1 ? 0.0 : x - i0;
+  float n = float(shape.nu_size);
+  vec4 a = textureLod(table, vec3((i0 + uvwz.y) / n, uvwz.z, uvwz.w), 0.0);
+  vec4 b = textureLod(table, vec3((i1 + uvwz.y) / n, uvwz.z, uvwz.w), 0.0);
+  return mix(a, b, w);
+}
+
+// Channels 0..2 of the table at (r, mu, mu_s, nu), no phase.
+vec3 lookup_scattering_rgb(sampler3D table, ScatteringShape shape, AtmosphereParameters atm,
+                           float r, float mu, float mu_s, float nu, bool ray_hits_ground) {
+  return read_scattering(table, shape,
+                         scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r, mu, mu_s, nu,
+                                                           ray_hits_ground)).rgb;
+}
+
+// Single Mie from a combined RGBA texel (Bodare & Sandberg eq. 19, Bruneton
+// 2017 GetExtrapolatedSingleMieScattering): alpha holds S_M.r, and the other
+// channels follow Rayleigh's ratios scaled by the groups' coefficients:
+//   mie = rgb (alpha / rgb.r) (beta_R.r / beta_M.r) (beta_M / beta_R).
+vec3 extrapolated_single_mie(AtmosphereParameters atm, vec4 scattering) {
+  vec3 beta_r = atm.rayleigh_scattering, beta_m = atm.mie_scattering;
+  if (!(scattering.r > 0.0 && beta_r.r > 0.0 && beta_m.r > 0.0)) return vec3(0.0);
+  vec3 mie = vec3(0.0);
+  for (int c = 0; c < 3; ++c)
+    mie[c] = beta_r[c] > 0.0 ? scattering[c] * (scattering.a / scattering.r) *
+                                   (beta_r.r / beta_m.r) * (beta_m[c] / beta_r[c])
+                             : 0.0;
+  return mie;
+}
+
+// Sky radiance toward a viewer at (r, mu), single Mie in its own table:
+// p_R(nu) S + p_M(nu) S_M (the phases deferred to here, Bruneton 2017 GetSkyRadiance).
+vec3 lookup_scattering(sampler3D scattering, sampler3D single_mie, ScatteringShape shape,
+                       AtmosphereParameters atm, float r, float mu, float mu_s, float nu,
+                       bool ray_hits_ground) {
+  vec4 uvwz = scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r, mu, mu_s, nu, ray_hits_ground);
+  vec3 rgb = read_scattering(scattering, shape, uvwz).rgb;
+  vec3 mie = read_scattering(single_mie, shape, uvwz).rgb;
+  return rgb * rayleigh_phase(nu) + mie * mie_phase(atm, nu);
+}
+
+// The same with single Mie in the alpha channel of `scattering` (mie: combined).
+vec3 lookup_scattering(sampler3D scattering, ScatteringShape shape, AtmosphereParameters atm,
+                       float r, float mu, float mu_s, float nu, bool ray_hits_ground) {
+  vec4 texel = read_scattering(scattering, shape,
+                               scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r, mu, mu_s, nu,
+                                                                 ray_hits_ground));
+  return texel.rgb * rayleigh_phase(nu) + extrapolated_single_mie(atm, texel) * mie_phase(atm, nu);
+}
+
+// ---- Ground irradiance ----------------------------------------------------------
+
+// u = coord(0.5 + 0.5 mu_s, W), v = coord((r - Rb) / (Rt - Rb), H).
+vec2 irradiance_uv_from_r_mu_s(AtmosphereParameters atm, float r, float mu_s, int width,
+                               int height) {
+  float x_r = clamp((r - atm.bottom_radius) / (atm.top_radius - atm.bottom_radius), 0.0, 1.0);
+  float x_mu_s = 0.5 * clamp_cosine(mu_s) + 0.5;
+  return vec2(texel_coord_from_unit(x_mu_s, width), texel_coord_from_unit(x_r, height));
+}
+
+// The table's irradiance on a horizontal surface at radius r for a sun at
+// mu_s, bilinear (indirect only unless the bake summed the direct part in).
+vec3 lookup_irradiance(sampler2D table, AtmosphereParameters atm, float r, float mu_s) {
+  ivec2 size = textureSize(table, 0);
+  return textureLod(table, irradiance_uv_from_r_mu_s(atm, r, mu_s, size.x, size.y), 0.0).rgb;
+}
+
+// The cosine factor averaged over the sun's disk of angular radius alpha: 0
+// below -alpha, mu_s above alpha, (mu_s + alpha)^2 / (4 alpha) between
+// (Bruneton 2017 ComputeDirectIrradiance).
+float sun_average_cosine(float mu_s, float sun_angular_radius) {
+  float alpha = sun_angular_radius;
+  if (!(alpha > 0.0)) return max(mu_s, 0.0);
+  if (mu_s < -alpha) return 0.0;
+  if (mu_s > alpha) return mu_s;
+  return (mu_s + alpha) * (mu_s + alpha) / (4.0 * alpha);
+}
+
+// Direct sunlight on a horizontal surface, E T(r, mu_s) c(mu_s): added at
+// run time because c bends within 2 alpha of the horizon, finer than the
+// table's texels (docs/reference.md "Ground irradiance").
+vec3 compute_direct_irradiance(AtmosphereParameters atm, sampler2D transmittance_lut, float r,
+                               float mu_s) {
+  float c = sun_average_cosine(mu_s, atm.sun_angular_radius);
+  if (c == 0.0) return vec3(0.0);
+  return atm.sun_illuminance * lookup_transmittance_to_top(transmittance_lut, atm, r, mu_s) * c;
+}
+
+// Bruneton 2017 GetSunAndSkyIrradiance for a surface at `point`
+// (planet-centred, m) with unit `normal`: returns the sun's irradiance and
+// sets sky_irradiance, the table's value scaled by the fraction of the sky
+// the surface sees, (1 + dot(normal, up)) / 2.
+vec3 sun_and_sky_irradiance(sampler2D irradiance_table, sampler2D transmittance_lut,
+                            AtmosphereParameters atm, vec3 point, vec3 normal, vec3 sun_dir,
+                            out vec3 sky_irradiance) {
+  float r = length(point);
+  vec3 up = point / r;
+  float mu_s = dot(up, sun_dir);
+  sky_irradiance = lookup_irradiance(irradiance_table, atm, r, mu_s) * (1.0 + dot(normal, up)) * 0.5;
+  return atm.sun_illuminance * lookup_sun_transmittance(transmittance_lut, atm, r, mu_s) *
+         max(dot(normal, sun_dir), 0.0);
+}

@@ -1,0 +1,149 @@
+// requires: atmosphere_common.hlsl, transmittance.hlsl
+// skybake runtime: Bruneton's precomputed scattering, HLSL twin of
+// runtime/glsl/bruneton.glsl (Bruneton & Neyret 2008 sec. 4; Bruneton 2017
+// GetScattering, GetSkyRadiance, GetSunAndSkyIrradiance; C++
+// src/atmosphere/scattering_lut.hpp, irradiance_lut.hpp). Samplers
+// (docs/runtime.md "Precomputed scattering"): trilinear / bilinear, CLAMP.
+
+struct ScatteringShape {
+  int r_size;
+  int mu_size;
+  int mu_s_size;
+  int nu_size;
+  float mu_s_min;
+};
+
+float scattering_u_from_mu_s(AtmosphereParameters atm, ScatteringShape shape, float mu_s) {
+  float rb = atm.bottom_radius, rt = atm.top_radius, H = horizon_distance(atm);
+  float d_min = rt - rb, d_max = H;
+  float A = (distance_to_top_boundary(rt, rb, shape.mu_s_min) - d_min) / (d_max - d_min);
+  float d = distance_to_top_boundary(rt, rb, clamp(mu_s, shape.mu_s_min, 1.0));
+  float a = (d - d_min) / (d_max - d_min);
+  return texel_coord_from_unit(clamp(max(1.0 - a / A, 0.0) / (1.0 + a), 0.0, 1.0), shape.mu_s_size);
+}
+
+float4 scattering_uvwz_from_r_mu_mu_s_nu(AtmosphereParameters atm, ScatteringShape shape, float r,
+                                         float mu, float mu_s, float nu, bool ray_hits_ground) {
+  float rb = atm.bottom_radius, rt = atm.top_radius, H = horizon_distance(atm);
+  r = clamp(r, rb, rt);
+  mu = clamp_cosine(mu);
+  float rho = safe_sqrt((r - rb) * (r + rb));
+  float u_r = texel_coord_from_unit(rho / H, shape.r_size);
+  float u_mu;
+  if (ray_hits_ground) {
+    float d = distance_to_bottom_boundary(rb, r, mu), d_min = r - rb, d_max = rho;
+    float x = d_max == d_min ? 0.0 : (d - d_min) / (d_max - d_min);
+    u_mu = 0.5 - 0.5 * texel_coord_from_unit(clamp(x, 0.0, 1.0), shape.mu_size / 2);
+  } else {
+    float d = distance_to_top_boundary(rt, r, mu), d_min = rt - r, d_max = rho + H;
+    float x = (d - d_min) / (d_max - d_min);
+    u_mu = 0.5 + 0.5 * texel_coord_from_unit(clamp(x, 0.0, 1.0), shape.mu_size / 2);
+  }
+  float u_mu_s = scattering_u_from_mu_s(atm, shape, mu_s);
+  float u_nu = 0.5 * (clamp_cosine(nu) + 1.0);
+  return float4(u_nu, u_mu_s, u_mu, u_r);
+}
+
+// Bruneton 2017 GetScattering: the two nu slices blended.
+float4 read_scattering(Texture3D<float4> table, SamplerState table_sampler, ScatteringShape shape,
+                       float4 uvwz) {
+  float x = clamp(uvwz.x, 0.0, 1.0) * float(shape.nu_size - 1);
+  float i0 = min(floor(x), float(shape.nu_size - 1));
+  float i1 = min(i0 + 1.0, float(shape.nu_size - 1));
+  float w = i0 == i1 ? 0.0 : x - i0;
+  float n = float(shape.nu_size);
+  float4 a = table.SampleLevel(table_sampler, float3((i0 + uvwz.y) / n, uvwz.z, uvwz.w), 0.0);
+  float4 b = table.SampleLevel(table_sampler, float3((i1 + uvwz.y) / n, uvwz.z, uvwz.w), 0.0);
+  return lerp(a, b, w);
+}
+
+float3 lookup_scattering_rgb(Texture3D<float4> table, SamplerState table_sampler,
+                             ScatteringShape shape, AtmosphereParameters atm, float r, float mu,
+                             float mu_s, float nu, bool ray_hits_ground) {
+  return read_scattering(table, table_sampler, shape,
+                         scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r, mu, mu_s, nu,
+                                                           ray_hits_ground)).rgb;
+}
+
+// Bodare & Sandberg eq. 19, Bruneton 2017 GetExtrapolatedSingleMieScattering.
+float3 extrapolated_single_mie(AtmosphereParameters atm, float4 scattering) {
+  float3 beta_r = atm.rayleigh_scattering, beta_m = atm.mie_scattering;
+  float3 mie = float3(0.0, 0.0, 0.0);
+  if (!(scattering.r > 0.0 && beta_r.r > 0.0 && beta_m.r > 0.0)) return mie;
+  for (int c = 0; c < 3; ++c)
+    mie[c] = beta_r[c] > 0.0 ? scattering[c] * (scattering.a / scattering.r) *
+                                   (beta_r.r / beta_m.r) * (beta_m[c] / beta_r[c])
+                             : 0.0;
+  return mie;
+}
+
+// Single Mie in its own table.
+float3 lookup_scattering(Texture3D<float4> scattering, Texture3D<float4> single_mie,
+                         SamplerState table_sampler, ScatteringShape shape,
+                         AtmosphereParameters atm, float r, float mu, float mu_s, float nu,
+                         bool ray_hits_ground) {
+  float4 uvwz = scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r, mu, mu_s, nu, ray_hits_ground);
+  float3 rgb = read_scattering(scattering, table_sampler, shape, uvwz).rgb;
+  float3 mie = read_scattering(single_mie, table_sampler, shape, uvwz).rgb;
+  return rgb * rayleigh_phase(nu) + mie * mie_phase(atm, nu);
+}
+
+// Single Mie in the alpha channel.
+float3 lookup_scattering(Texture3D<float4> scattering, SamplerState table_sampler,
+                         ScatteringShape shape, AtmosphereParameters atm, float r, float mu,
+                         float mu_s, float nu, bool ray_hits_ground) {
+  float4 texel = read_scattering(scattering, table_sampler, shape,
+                                 scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r, mu, mu_s, nu,
+                                                                   ray_hits_ground));
+  return texel.rgb * rayleigh_phase(nu) + extrapolated_single_mie(atm, texel) * mie_phase(atm, nu);
+}
+
+// ---- Ground irradiance
+
+float2 irradiance_uv_from_r_mu_s(AtmosphereParameters atm, float r, float mu_s, int width,
+                                 int height) {
+  float x_r = clamp((r - atm.bottom_radius) / (atm.top_radius - atm.bottom_radius), 0.0, 1.0);
+  float x_mu_s = 0.5 * clamp_cosine(mu_s) + 0.5;
+  return float2(texel_coord_from_unit(x_mu_s, width), texel_coord_from_unit(x_r, height));
+}
+
+float3 lookup_irradiance(Texture2D<float4> table, SamplerState table_sampler,
+                         AtmosphereParameters atm, float r, float mu_s) {
+  uint width, height;
+  table.GetDimensions(width, height);
+  return table.SampleLevel(table_sampler,
+                           irradiance_uv_from_r_mu_s(atm, r, mu_s, int(width), int(height)), 0.0)
+      .rgb;
+}
+
+float sun_average_cosine(float mu_s, float sun_angular_radius) {
+  float alpha = sun_angular_radius;
+  if (!(alpha > 0.0)) return max(mu_s, 0.0);
+  if (mu_s < -alpha) return 0.0;
+  if (mu_s > alpha) return mu_s;
+  return (mu_s + alpha) * (mu_s + alpha) / (4.0 * alpha);
+}
+
+float3 compute_direct_irradiance(AtmosphereParameters atm, Texture2D<float4> transmittance_lut,
+                                 SamplerState transmittance_sampler, float r, float mu_s) {
+  float c = sun_average_cosine(mu_s, atm.sun_angular_radius);
+  if (c == 0.0) return float3(0.0, 0.0, 0.0);
+  return atm.sun_illuminance *
+         lookup_transmittance_to_top(transmittance_lut, transmittance_sampler, atm, r, mu_s) * c;
+}
+
+// Bruneton 2017 GetSunAndSkyIrradiance.
+float3 sun_and_sky_irradiance(Texture2D<float4> irradiance_table, SamplerState irradiance_sampler,
+                              Texture2D<float4> transmittance_lut,
+                              SamplerState transmittance_sampler, AtmosphereParameters atm,
+                              float3 position, float3 normal, float3 sun_dir,
+                              out float3 sky_irradiance) {
+  float r = length(position);
+  float3 up = position / r;
+  float mu_s = dot(up, sun_dir);
+  sky_irradiance = lookup_irradiance(irradiance_table, irradiance_sampler, atm, r, mu_s) *
+                   (1.0 + dot(normal, up)) * 0.5;
+  return atm.sun_illuminance *
+         lookup_sun_transmittance(transmittance_lut, transmittance_sampler, atm, r, mu_s) *
+         max(dot(normal, sun_dir), 0.0);
+}

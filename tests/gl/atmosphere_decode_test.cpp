@@ -1,0 +1,501 @@
+// The engine-side decode of runtime/glsl/ against the C++ lookups: each
+// function runs in a compute shader at 4096 query points on textures
+// uploaded from the baked DDS files as they are (sampler states of
+// docs/runtime.md), and is compared with the C++ lookup_* of the same name
+// at the same points (the shader's float inputs, in double), reading the
+// same files through our DDS reader. Relative error per channel with the
+// floor of core/error_stats.hpp. Bars: 1e-5 where float32 evaluation of
+// the same mapping is the only difference, wider where docs/runtime.md
+// ("Precision") measures what float32 costs in a mapping.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <sstream>
+
+#include "atmosphere/aerial_perspective_lut.hpp"
+#include "atmosphere/gathering_lut.hpp"
+#include "atmosphere/geometry.hpp"
+#include "atmosphere/irradiance_lut.hpp"
+#include "atmosphere/multiscattering_lut.hpp"
+#include "atmosphere/query_points.hpp"
+#include "atmosphere/scattering3d_lut.hpp"
+#include "atmosphere/scattering_lut.hpp"
+#include "atmosphere/sky_integrator.hpp"
+#include "atmosphere/sky_render.hpp"
+#include "atmosphere/skyview_lut.hpp"
+#include "atmosphere/transmittance_lut.hpp"
+#include "core/error_stats.hpp"
+#include "gl/baked_atmosphere.hpp"
+
+namespace skybake::gltest {
+namespace {
+
+constexpr size_t kQueries = 4096;
+
+// Fills q0, q1 with the shader's inputs for query i and returns the C++
+// reference at exactly those (float) inputs.
+using QueryFn = std::function<glm::dvec4(size_t i, glm::vec4& q0, glm::vec4& q1)>;
+
+struct DecodeCase {
+  std::string what;                    // the function, for the printed line
+  std::vector<std::string> includes;   // runtime/glsl files
+  std::string declarations;            // samplers and uniforms
+  std::string expression;              // vec4 from q0, q1, atm
+  std::vector<const GlTexture*> units;  // bound to units 0, 1, ...
+  int channels = 3;
+};
+
+Comparison run_case(const DecodeCase& c, const Atmosphere& atm, const QueryFn& query,
+                    const std::function<void(const ComputeProgram&)>& uniforms = {}) {
+  GlContext::shared();
+  const ComputeProgram program =
+      compile_compute(c.includes, query_shader(c.declarations, c.expression));
+  set_atmosphere_uniform(program, "atm", atm);
+  if (uniforms) uniforms(program);
+  for (size_t u = 0; u < c.units.size(); ++u) c.units[u]->bind(unsigned(u));
+  std::vector<glm::vec4> queries(2 * kQueries, glm::vec4(0.0f));
+  std::vector<glm::dvec4> cpu(kQueries);
+  for (size_t i = 0; i < kQueries; ++i) cpu[i] = query(i, queries[2 * i], queries[2 * i + 1]);
+  const std::vector<glm::vec4> gl = run_queries(program, queries);
+  const Comparison result = compare(gl, cpu, c.channels);
+  print_comparison(c.what, result);
+  const size_t w = result.worst_query;
+  const glm::vec4 q0 = queries[2 * w], q1 = queries[2 * w + 1];
+  std::printf("             worst: q0 (%.9g, %.9g, %.9g, %.9g) q1 (%.9g, %.9g, %.9g, %.9g)\n"
+              "             GL (%.9g, %.9g, %.9g, %.9g) C++ (%.9g, %.9g, %.9g, %.9g)\n",
+              q0.x, q0.y, q0.z, q0.w, q1.x, q1.y, q1.z, q1.w, gl[w].x, gl[w].y, gl[w].z, gl[w].w,
+              cpu[w].x, cpu[w].y, cpu[w].z, cpu[w].w);
+  return result;
+}
+
+// Bars on the largest relative error: kBar where evaluating the same mapping
+// in float32 is the only difference; kCoordinateBar for the reads near a
+// steep texel-to-texel change (the horizon, the terminator), where a float32
+// texture coordinate's resolution, about n 2^-24 of a texel, moves the
+// value by up to a few 1e-5 (docs/runtime.md "Precision"). The RMS over all
+// points stays below kRmsBar for every function.
+constexpr double kBar = 1e-5, kCoordinateBar = 1e-4, kRmsBar = 5e-6;
+
+void expect_within(const Comparison& c, double max_bar) {
+  EXPECT_LE(c.stats.max_rel, max_bar);
+  EXPECT_LE(c.stats.rms_rel, kRmsBar);
+}
+
+const SamplerState kClamp{Filter::linear, Wrap::clamp_to_edge, Wrap::clamp_to_edge,
+                          Wrap::clamp_to_edge};
+// The sky-view's azimuth wraps (docs/runtime.md "Sky-view").
+const SamplerState kRepeatU{Filter::linear, Wrap::repeat, Wrap::clamp_to_edge,
+                            Wrap::clamp_to_edge};
+
+double unit(size_t i, uint32_t dim) { return query_unit(i, dim); }
+
+glm::dvec4 rgb(glm::dvec3 v) { return glm::dvec4(v, 0.0); }
+
+ScatteringShape shape_of(const BakedScene& s) {
+  ScatteringShape shape;
+  shape.r_size = int(s.meta_number("scattering", "r_size"));
+  shape.mu_size = int(s.meta_number("scattering", "mu_size"));
+  shape.mu_s_size = int(s.meta_number("scattering", "mu_s_size"));
+  shape.nu_size = int(s.meta_number("scattering", "nu_size"));
+  shape.mu_s_min = s.meta_number("scattering", "mu_s_min");
+  return shape;
+}
+
+void set_shape(const ComputeProgram& p, const ScatteringShape& shape) {
+  p.set("shape.r_size", shape.r_size);
+  p.set("shape.mu_size", shape.mu_size);
+  p.set("shape.mu_s_size", shape.mu_s_size);
+  p.set("shape.nu_size", shape.nu_size);
+  p.set("shape.mu_s_min", float(shape.mu_s_min));
+}
+
+// ---- Transmittance ----------------------------------------------------------
+
+TEST(AtmosphereDecode, LookupTransmittanceToTop) {
+  const BakedScene& s = separate_mie_scene();
+  const Atmosphere& atm = s.atmosphere;
+  const Texture lut = s.texture("transmittance");
+  const GlTexture tex = upload_dds(s.dds_path("transmittance"), kClamp);
+  const Comparison c = run_case(
+      {"lookup_transmittance_to_top", {"transmittance.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
+       "vec4(lookup_transmittance_to_top(lut, atm, q0.x, q0.y), 0.0)", {&tex}},
+      atm, [&](size_t i, glm::vec4& q0, glm::vec4&) {
+        const RadiusCosine p = transmittance_query(atm, i);
+        q0 = glm::vec4(float(p.r), float(p.mu), 0.0f, 0.0f);
+        return rgb(lookup_transmittance_to_top(lut, atm, q0.x, q0.y));
+      });
+  expect_within(c, kCoordinateBar);
+}
+
+TEST(AtmosphereDecode, LookupTransmittance) {
+  const BakedScene& s = separate_mie_scene();
+  const Atmosphere& atm = s.atmosphere;
+  const Texture lut = s.texture("transmittance");
+  const GlTexture tex = upload_dds(s.dds_path("transmittance"), kClamp);
+  const Comparison c = run_case(
+      {"lookup_transmittance", {"transmittance.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
+       "vec4(lookup_transmittance(lut, atm, q0.x, q0.y, q0.z, q0.w > 0.5), 0.0)", {&tex}},
+      atm, [&](size_t i, glm::vec4& q0, glm::vec4&) {
+        // Any direction: rays toward the ground read the reversed rays.
+        const double r = as_float(transmittance_query(atm, i).r);
+        const double mu = as_float(2.0 * unit(i, 90) - 1.0);
+        const bool hits = ray_intersects_ground(atm.bottom_radius_m, r, mu);
+        const double d = as_float(unit(i, 91) * distance_to_nearest_boundary(
+                                                    atm.bottom_radius_m, atm.top_radius_m, r, mu, hits));
+        q0 = glm::vec4(float(r), float(mu), float(d), hits ? 1.0f : 0.0f);
+        return rgb(lookup_transmittance(lut, atm, r, mu, d, hits));
+      });
+  expect_within(c, kCoordinateBar);
+}
+
+TEST(AtmosphereDecode, LookupSunTransmittance) {
+  const BakedScene& s = separate_mie_scene();
+  const Atmosphere& atm = s.atmosphere;
+  const Texture lut = s.texture("transmittance");
+  const GlTexture tex = upload_dds(s.dds_path("transmittance"), kClamp);
+  const Comparison c = run_case(
+      {"lookup_sun_transmittance", {"transmittance.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
+       "vec4(lookup_sun_transmittance(lut, atm, q0.x, q0.y), 0.0)", {&tex}},
+      atm, [&](size_t i, glm::vec4& q0, glm::vec4&) {
+        const double r = as_float(transmittance_query(atm, i).r);
+        const double mu_s = as_float(2.0 * unit(i, 92) - 1.0);
+        q0 = glm::vec4(float(r), float(mu_s), 0.0f, 0.0f);
+        return rgb(lookup_sun_transmittance(lut, atm, r, mu_s));
+      });
+  expect_within(c, kBar);
+}
+
+// ---- Multiple scattering ----------------------------------------------------------
+
+TEST(AtmosphereDecode, LookupMultiscattering) {
+  const BakedScene& s = separate_mie_scene();
+  const Atmosphere& atm = s.atmosphere;
+  const Texture lut = s.texture("multiscattering");
+  const GlTexture tex = upload_dds(s.dds_path("multiscattering"), kClamp);
+  const Comparison c = run_case(
+      {"lookup_multiscattering", {"multiscattering.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
+       "vec4(lookup_multiscattering(lut, atm, q0.x, q0.y), 0.0)", {&tex}},
+      atm, [&](size_t i, glm::vec4& q0, glm::vec4&) {
+        const RadiusCosine p = multiscattering_query(atm, i);
+        q0 = glm::vec4(float(p.r), float(p.mu), 0.0f, 0.0f);
+        return rgb(lookup_multiscattering(lut, atm, q0.x, q0.y));
+      });
+  expect_within(c, kCoordinateBar);
+}
+
+// ---- Sky-view and aerial perspective -----------------------------------------------
+
+std::vector<double> numbers(const std::string& list) {
+  std::vector<double> v;
+  std::stringstream in(list);
+  std::string item;
+  while (std::getline(in, item, ',')) v.push_back(std::stod(item));
+  return v;
+}
+
+std::vector<SkyviewView> skyview_views(const BakedScene& s) {
+  const nlohmann::json& meta = s.entry("skyview").at("metadata");
+  auto list = [&](const char* key) {
+    const nlohmann::json& v = meta.at(key);
+    return v.is_array() ? v.get<std::vector<double>>() : numbers(v.get<std::string>());
+  };
+  const std::vector<double> altitude = list("layer_altitude_m"), zenith = list("layer_sun_zenith_rad");
+  std::vector<SkyviewView> views;
+  for (size_t k = 0; k < altitude.size(); ++k) views.push_back({altitude[k], zenith.at(k)});
+  return views;
+}
+
+TEST(AtmosphereDecode, LookupSkyview) {
+  const BakedScene& s = separate_mie_scene();
+  const Atmosphere& atm = s.atmosphere;
+  const Texture lut = s.texture("skyview");
+  const GlTexture tex = upload_dds(s.dds_path("skyview"), kRepeatU, true);
+  const std::vector<SkyviewView> views = skyview_views(s);
+  ASSERT_EQ(views.size(), 2u);
+  const Comparison c = run_case(
+      {"lookup_skyview", {"sky_view.glsl"}, "layout(binding = 0) uniform sampler2DArray lut;",
+       "vec4(lookup_skyview(lut, int(q0.x), atm, q0.y, SkyviewDirection(q0.z, q0.w)), 0.0)", {&tex}},
+      atm, [&](size_t i, glm::vec4& q0, glm::vec4&) {
+        const SkyviewQueryPoint p = skyview_query(atm, views, i);
+        q0 = glm::vec4(float(p.layer), float(p.r), float(p.view.mu), float(p.view.azimuth_rad));
+        return rgb(lookup_skyview(lut, p.layer, atm, q0.y, {q0.z, q0.w}));
+      });
+  expect_within(c, kCoordinateBar);
+}
+
+TEST(AtmosphereDecode, SkyviewDirectionFromVectors) {
+  const Atmosphere& atm = separate_mie_scene().atmosphere;
+  const Comparison c = run_case(
+      {"skyview_direction_from_vectors (mu, azimuth / 2 pi)", {"sky_view.glsl"}, "",
+       "vec4(skyview_direction_from_vectors(vec3(0.0, 0.0, 1.0), q0.xyz, q1.xyz).mu, "
+       "skyview_direction_from_vectors(vec3(0.0, 0.0, 1.0), q0.xyz, q1.xyz).azimuth / (2.0 * kPi), 0.0, 0.0)",
+       {}, 2},
+      atm, [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
+        // Directions uniform on the sphere; azimuths near 0 / 2 pi (the
+        // wrap) left out, where 1 ulp moves the result by a whole turn.
+        auto dir = [&](uint32_t d) {
+          const double z = 2.0 * unit(i, d) - 1.0, phi = 2.0 * kPi * unit(i, d + 1);
+          const double s = std::sqrt(1.0 - z * z);
+          return glm::vec3(float(s * std::cos(phi)), float(s * std::sin(phi)), float(z));
+        };
+        q0 = glm::vec4(dir(100), 0.0f);
+        q1 = glm::vec4(dir(102), 0.0f);
+        const SkyviewDirection v = skyview_direction_from_vectors(
+            {0.0, 0.0, 1.0}, glm::dvec3(glm::vec3(q0)), glm::dvec3(glm::vec3(q1)));
+        const double a = v.azimuth_rad / (2.0 * kPi);
+        if (a < 1e-4 || a > 1.0 - 1e-4) {
+          q0 = glm::vec4(0.0f, 0.0f, 1.0f, 0.0f);  // straight up: mu 1, azimuth 0
+          return glm::dvec4(1.0, 0.0, 0.0, 0.0);
+        }
+        return glm::dvec4(v.mu, a, 0.0, 0.0);
+      });
+  expect_within(c, kBar);
+}
+
+AerialPerspectiveSpec aerial_spec(const BakedScene& s) {
+  AerialPerspectiveSpec spec;
+  const std::string o = "aerial_perspective";
+  spec.depth_range_m = s.meta_number(o, "depth_range_m");
+  spec.camera.altitude_m = s.meta_number(o, "camera_altitude_m");
+  spec.camera.yaw_rad = s.meta_number(o, "camera_yaw_rad");
+  spec.camera.pitch_rad = s.meta_number(o, "camera_pitch_rad");
+  spec.camera.vertical_fov_rad = s.meta_number(o, "camera_vertical_fov_rad");
+  spec.camera.aspect = s.meta_number(o, "camera_aspect");
+  spec.sun_zenith_rad = s.meta_number(o, "sun_zenith_rad");
+  spec.sun_azimuth_rad = s.meta_number(o, "sun_azimuth_rad");
+  return spec;
+}
+
+TEST(AtmosphereDecode, LookupAerialPerspective) {
+  const BakedScene& s = separate_mie_scene();
+  const Atmosphere& atm = s.atmosphere;
+  const Texture lut = s.texture("aerial_perspective");
+  const GlTexture tex = upload_dds(s.dds_path("aerial_perspective"), kClamp);
+  const AerialPerspectiveSpec spec = aerial_spec(s);
+  const Comparison c = run_case(
+      {"lookup_aerial_perspective", {"sky_view.glsl"},
+       "layout(binding = 0) uniform sampler3D lut;\nuniform float depth_range_m;",
+       "lookup_aerial_perspective(lut, depth_range_m, q0.xy, q0.z)", {&tex}, 4},
+      atm,
+      [&](size_t i, glm::vec4& q0, glm::vec4&) {
+        const AerialQueryPoint p = aerial_query(atm, spec, i);
+        q0 = glm::vec4(float(p.screen_uv.x), float(p.screen_uv.y), float(p.distance_m), 0.0f);
+        return lookup_aerial_perspective(lut, double(float(spec.depth_range_m)),
+                                         {q0.x, q0.y}, q0.z);
+      },
+      [&](const ComputeProgram& p) { p.set("depth_range_m", float(spec.depth_range_m)); });
+  expect_within(c, kBar);
+}
+
+TEST(AtmosphereDecode, LookupSunDiskLuminance) {
+  const BakedScene& s = separate_mie_scene();
+  const Atmosphere& atm = s.atmosphere;
+  const Texture lut = s.texture("transmittance");
+  const GlTexture tex = upload_dds(s.dds_path("transmittance"), kClamp);
+  const double alpha = atm.sun_angular_radius_rad;
+  const Comparison c = run_case(
+      {"lookup_sun_disk_luminance", {"sky_view.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
+       "vec4(lookup_sun_disk_luminance(atm, lut, vec3(0.0, 0.0, q0.x), q0.yzw, q1.xyz), 0.0)", {&tex}},
+      atm, [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
+        // Viewers from the ground to space; suns from the zenith to below
+        // the horizon; view directions within 2 alpha of the sun, away from
+        // the disk's edge (0.9 to 1.1 alpha), where one ulp decides.
+        const double altitude = 150e3 * unit(i, 110) * unit(i, 110);
+        const double zenith = 1.7 * unit(i, 111);
+        double offset = 2.0 * alpha * unit(i, 112);
+        if (std::abs(offset - alpha) < 0.1 * alpha) offset = 0.5 * alpha;
+        const double phi = 2.0 * kPi * unit(i, 113);
+        const glm::dvec3 sun = sun_direction(zenith, 0.0);
+        const glm::dvec3 t1 = glm::normalize(glm::cross(sun, glm::dvec3(0.0, 1.0, 0.0)));
+        const glm::dvec3 t2 = glm::cross(sun, t1);
+        const glm::dvec3 view = std::cos(offset) * sun +
+                                std::sin(offset) * (std::cos(phi) * t1 + std::sin(phi) * t2);
+        q0 = glm::vec4(float(atm.bottom_radius_m + altitude), glm::vec3(view));
+        q1 = glm::vec4(glm::vec3(sun), 0.0f);
+        const glm::dvec3 v = glm::dvec3(q0.y, q0.z, q0.w), sd = glm::dvec3(glm::vec3(q1));
+        // Rays that graze the ground within float precision are left out.
+        const double r = q0.x, mu = v.z / glm::length(v);
+        if (std::abs(mu + std::sqrt(1.0 - atm.bottom_radius_m * atm.bottom_radius_m / (r * r))) < 1e-4)
+          q0.x = float(atm.bottom_radius_m + 1e3);
+        return rgb(lookup_sun_disk_luminance(atm, lut, {0.0, 0.0, double(q0.x)}, v, sd));
+      });
+  expect_within(c, kBar);
+}
+
+// ---- Bruneton's 4D table -------------------------------------------------------------
+
+glm::dvec4 scattering_query(const BakedScene& s, const ScatteringShape& shape, size_t i,
+                            glm::vec4& q0, glm::vec4& q1) {
+  const ViewQuery v = view_query(s.atmosphere, i, kScatteringQueryDim, shape.mu_s_min);
+  q0 = glm::vec4(float(v.r), float(v.mu), float(v.mu_s), float(v.nu));
+  const bool hits = ray_intersects_ground(s.atmosphere.bottom_radius_m, q0.x, q0.y);
+  q1 = glm::vec4(hits ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
+  return glm::dvec4(q0);
+}
+
+TEST(AtmosphereDecode, LookupScatteringSeparateMie) {
+  const BakedScene& s = separate_mie_scene();
+  const Atmosphere& atm = s.atmosphere;
+  const ScatteringShape shape = shape_of(s);
+  const Texture scattering = s.texture("scattering"), single_mie = s.texture("single_mie");
+  const GlTexture t0 = upload_dds(s.dds_path("scattering"), kClamp);
+  const GlTexture t1 = upload_dds(s.dds_path("single_mie"), kClamp);
+  const Comparison c = run_case(
+      {"lookup_scattering (single Mie table)", {"bruneton.glsl"},
+       "layout(binding = 0) uniform sampler3D scattering;\n"
+       "layout(binding = 1) uniform sampler3D single_mie;\nuniform ScatteringShape shape;",
+       "vec4(lookup_scattering(scattering, single_mie, shape, atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
+       {&t0, &t1}},
+      atm,
+      [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
+        const glm::dvec4 q = scattering_query(s, shape, i, q0, q1);
+        return rgb(lookup_scattering(scattering, single_mie, shape, atm, q.x, q.y, q.z, q.w,
+                                     q1.x > 0.5f));
+      },
+      [&](const ComputeProgram& p) { set_shape(p, shape); });
+  expect_within(c, kCoordinateBar);
+}
+
+TEST(AtmosphereDecode, LookupScatteringMieInAlpha) {
+  const BakedScene& s = alpha_mie_scene();
+  const Atmosphere& atm = s.atmosphere;
+  const ScatteringShape shape = shape_of(s);
+  const Texture scattering = s.texture("scattering");
+  ASSERT_EQ(scattering.channel_count(), 4);
+  const GlTexture t0 = upload_dds(s.dds_path("scattering"), kClamp);
+  const Comparison c = run_case(
+      {"lookup_scattering (Mie in alpha)", {"bruneton.glsl"},
+       "layout(binding = 0) uniform sampler3D scattering;\nuniform ScatteringShape shape;",
+       "vec4(lookup_scattering(scattering, shape, atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
+       {&t0}},
+      atm,
+      [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
+        const glm::dvec4 q = scattering_query(s, shape, i, q0, q1);
+        return rgb(lookup_scattering(scattering, Texture(), shape, atm, q.x, q.y, q.z, q.w,
+                                     q1.x > 0.5f));
+      },
+      [&](const ComputeProgram& p) { set_shape(p, shape); });
+  expect_within(c, kCoordinateBar);
+}
+
+TEST(AtmosphereDecode, LookupIrradiance) {
+  const BakedScene& s = separate_mie_scene();
+  const Atmosphere& atm = s.atmosphere;
+  const Texture table = s.texture("irradiance");
+  const GlTexture tex = upload_dds(s.dds_path("irradiance"), kClamp);
+  const double mu_s_min = s.meta_number("scattering", "mu_s_min");
+  const Comparison c = run_case(
+      {"lookup_irradiance", {"bruneton.glsl"}, "layout(binding = 0) uniform sampler2D table;",
+       "vec4(lookup_irradiance(table, atm, q0.x, q0.y), 0.0)", {&tex}},
+      atm, [&](size_t i, glm::vec4& q0, glm::vec4&) {
+        const RadiusCosine p = irradiance_query(atm, i, mu_s_min);
+        q0 = glm::vec4(float(p.r), float(p.mu), 0.0f, 0.0f);
+        return rgb(lookup_irradiance(table, atm, q0.x, q0.y));
+      });
+  expect_within(c, kBar);
+}
+
+TEST(AtmosphereDecode, ComputeDirectIrradiance) {
+  const BakedScene& s = separate_mie_scene();
+  const Atmosphere& atm = s.atmosphere;
+  const Texture lut = s.texture("transmittance");
+  const GlTexture tex = upload_dds(s.dds_path("transmittance"), kClamp);
+  const Comparison c = run_case(
+      {"compute_direct_irradiance", {"bruneton.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
+       "vec4(compute_direct_irradiance(atm, lut, q0.x, q0.y), 0.0)", {&tex}},
+      atm, [&](size_t i, glm::vec4& q0, glm::vec4&) {
+        const double u = unit(i, 120);
+        const double r = atm.bottom_radius_m + (atm.top_radius_m - atm.bottom_radius_m) * u * u;
+        q0 = glm::vec4(float(r), float(2.0 * unit(i, 121) - 1.0), 0.0f, 0.0f);
+        return rgb(compute_direct_irradiance(atm, lut, q0.x, q0.y));
+      });
+  expect_within(c, kBar);
+}
+
+// ---- The azimuth-free 3D table ----------------------------------------------------------
+
+glm::dvec4 scattering3d_query(const Atmosphere& atm, size_t i, glm::vec4& q0, glm::vec4& q1) {
+  const ViewQuery v = view_query(atm, i, kScattering3dQueryDim, kScattering3dMuSMin);
+  q0 = glm::vec4(float(v.altitude_m), float(v.mu), float(v.mu_s), float(v.nu));
+  const bool hits =
+      ray_intersects_ground(atm.bottom_radius_m, atm.bottom_radius_m + double(q0.x), q0.y);
+  q1 = glm::vec4(hits ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
+  return glm::dvec4(q0);
+}
+
+void set_shape3d(const ComputeProgram& p, const Texture& t) {
+  p.set("shape.height_size", t.width);
+  p.set("shape.view_size", t.height);
+  p.set("shape.sun_size", t.depth);
+}
+
+TEST(AtmosphereDecode, LookupScattering3dMieInAlpha) {
+  const BakedScene& s = alpha_mie_scene();
+  const Atmosphere& atm = s.atmosphere;
+  const Texture table = s.texture("scattering3d");
+  ASSERT_EQ(table.channel_count(), 4);
+  const Scattering3dShape shape{table.width, table.height, table.depth};
+  const GlTexture tex = upload_dds(s.dds_path("scattering3d"), kClamp);
+  const Comparison c = run_case(
+      {"lookup_scattering3d (Mie in alpha)", {"scattering3d.glsl"},
+       "layout(binding = 0) uniform sampler3D scattering;\nuniform Scattering3dShape shape;",
+       "vec4(lookup_scattering3d(scattering, shape, atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
+       {&tex}},
+      atm,
+      [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
+        const glm::dvec4 q = scattering3d_query(atm, i, q0, q1);
+        return rgb(lookup_scattering3d(table, Texture(), shape, atm, q.x, q.y, q.z, q.w, q1.x > 0.5f));
+      },
+      [&](const ComputeProgram& p) { set_shape3d(p, table); });
+  expect_within(c, kCoordinateBar);
+}
+
+// The product writes no file for the separate Mie table of the 3D model, so
+// both tables come from the same bake in memory.
+TEST(AtmosphereDecode, LookupScattering3dSeparateMie) {
+  const BakedScene& s = separate_mie_scene();
+  const Atmosphere& atm = s.atmosphere;
+  Scattering3dSpec spec;
+  spec.height_size = 8;
+  spec.view_size = 32;
+  spec.sun_size = 8;
+  spec.orders = 2;
+  spec.combined_mie_alpha = false;
+  const Scattering3dTextures baked = bake_scattering3d(atm, s.texture("transmittance"), spec, {});
+  const GlTexture t0 = upload_texture(baked.scattering, kClamp);
+  const GlTexture t1 = upload_texture(baked.mie, kClamp);
+  const Comparison c = run_case(
+      {"lookup_scattering3d (Mie table)", {"scattering3d.glsl"},
+       "layout(binding = 0) uniform sampler3D scattering;\n"
+       "layout(binding = 1) uniform sampler3D mie;\nuniform Scattering3dShape shape;",
+       "vec4(lookup_scattering3d(scattering, mie, shape, atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
+       {&t0, &t1}},
+      atm,
+      [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
+        const glm::dvec4 q = scattering3d_query(atm, i, q0, q1);
+        return rgb(lookup_scattering3d(baked.scattering, baked.mie, baked.shape, atm, q.x, q.y,
+                                       q.z, q.w, q1.x > 0.5f));
+      },
+      [&](const ComputeProgram& p) { set_shape3d(p, baked.scattering); });
+  expect_within(c, kCoordinateBar);
+}
+
+TEST(AtmosphereDecode, LookupGathering) {
+  const BakedScene& s = separate_mie_scene();
+  const Atmosphere& atm = s.atmosphere;
+  const Texture table = s.texture("gathering_sum");
+  const GlTexture tex = upload_dds(s.dds_path("gathering_sum"), kClamp);
+  const Comparison c = run_case(
+      {"lookup_gathering", {"scattering3d.glsl"}, "layout(binding = 0) uniform sampler2D table;",
+       "vec4(lookup_gathering(table, atm, q0.x, q0.y), 0.0)", {&tex}},
+      atm, [&](size_t i, glm::vec4& q0, glm::vec4&) {
+        const AltitudeSunCosine p = gathering_query(atm, i);
+        q0 = glm::vec4(float(p.h), float(p.mu_s), 0.0f, 0.0f);
+        return rgb(lookup_gathering(table, atm, q0.x, q0.y));
+      });
+  expect_within(c, kCoordinateBar);
+}
+
+}  // namespace
+}  // namespace skybake::gltest

@@ -1,0 +1,77 @@
+// The baked atmosphere the shader tests read: two small presets (Earth's
+// atmosphere, every atmosphere product; single Mie in its own table in one,
+// in alpha in the other) baked by the real skybake into a scratch folder
+// once per process, their manifests, their DDS files decoded for the C++
+// lookups, and the helpers that run a decode function at many query points
+// on the GL context.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include "atmosphere/medium.hpp"
+#include "core/error_stats.hpp"
+#include "core/texture.hpp"
+#include "gl/gl_context.hpp"
+
+namespace skybake::gltest {
+
+struct BakedScene {
+  std::string folder;      // out/<scene>/
+  Atmosphere atmosphere;   // as load_scene read the preset
+  nlohmann::json manifest;  // manifest.json
+
+  // The output's manifest entry; fails the test (throws) when absent.
+  const nlohmann::json& entry(const std::string& output) const;
+  // A metadata value of an output as a number (written as a number or as
+  // the string of one).
+  double meta_number(const std::string& output, const std::string& key) const;
+  std::string dds_path(const std::string& output) const;
+  // The DDS file decoded by our reader (level 0): what the C++ lookups read.
+  Texture texture(const std::string& output) const;
+};
+
+// mie "separate": transmittance, multiscattering, skyview (2 layers),
+// aerial_perspective, scattering + single_mie, irradiance, scattering3d,
+// gathering_sum. mie "alpha": transmittance, scattering, scattering3d.
+const BakedScene& separate_mie_scene();
+const BakedScene& alpha_mie_scene();
+
+// Sets the uniform struct `name` (AtmosphereParameters of
+// runtime/glsl/atmosphere_common.glsl) from an Atmosphere; members the
+// program does not use are skipped.
+void set_atmosphere_uniform(const ComputeProgram& program, const std::string& name,
+                            const Atmosphere& atm);
+
+// Runs `program` once per query: binding 0 holds the queries (two vec4 each,
+// query i at 2i and 2i + 1), binding 1 receives one vec4 per query; the
+// uniform `count` holds the number of queries. Local size 64.
+std::vector<glm::vec4> run_queries(const ComputeProgram& program,
+                                   const std::vector<glm::vec4>& queries);
+
+// The compute shader body run_queries expects around `expression`, a vec4
+// of the query's q0 and q1 (vec4 each) and the uniform `atm`, after the
+// declarations in `declarations` (samplers, further uniforms).
+std::string query_shader(const std::string& declarations, const std::string& expression);
+
+// GL results against C++ references, channel by channel, relative error
+// with the floor of core/error_stats.hpp (1e-3 of the largest reference).
+struct Comparison {
+  ErrorStats stats;
+  size_t worst_query = 0;
+};
+Comparison compare(const std::vector<glm::vec4>& gl, const std::vector<glm::dvec4>& cpu,
+                   int channels);
+
+// Prints "<what>: rms_rel ..., max_rel ... (N queries)" for the report.
+void print_comparison(const std::string& what, const Comparison& c);
+
+// The input of a query as the shader receives it (rounded to float), back
+// in double for the C++ lookup.
+inline double as_float(double v) { return double(float(v)); }
+
+}  // namespace skybake::gltest
