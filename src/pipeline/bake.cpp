@@ -47,8 +47,9 @@ ManifestEntry make_entry(const GraphNode& node, const Texture& tex,
 }
 
 // One bake of one scene, in stages: decide what is stale, then for each node
-// in dependency order report it current, read it back, or compute (and write)
-// it; finally merge what was written into the manifest.
+// in dependency order report it current, read it back, or compute, write and
+// record it (each output enters the manifest as soon as its files are in
+// place, so a killed bake keeps what it finished); finally the bake log.
 class SceneBake {
  public:
   SceneBake(const Scene& scene, const BakeOptions& options)
@@ -63,13 +64,13 @@ class SceneBake {
     before_ = read_manifest(manifest_path());
     log_ = read_bake_log(log_path());
     mark_stale();
-    std::exception_ptr failure;  // what was written before a failure stays recorded
+    std::exception_ptr failure;  // what was recorded before a failure stays recorded
     for (size_t i = 0; i < graph_.nodes.size() && !failure; ++i) try {
         visit(i);
       } catch (...) {
         failure = std::current_exception();
       }
-    record_written();
+    record_log();
     if (failure) std::rethrow_exception(failure);
     summary_.seconds = seconds_since(t0);
     return std::move(summary_);
@@ -201,7 +202,7 @@ class SceneBake {
          output_warnings(scene_, node.spec, tex, rec.entry.error, rec.entry.tiling))
       rec.entry.warnings.push_back(w.json());
     note_warnings(rec.entry);
-    written_.push_back(rec.entry);
+    record(rec.entry);
     if (options_.on_output) options_.on_output(rec);
     summary_.outputs.push_back(std::move(rec));
   }
@@ -230,30 +231,33 @@ class SceneBake {
     log_touched_.insert(entry.name);
   }
 
-  // Merges the written entries under the folder lock (another bake may have
-  // added entries meanwhile), then reports them recorded: a stamp never claims
-  // an output the manifest does not list (a process killed in between leaves
-  // the stamp old, so ninja runs the edge again and finds the output current).
-  void record_written() {
-    for (const ManifestEntry& e : written_) log_written(e);
-    if (written_.empty() && log_touched_.empty()) return;
+  // Merges one written entry into the manifest under the folder lock
+  // (another bake may have added entries meanwhile), then reports it
+  // recorded: a stamp never claims an output the manifest does not list (a
+  // process killed in between leaves the stamp old, so ninja runs the edge
+  // again and finds the output current).
+  void record(const ManifestEntry& entry) {
+    log_written(entry);
     {
       DirectoryLock lock(summary_.scene_dir);
-      if (!written_.empty()) {
-        Manifest m = read_manifest(manifest_path());
-        m.scene = scene_.name;
-        m.preset = scene_.file.string();
-        m.tool_version = SKYBAKE_VERSION;
-        for (const ManifestEntry& e : written_) m.entries[e.name] = e;
-        write_manifest(manifest_path(), m);
-      }
-      BakeLog merged = read_bake_log(log_path());
-      for (const std::string& name : log_touched_) merged.entries[name] = log_.entries[name];
-      write_bake_log(log_path(), merged);
+      Manifest m = read_manifest(manifest_path());
+      m.scene = scene_.name;
+      m.preset = scene_.file.string();
+      m.tool_version = SKYBAKE_VERSION;
+      m.entries[entry.name] = entry;
+      write_manifest(manifest_path(), m);
     }
-    if (options_.on_recorded)
-      for (const ManifestEntry& e : written_)
-        options_.on_recorded(summary_.scene_dir, e.name, e.input_hash);
+    if (options_.on_recorded) options_.on_recorded(summary_.scene_dir, entry.name, entry.input_hash);
+  }
+
+  // The times of this run's outputs and of the files it found current, merged
+  // under the folder lock like the manifest.
+  void record_log() {
+    if (log_touched_.empty()) return;
+    DirectoryLock lock(summary_.scene_dir);
+    BakeLog merged = read_bake_log(log_path());
+    for (const std::string& name : log_touched_) merged.entries[name] = log_.entries[name];
+    write_bake_log(log_path(), merged);
   }
 
   const Scene& scene_;
@@ -267,7 +271,6 @@ class SceneBake {
   std::vector<std::optional<Freshness>> freshness_;
   BakeLog log_;
   std::set<std::string> log_touched_;  // entries this bake changed
-  std::vector<ManifestEntry> written_;
   double bake_seconds_ = 0.0;
 };
 

@@ -17,6 +17,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <set>
 #include <thread>
 
 #include <nlohmann/json.hpp>
@@ -217,6 +218,34 @@ TEST_F(KilledBake, WhileTheLastOutputIsWritten) {
   kill_when(fresh_dir("faults_kill_last"), [](const fs::path& scene) {
     return fs::exists(scene / "noise_detail.vdb") && has_temporary(scene);
   });
+}
+
+// Each output is recorded as soon as its files are in place: a bake killed
+// while writing the third output has recorded the first two, and the next
+// bake bakes only the third.
+TEST_F(KilledBake, KeepsTheOutputsItFinished) {
+  const fs::path out = fresh_dir("faults_kill_keeps");
+  const fs::path scene = out / "faults";
+  const Child c = spawn(bake_args(*preset_, out, {}), out.parent_path(), out.filename().string());
+  ASSERT_GT(c.pid, 0);
+  const bool seen = poll_until(c, [&] {
+    for (const std::string& t : temporaries(scene))
+      if (t.find("noise_shape") != std::string::npos) return true;
+    return false;
+  });
+  ::kill(c.pid, SIGKILL);
+  wait_status(c);
+  ASSERT_TRUE(seen) << "the bake ended before it wrote noise_shape: " << read_file(c.err);
+  const json manifest = json::parse(read_file(scene / "manifest.json"));
+  std::set<std::string> recorded;
+  for (const json& entry : manifest["outputs"]) recorded.insert(entry["name"].get<std::string>());
+  EXPECT_EQ(recorded, (std::set<std::string>{"curl", "noise_detail"}));
+
+  const auto next = run_skybake({"bake", preset_->string(), "-o", out.string(), "--json"});
+  ASSERT_EQ(next.exit_code, 0) << next.err;
+  const json summary = json::parse(next.out);
+  EXPECT_EQ(summary["scenes"][0]["computed"], json::array({"noise_shape"}));
+  EXPECT_TRUE(contents(scene) == *reference_);
 }
 
 TEST_F(KilledBake, OnceTheManifestIsWritten) {
