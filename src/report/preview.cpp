@@ -38,7 +38,8 @@ nlohmann::json sky_preview_report(const ReportInputs& in, const PreviewSetup& se
   AtomicFile file(in.folder / name);
   PreviewOptions options;
   options.exposure = 1.0;  // the preview is display-referred already
-  write_png_preview(file.temp_path().string(), picture, options);
+  // Errors name sky_preview.png, not its temporary.
+  file.write([&](const fs::path& temp) { write_png_preview(temp.string(), picture, options); });
   file.commit();
   return name;
 }
