@@ -1,6 +1,6 @@
 // Writes small genuine files for the fuzzers' seed corpora, through the
-// project's own writers: `fuzz_seeds DIR` fills DIR/dds, DIR/exr, DIR/vdb and
-// DIR/manifest (each file a few hundred bytes to a few KiB). The preset
+// project's own writers: `fuzz_seeds DIR` fills DIR/dds, DIR/exr, DIR/vdb,
+// DIR/ktx2 and DIR/manifest (each file a few hundred bytes to a few KiB). The preset
 // seeds are the shipped presets, copied by scripts/fuzz.sh.
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +9,7 @@
 
 #include "io/dds.hpp"
 #include "io/exr.hpp"
+#include "io/ktx2.hpp"
 #include "io/manifest.hpp"
 #include "io/vdb.hpp"
 
@@ -33,7 +34,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   const fs::path dir = argv[1];
-  for (const char* sub : {"dds", "exr", "vdb", "manifest"}) fs::create_directories(dir / sub);
+  for (const char* sub : {"dds", "exr", "vdb", "ktx2", "manifest"}) fs::create_directories(dir / sub);
 
   const std::vector<Texture> shapes = {filled(4, 2, 1, 1, 4), filled(3, 3, 1, 2, 1),
                                        filled(2, 2, 4, 1, 3)};
@@ -46,6 +47,11 @@ int main(int argc, char** argv) {
       if (t.channel_count() > dds_component_count(f)) continue;
       write_dds((dir / "dds" / ("seed" + std::to_string(n++) + ".dds")).string(), {t}, f);
     }
+    for (const Ktx2FormatInfo& f : ktx2_formats()) {
+      if (t.channel_count() > f.components) continue;
+      write_ktx2((dir / "ktx2" / ("seed" + std::to_string(n++) + ".ktx2")).string(), {t},
+                 f.format);
+    }
     if (!t.is_array())
       write_vdb((dir / "vdb" / ("seed" + std::to_string(n++) + ".vdb")).string(), t, 0.5);
   }
@@ -53,6 +59,9 @@ int main(int argc, char** argv) {
   const Texture top = filled(4, 4, 1, 1, 4);
   write_dds((dir / "dds" / "mips.dds").string(), {top, filled(2, 2, 1, 1, 4), filled(1, 1, 1, 1, 4)},
             DdsFormat::R16G16B16A16_FLOAT);
+
+  write_ktx2((dir / "ktx2" / "mips.ktx2").string(),
+             {top, filled(2, 2, 1, 1, 4), filled(1, 1, 1, 1, 4)}, Ktx2Format::R16G16B16A16_SFLOAT);
 
   Manifest m;
   m.scene = "seed";

@@ -2,7 +2,8 @@
 # Builds the libFuzzer harnesses of fuzz/ (clang, ASan + UBSan, libFuzzer
 # coverage) into build-fuzz/ and runs one for SECONDS:
 #   scripts/fuzz.sh TARGET SECONDS [libFuzzer flags...]
-# TARGET: preset_loader, dds_reader, exr_reader, vdb_reader, manifest_reader
+# TARGET: preset_loader, dds_reader, exr_reader, vdb_reader, manifest_reader,
+# ktx2_reader
 # (the _fuzz suffix is optional), or all (each in turn for SECONDS).
 # The corpus build-fuzz/corpus/TARGET keeps what earlier runs found; the
 # seeds are fuzz/seeds/TARGET (committed, small), the shipped and bad presets
@@ -14,13 +15,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ $# -lt 2 ]; then
-  sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//' >&2
+  sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//' >&2
   exit 2
 fi
 target="${1%_fuzz}"
 seconds="$2"
 shift 2
-all=(preset_loader dds_reader exr_reader vdb_reader manifest_reader)
+all=(preset_loader dds_reader exr_reader vdb_reader manifest_reader ktx2_reader)
 if [ "$target" = all ]; then targets=("${all[@]}"); else targets=("$target"); fi
 for t in "${targets[@]}"; do
   case " ${all[*]} " in *" $t "*) ;; *) echo "fuzz.sh: unknown target '$t' (one of ${all[*]}, all)" >&2; exit 2 ;; esac

@@ -28,6 +28,11 @@ std::optional<Texture> read_lossless_output(const ManifestEntry& entry,
         Texture tex = read_texture_file((dir / f.path).string()).texture;
         if (tex.channels == entry.channels) return tex;
       }
+      if (f.format == "ktx2" &&
+          (f.encoding == "R32G32B32A32_SFLOAT" || f.encoding == "R32_SFLOAT")) {
+        Texture tex = read_texture_file((dir / f.path).string()).texture;
+        if (tex.channels == entry.channels) return tex;  // skybake.channels names them
+      }
       if (f.format == "dds" && f.encoding == "R32G32B32A32_FLOAT") {
         Texture tex = read_texture_file((dir / f.path).string()).texture;
         if (tex.channel_count() >= int(entry.channels.size()))

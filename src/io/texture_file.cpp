@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "io/dds.hpp"
 #include "io/exr.hpp"
+#include "io/ktx2.hpp"
 #include "io/manifest.hpp"
 #include "io/vdb.hpp"
 
@@ -68,6 +69,36 @@ LoadedTexture load_dds(const std::string& path) {
   return out;
 }
 
+LoadedTexture load_ktx2(const std::string& path) {
+  Ktx2Image image = read_ktx2(path);
+  const Ktx2Header& h = image.header;
+  LoadedTexture out;
+  out.format = "ktx2";
+  out.encoding = ktx2_format_name(image.format);
+  out.mip_levels = int(image.mips.size());
+  out.texture = std::move(image.mips.front());
+  out.lower_levels.assign(std::make_move_iterator(image.mips.begin() + 1),
+                          std::make_move_iterator(image.mips.end()));
+  nlohmann::json levels = nlohmann::json::array();
+  for (const Ktx2LevelIndex& l : h.levels)
+    levels.push_back({{"byte_offset", l.byte_offset}, {"byte_length", l.byte_length}});
+  nlohmann::json keys = nlohmann::json::array();
+  for (const auto& [key, value] : image.key_values) keys.push_back(key);
+  out.details = {{"vk_format", h.vk_format},
+                 {"type_size", h.type_size},
+                 {"pixel_depth", h.pixel_depth},
+                 {"layer_count", h.layer_count},
+                 {"level_count", h.level_count},
+                 {"dfd_color_model", image.dfd.color_model},
+                 {"dfd_color_primaries", image.dfd.color_primaries},
+                 {"dfd_transfer_function", image.dfd.transfer_function},
+                 {"dfd_samples", image.dfd.samples.size()},
+                 {"keys", keys},
+                 {"levels", levels},
+                 {"file_size", h.file_size}};
+  return out;
+}
+
 }  // namespace
 
 LoadedTexture read_texture_file(const std::string& path) {
@@ -78,6 +109,7 @@ LoadedTexture read_texture_file(const std::string& path) {
   if (!fs::is_regular_file(path, ec))
     throw IoError(fmt::format("{}: expected a regular file", path));
   if (ext == ".dds") return load_dds(path);
+  if (ext == ".ktx2") return load_ktx2(path);
   LoadedTexture out;
   if (ext == ".exr") {
     out.texture = read_exr(path);
@@ -88,7 +120,7 @@ LoadedTexture read_texture_file(const std::string& path) {
     out.format = "vdb";
     out.encoding = "float";
   } else {
-    throw IoError(fmt::format("{}: expected a .exr, .dds or .vdb file, got '{}'", path, ext));
+    throw IoError(fmt::format("{}: expected a .exr, .dds, .ktx2 or .vdb file, got '{}'", path, ext));
   }
   return out;
 }

@@ -1,4 +1,4 @@
-// Reads any texture file skybake writes (EXR, DDS, VDB), chosen by
+// Reads any texture file skybake writes (EXR, DDS, KTX2, VDB), chosen by
 // extension, into the one Texture type: for `skybake info`, `check-tiling`
 // and tests.
 #pragma once
@@ -14,10 +14,10 @@ namespace skybake {
 
 struct LoadedTexture {
   Texture texture;       // level 0
-  std::string format;    // "exr", "dds", "vdb"
+  std::string format;    // "exr", "dds", "ktx2", "vdb"
   std::string encoding;  // "half", "float", DXGI format name...
   int mip_levels = 1;
-  std::vector<Texture> lower_levels;  // mip levels 1, 2, ... of a DDS mip chain; else empty
+  std::vector<Texture> lower_levels;  // mip levels 1, 2, ... of a DDS or KTX2 mip chain; else empty
   nlohmann::json details = nlohmann::json::object();  // format-specific header fields
 };
 

@@ -131,7 +131,7 @@ ProductInfo atmosphere_lut_product(std::string name, std::string summary,
       basic_product(std::move(name), std::move(summary), std::move(axes), std::move(size),
                     std::move(max_size), std::move(bake), ns_per_texel);
   p.default_formats = {"exr", "dds"};
-  p.allowed_formats = {"exr", "dds", "png"};
+  p.allowed_formats = {"exr", "dds", "ktx2", "png"};
   p.dependencies = std::move(dependencies);
   p.scene_sections = kAtmosphereSections;
   return p;

@@ -198,7 +198,7 @@ ProductInfo cloud_product(std::string name, std::string summary, std::vector<std
       basic_product(std::move(name), std::move(summary), std::move(axes), std::move(size),
                     std::move(max_size), std::move(bake), ns_per_texel);
   p.default_formats = {"dds", "exr", "png"};
-  p.allowed_formats = {"dds", "exr", "png"};
+  p.allowed_formats = {"dds", "exr", "ktx2", "png"};
   p.scene_sections = {"clouds"};
   p.default_dds_format = "unorm8";
   p.default_mips = tileable;

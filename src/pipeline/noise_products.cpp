@@ -102,7 +102,7 @@ ProductInfo noise_product(std::string name, std::string summary, std::vector<std
       basic_product(std::move(name), std::move(summary), std::move(axes), std::move(size),
                     std::move(max_size), std::move(bake), ns_per_texel);
   p.default_formats = {"dds", "png"};
-  p.allowed_formats = {"dds", "exr", "vdb", "png"};
+  p.allowed_formats = {"dds", "exr", "ktx2", "vdb", "png"};
   p.default_dds_format = "unorm8";
   p.check = std::move(check_fn);
   p.default_mips = true;

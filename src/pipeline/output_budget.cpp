@@ -20,30 +20,34 @@ constexpr std::uint64_t kSaturated = std::numeric_limits<std::uint64_t>::max();
 constexpr std::uint64_t kMaxCloudTypes = 64;
 
 // Per format, measured on Release builds with 2 threads, one format at a
-// time (docs/decisions.md "Budgets before allocation" has the sizes and
+// time; KTX2 takes DDS's factor (the same mip chain and one level's
+// encoding buffer at a time) (docs/decisions.md "Budgets before allocation" has the sizes and
 // resident sets). Products whose texture is small next to what they read
 // (irradiance, gathering_sum, single_mie, the cloud columns) keep the
 // minimum; their dependencies are budgeted as outputs of their own or are at
 // default sizes.
 const std::map<std::string, ProductLimits>& limits_table() {
   static const std::map<std::string, ProductLimits> table = {
-      {"transmittance", {{2, 2}, {{"exr", 1.0}, {"dds", 3.5}, {"png", 2.0}}}},
-      {"multiscattering", {{2, 2}, {{"exr", 1.0}, {"dds", 3.5}, {"png", 1.5}}}},
-      {"skyview", {{1, 2}, {{"exr", 1.0}, {"dds", 2.5}, {"png", 1.5}}}},
-      {"aerial_perspective", {{}, {{"exr", 6.0}, {"dds", 6.0}, {"vdb", 7.5}, {"png", 6.0}}}},
+      {"transmittance", {{2, 2}, {{"exr", 1.0}, {"dds", 3.5}, {"ktx2", 3.5}, {"png", 2.0}}}},
+      {"multiscattering", {{2, 2}, {{"exr", 1.0}, {"dds", 3.5}, {"ktx2", 3.5}, {"png", 1.5}}}},
+      {"skyview", {{1, 2}, {{"exr", 1.0}, {"dds", 2.5}, {"ktx2", 2.5}, {"png", 1.5}}}},
+      {"aerial_perspective",
+       {{}, {{"exr", 6.0}, {"dds", 6.0}, {"ktx2", 6.0}, {"vdb", 7.5}, {"png", 6.0}}}},
       {"sky_preview", {{}, {{"exr", 1.5}, {"png", 2.0}}}},
-      {"scattering", {{}, {{"exr", 7.0}, {"dds", 7.0}, {"png", 7.0}}}},
+      {"scattering", {{}, {{"exr", 7.0}, {"dds", 7.0}, {"ktx2", 7.0}, {"png", 7.0}}}},
       {"single_mie", {}},
       {"irradiance", {{2, 2}, {}}},
-      {"scattering3d", {{}, {{"exr", 4.0}, {"dds", 6.0}, {"png", 4.5}}}},
+      {"scattering3d", {{}, {{"exr", 4.0}, {"dds", 6.0}, {"ktx2", 6.0}, {"png", 4.5}}}},
       {"gathering_sum", {}},
-      {"noise_shape", {{}, {{"exr", 2.5}, {"dds", 3.0}, {"vdb", 4.0}, {"png", 2.0}}}},
-      {"noise_detail", {{}, {{"exr", 2.0}, {"dds", 2.5}, {"vdb", 3.0}, {"png", 1.5}}}},
-      {"curl", {{}, {{"exr", 1.0}, {"dds", 2.5}, {"vdb", 10.5}, {"png", 8.0}}}},
-      {"weather", {{2, 2}, {{"exr", 2.0}, {"dds", 2.5}, {"png", 8.0}}}},
+      {"noise_shape",
+       {{}, {{"exr", 2.5}, {"dds", 3.0}, {"ktx2", 3.0}, {"vdb", 4.0}, {"png", 2.0}}}},
+      {"noise_detail",
+       {{}, {{"exr", 2.0}, {"dds", 2.5}, {"ktx2", 2.5}, {"vdb", 3.0}, {"png", 1.5}}}},
+      {"curl", {{}, {{"exr", 1.0}, {"dds", 2.5}, {"ktx2", 2.5}, {"vdb", 10.5}, {"png", 8.0}}}},
+      {"weather", {{2, 2}, {{"exr", 2.0}, {"dds", 2.5}, {"ktx2", 2.5}, {"png", 8.0}}}},
       {"cloud_types", {}},
       {"height_gradients", {}},
-      {"cirrus", {{2, 2}, {{"exr", 2.0}, {"dds", 2.5}, {"png", 8.0}}}},
+      {"cirrus", {{2, 2}, {{"exr", 2.0}, {"dds", 2.5}, {"ktx2", 2.5}, {"png", 8.0}}}},
   };
   return table;
 }

@@ -10,6 +10,7 @@
 #include "io/dds.hpp"
 #include "io/exr.hpp"
 #include "io/file_record.hpp"
+#include "io/ktx2.hpp"
 #include "io/png_preview.hpp"
 #include "io/vdb.hpp"
 #include "pipeline/product_options.hpp"
@@ -31,6 +32,22 @@ DdsFormat choose_dds_format(const Texture& tex, const ProductInfo& info, const O
   return DdsFormat::R32G32B32A32_FLOAT;
 }
 
+// KTX2 format when the output does not name one: the DDS defaults' choice
+// (unorm8 for the products that default to it, else float32 or half by
+// precision), with one-channel formats for one channel and R8G8 for two.
+Ktx2Format choose_ktx2_format(const Texture& tex, const ProductInfo& info, const OutputSpec& spec) {
+  const std::string name = option_string(spec, "ktx2_format", "");
+  if (!name.empty()) return ktx2_format_from_name(name);
+  const int nc = tex.channel_count();
+  if (info.default_dds_format == "unorm8")
+    return nc == 1   ? Ktx2Format::R8_UNORM
+           : nc == 2 ? Ktx2Format::R8G8_UNORM
+                     : Ktx2Format::R8G8B8A8_UNORM;
+  if (spec.precision == "half")
+    return nc == 1 ? Ktx2Format::R16_SFLOAT : Ktx2Format::R16G16B16A16_SFLOAT;
+  return nc == 1 ? Ktx2Format::R32_SFLOAT : Ktx2Format::R32G32B32A32_SFLOAT;
+}
+
 // Writes `tex` to `tmp` in one format; returns the encoding it used.
 std::string write_format(const std::string& format, const std::string& tmp, const Texture& tex,
                          const ProductInfo& info, const OutputSpec& spec) {
@@ -45,6 +62,12 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
     const bool mips = spec.options.value("mips", info.default_mips);
     write_dds(tmp, mips ? build_mip_chain(tex, MipEdge::wrap) : std::vector<Texture>{tex}, dds);
     return dxgi_format_name(dds);
+  }
+  if (format == "ktx2") {
+    const Ktx2Format ktx2 = choose_ktx2_format(tex, info, spec);
+    const bool mips = spec.options.value("mips", info.default_mips);
+    write_ktx2(tmp, mips ? build_mip_chain(tex, MipEdge::wrap) : std::vector<Texture>{tex}, ktx2);
+    return ktx2_format_name(ktx2);
   }
   if (format == "vdb") {
     write_vdb(tmp, tex, 1.0 / tex.width);
@@ -72,7 +95,6 @@ std::vector<std::string> output_files(const OutputSpec& spec) {
     files.push_back(format == "png" ? spec.name + ".preview.png" : spec.name + "." + format);
   return files;
 }
-
 
 std::vector<ManifestFile> write_outputs(const Texture& tex, const ProductInfo& info,
                                         const OutputSpec& spec,

@@ -21,6 +21,7 @@
 #include "core/safe_input.hpp"
 #include "core/suggest.hpp"
 #include "io/dds.hpp"
+#include "io/ktx2_format.hpp"
 #include "pipeline/cloud_products.hpp"
 #include "pipeline/output_budget.hpp"
 #include "pipeline/product_tables.hpp"
@@ -34,8 +35,8 @@ using nlohmann::json;
 namespace {
 
 // Output keys every product takes; the rest belong to the product's schema.
-const std::vector<std::string> kCommonOutputKeys = {"product",   "name",       "size",     "formats",
-                                                    "precision", "dds_format", "max_error"};
+const std::vector<std::string> kCommonOutputKeys = {
+    "product", "name", "size", "formats", "precision", "dds_format", "ktx2_format", "max_error"};
 
 // Keys that never change an output: left out of Scene.resolved (the hash input).
 const std::vector<std::string> kNonSemanticKeys = {"$schema", "description"};
@@ -439,6 +440,19 @@ void check_dds_format(const OutputSpec& spec, const Source& src) {
                                         components == 1 ? "" : "s"));
 }
 
+// A KTX2 format with fewer components than the product's texture has channels.
+void check_ktx2_format(const OutputSpec& spec, const Source& src) {
+  if (!spec.options.contains("ktx2_format")) return;
+  const std::string name = spec.options["ktx2_format"].get<std::string>();
+  const int components = ktx2_format_info(ktx2_format_from_name(name)).components;
+  const int channels = output_channels(spec);
+  if (channels > components)
+    src.fail("/ktx2_format", fmt::format("expected a format with at least {} channels ({} has "
+                                         "{}), got {} ({} channel{})",
+                                         channels, spec.product, channels, name, components,
+                                         components == 1 ? "" : "s"));
+}
+
 std::string to_lower_ascii(std::string s) {
   for (char& ch : s)
     if (ch >= 'A' && ch <= 'Z') ch = char(ch - 'A' + 'a');
@@ -562,6 +576,9 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
   if (out.contains("dds_format") &&
       std::find(spec.formats.begin(), spec.formats.end(), "dds") == spec.formats.end())
     problems.add(src, "/dds_format", "is only used with \"dds\" in formats");
+  if (out.contains("ktx2_format") &&
+      std::find(spec.formats.begin(), spec.formats.end(), "ktx2") == spec.formats.end())
+    problems.add(src, "/ktx2_format", "is only used with \"ktx2\" in formats");
   if (out.contains("max_error") && !info->measure_error)
     problems.add(src, "/max_error",
                  fmt::format("the bake measures no error of {} (only of atmosphere "
@@ -569,6 +586,7 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
                              info->name));
   spec.options = out;
   check_dds_format(spec, src);
+  problems.collect([&] { check_ktx2_format(spec, src); });
   if (size_ok) check_output_budget(spec, src);  // a size already refused is not budgeted
   // Product-specific rules the schema cannot say (e.g. a noise octave finer
   // than two voxels), checked before anything is allocated.
@@ -607,7 +625,10 @@ std::vector<PresetProblem> no_effect_warnings(const json& written, const Scene& 
     const std::string at = "/outputs" + token(i);
     const bool exr = contains(spec.formats, "exr"), dds = contains(spec.formats, "dds");
     const bool float_dds = dds && !out.contains("dds_format") && info.default_dds_format.empty();
-    if (out.contains("precision") && !exr && !float_dds) {
+    const bool ktx2 = contains(spec.formats, "ktx2");
+    const bool float_ktx2 =
+        ktx2 && !out.contains("ktx2_format") && info.default_dds_format.empty();
+    if (out.contains("precision") && !exr && !float_dds && !float_ktx2) {
       const std::string dds_format = out.contains("dds_format")
                                          ? out["dds_format"].get<std::string>()
                                          : info.default_dds_format == "unorm8"
@@ -619,8 +640,9 @@ std::vector<PresetProblem> no_effect_warnings(const json& written, const Scene& 
                        dds ? "no EXR and its DDS in " + dds_format
                            : fmt::format("only {}", fmt::join(spec.formats, ", "))));
     }
-    if (out.contains("mips") && !dds)
-      warn(at + "/mips", "mips are the DDS mip chain, and this output writes no DDS");
+    if (out.contains("mips") && !dds && !ktx2)
+      warn(at + "/mips", "mips are the DDS mip chain (and KTX2's), and this output writes no DDS "
+                         "and no KTX2");
     if (spec.options.contains("tolerance")) {
       const bool converging = spec.options["tolerance"].get<double>() > 0.0;
       for (const char* key : {"max_orders", "tail"})

@@ -38,7 +38,7 @@ bool is_writer_key(const std::string& key) { return key == "exr_compression"; }
 // its dependents are not).
 bool is_file_key(const std::string& key) {
   return key == "name" || key == "formats" || key == "precision" || key == "dds_format" ||
-         key == "preview" || key == "mips" || key == "max_error";
+         key == "ktx2_format" || key == "preview" || key == "mips" || key == "max_error";
 }
 
 void compute_hashes(const Scene& scene, GraphNode& node, const std::vector<GraphNode>& nodes) {

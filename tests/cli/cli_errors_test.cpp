@@ -112,7 +112,7 @@ TEST(CliErrors, UnreadableFileIsAFileError) {
                "short.dds: expected at least 128 bytes (magic and DDS_HEADER), got 7");
   write_text(dir / "notes.txt", "garbage");
   expect_error(run_skybake({"check-tiling", "notes.txt"}, dir), 4,
-               "notes.txt: expected a .exr, .dds or .vdb file, got '.txt'");
+               "notes.txt: expected a .exr, .dds, .ktx2 or .vdb file, got '.txt'");
 }
 
 TEST(CliErrors, PlanOutputFolderThatIsAFileIsRefused) {
