@@ -46,7 +46,7 @@ struct DecodeCase {
   int channels = 3;
 };
 
-Comparison run_case(const DecodeCase& c, const Atmosphere& atm, const QueryFn& query,
+Comparison run_case(const DecodeCase& c, const GlAtmosphere& atm, const QueryFn& query,
                     const std::function<void(const ComputeProgram&)>& uniforms = {}) {
   GlContext::shared();
   const ComputeProgram program =
@@ -110,6 +110,28 @@ void set_shape(const ComputeProgram& p, const ScatteringShape& shape) {
   p.set("shape.mu_s_min", float(shape.mu_s_min));
 }
 
+// ---- What the shaders are told -----------------------------------------------
+
+// The parameters the tests read from the manifest are the preset's.
+TEST(AtmosphereDecode, ManifestParametersMatchThePreset) {
+  for (const BakedScene* s : {&separate_mie_scene(), &alpha_mie_scene()}) {
+    const GlAtmosphere preset = gl_atmosphere(s->atmosphere);
+    for (const char* output : {"transmittance", "scattering", "scattering3d"}) {
+      const GlAtmosphere m = s->parameters(output);
+      EXPECT_EQ(m.bottom_radius, preset.bottom_radius) << output;
+      EXPECT_EQ(m.top_radius, preset.top_radius) << output;
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(m.rayleigh_scattering[c], preset.rayleigh_scattering[c]) << output;
+        EXPECT_EQ(m.mie_scattering[c], preset.mie_scattering[c]) << output;
+      }
+      EXPECT_EQ(m.mie_g, preset.mie_g) << output;
+      EXPECT_EQ(m.mie_phase, preset.mie_phase) << output;
+    }
+  }
+  const GlAtmosphere irradiance = separate_mie_scene().parameters("irradiance");
+  EXPECT_EQ(irradiance.sun_angular_radius, gl_atmosphere(separate_mie_scene().atmosphere).sun_angular_radius);
+}
+
 // ---- Transmittance ----------------------------------------------------------
 
 TEST(AtmosphereDecode, LookupTransmittanceToTop) {
@@ -120,7 +142,7 @@ TEST(AtmosphereDecode, LookupTransmittanceToTop) {
   const Comparison c = run_case(
       {"lookup_transmittance_to_top", {"transmittance.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
        "vec4(lookup_transmittance_to_top(lut, atm, q0.x, q0.y), 0.0)", {&tex}},
-      atm, [&](size_t i, glm::vec4& q0, glm::vec4&) {
+      s.parameters("transmittance"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const RadiusCosine p = transmittance_query(atm, i);
         q0 = glm::vec4(float(p.r), float(p.mu), 0.0f, 0.0f);
         return rgb(lookup_transmittance_to_top(lut, atm, q0.x, q0.y));
@@ -136,7 +158,7 @@ TEST(AtmosphereDecode, LookupTransmittance) {
   const Comparison c = run_case(
       {"lookup_transmittance", {"transmittance.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
        "vec4(lookup_transmittance(lut, atm, q0.x, q0.y, q0.z, q0.w > 0.5), 0.0)", {&tex}},
-      atm, [&](size_t i, glm::vec4& q0, glm::vec4&) {
+      s.parameters("transmittance"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         // Any direction: rays toward the ground read the reversed rays.
         const double r = as_float(transmittance_query(atm, i).r);
         const double mu = as_float(2.0 * unit(i, 90) - 1.0);
@@ -157,7 +179,7 @@ TEST(AtmosphereDecode, LookupSunTransmittance) {
   const Comparison c = run_case(
       {"lookup_sun_transmittance", {"transmittance.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
        "vec4(lookup_sun_transmittance(lut, atm, q0.x, q0.y), 0.0)", {&tex}},
-      atm, [&](size_t i, glm::vec4& q0, glm::vec4&) {
+      s.parameters("transmittance"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const double r = as_float(transmittance_query(atm, i).r);
         const double mu_s = as_float(2.0 * unit(i, 92) - 1.0);
         q0 = glm::vec4(float(r), float(mu_s), 0.0f, 0.0f);
@@ -176,7 +198,7 @@ TEST(AtmosphereDecode, LookupMultiscattering) {
   const Comparison c = run_case(
       {"lookup_multiscattering", {"multiscattering.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
        "vec4(lookup_multiscattering(lut, atm, q0.x, q0.y), 0.0)", {&tex}},
-      atm, [&](size_t i, glm::vec4& q0, glm::vec4&) {
+      s.parameters("multiscattering"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const RadiusCosine p = multiscattering_query(atm, i);
         q0 = glm::vec4(float(p.r), float(p.mu), 0.0f, 0.0f);
         return rgb(lookup_multiscattering(lut, atm, q0.x, q0.y));
@@ -216,7 +238,7 @@ TEST(AtmosphereDecode, LookupSkyview) {
   const Comparison c = run_case(
       {"lookup_skyview", {"sky_view.glsl"}, "layout(binding = 0) uniform sampler2DArray lut;",
        "vec4(lookup_skyview(lut, int(q0.x), atm, q0.y, SkyviewDirection(q0.z, q0.w)), 0.0)", {&tex}},
-      atm, [&](size_t i, glm::vec4& q0, glm::vec4&) {
+      s.parameters("skyview"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const SkyviewQueryPoint p = skyview_query(atm, views, i);
         q0 = glm::vec4(float(p.layer), float(p.r), float(p.view.mu), float(p.view.azimuth_rad));
         return rgb(lookup_skyview(lut, p.layer, atm, q0.y, {q0.z, q0.w}));
@@ -225,13 +247,13 @@ TEST(AtmosphereDecode, LookupSkyview) {
 }
 
 TEST(AtmosphereDecode, SkyviewDirectionFromVectors) {
-  const Atmosphere& atm = separate_mie_scene().atmosphere;
+  const BakedScene& s = separate_mie_scene();
   const Comparison c = run_case(
       {"skyview_direction_from_vectors (mu, azimuth / 2 pi)", {"sky_view.glsl"}, "",
        "vec4(skyview_direction_from_vectors(vec3(0.0, 0.0, 1.0), q0.xyz, q1.xyz).mu, "
        "skyview_direction_from_vectors(vec3(0.0, 0.0, 1.0), q0.xyz, q1.xyz).azimuth / (2.0 * kPi), 0.0, 0.0)",
        {}, 2},
-      atm, [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
+      s.parameters("transmittance"), [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
         // Directions uniform on the sphere; azimuths near 0 / 2 pi (the
         // wrap) left out, where 1 ulp moves the result by a whole turn.
         auto dir = [&](uint32_t d) {
@@ -277,7 +299,7 @@ TEST(AtmosphereDecode, LookupAerialPerspective) {
       {"lookup_aerial_perspective", {"sky_view.glsl"},
        "layout(binding = 0) uniform sampler3D lut;\nuniform float depth_range_m;",
        "lookup_aerial_perspective(lut, depth_range_m, q0.xy, q0.z)", {&tex}, 4},
-      atm,
+      s.parameters("aerial_perspective"),
       [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const AerialQueryPoint p = aerial_query(atm, spec, i);
         q0 = glm::vec4(float(p.screen_uv.x), float(p.screen_uv.y), float(p.distance_m), 0.0f);
@@ -297,7 +319,7 @@ TEST(AtmosphereDecode, LookupSunDiskLuminance) {
   const Comparison c = run_case(
       {"lookup_sun_disk_luminance", {"sky_view.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
        "vec4(lookup_sun_disk_luminance(atm, lut, vec3(0.0, 0.0, q0.x), q0.yzw, q1.xyz), 0.0)", {&tex}},
-      atm, [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
+      s.parameters("transmittance"), [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
         // Viewers from the ground to space; suns from the zenith to below
         // the horizon; view directions within 2 alpha of the sun, away from
         // the disk's edge (0.9 to 1.1 alpha), where one ulp decides.
@@ -347,7 +369,7 @@ TEST(AtmosphereDecode, LookupScatteringSeparateMie) {
        "layout(binding = 1) uniform sampler3D single_mie;\nuniform ScatteringShape shape;",
        "vec4(lookup_scattering(scattering, single_mie, shape, atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
        {&t0, &t1}},
-      atm,
+      s.parameters("scattering"),
       [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
         const glm::dvec4 q = scattering_query(s, shape, i, q0, q1);
         return rgb(lookup_scattering(scattering, single_mie, shape, atm, q.x, q.y, q.z, q.w,
@@ -369,7 +391,7 @@ TEST(AtmosphereDecode, LookupScatteringMieInAlpha) {
        "layout(binding = 0) uniform sampler3D scattering;\nuniform ScatteringShape shape;",
        "vec4(lookup_scattering(scattering, shape, atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
        {&t0}},
-      atm,
+      s.parameters("scattering"),
       [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
         const glm::dvec4 q = scattering_query(s, shape, i, q0, q1);
         return rgb(lookup_scattering(scattering, Texture(), shape, atm, q.x, q.y, q.z, q.w,
@@ -388,7 +410,7 @@ TEST(AtmosphereDecode, LookupIrradiance) {
   const Comparison c = run_case(
       {"lookup_irradiance", {"bruneton.glsl"}, "layout(binding = 0) uniform sampler2D table;",
        "vec4(lookup_irradiance(table, atm, q0.x, q0.y), 0.0)", {&tex}},
-      atm, [&](size_t i, glm::vec4& q0, glm::vec4&) {
+      s.parameters("irradiance"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const RadiusCosine p = irradiance_query(atm, i, mu_s_min);
         q0 = glm::vec4(float(p.r), float(p.mu), 0.0f, 0.0f);
         return rgb(lookup_irradiance(table, atm, q0.x, q0.y));
@@ -404,7 +426,7 @@ TEST(AtmosphereDecode, ComputeDirectIrradiance) {
   const Comparison c = run_case(
       {"compute_direct_irradiance", {"bruneton.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
        "vec4(compute_direct_irradiance(atm, lut, q0.x, q0.y), 0.0)", {&tex}},
-      atm, [&](size_t i, glm::vec4& q0, glm::vec4&) {
+      s.parameters("transmittance"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const double u = unit(i, 120);
         const double r = atm.bottom_radius_m + (atm.top_radius_m - atm.bottom_radius_m) * u * u;
         q0 = glm::vec4(float(r), float(2.0 * unit(i, 121) - 1.0), 0.0f, 0.0f);
@@ -442,7 +464,7 @@ TEST(AtmosphereDecode, LookupScattering3dMieInAlpha) {
        "layout(binding = 0) uniform sampler3D scattering;\nuniform Scattering3dShape shape;",
        "vec4(lookup_scattering3d(scattering, shape, atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
        {&tex}},
-      atm,
+      s.parameters("scattering3d"),
       [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
         const glm::dvec4 q = scattering3d_query(atm, i, q0, q1);
         return rgb(lookup_scattering3d(table, Texture(), shape, atm, q.x, q.y, q.z, q.w, q1.x > 0.5f));
@@ -471,7 +493,7 @@ TEST(AtmosphereDecode, LookupScattering3dSeparateMie) {
        "layout(binding = 1) uniform sampler3D mie;\nuniform Scattering3dShape shape;",
        "vec4(lookup_scattering3d(scattering, mie, shape, atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
        {&t0, &t1}},
-      atm,
+      s.parameters("scattering3d"),
       [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
         const glm::dvec4 q = scattering3d_query(atm, i, q0, q1);
         return rgb(lookup_scattering3d(baked.scattering, baked.mie, baked.shape, atm, q.x, q.y,
@@ -489,7 +511,7 @@ TEST(AtmosphereDecode, LookupGathering) {
   const Comparison c = run_case(
       {"lookup_gathering", {"scattering3d.glsl"}, "layout(binding = 0) uniform sampler2D table;",
        "vec4(lookup_gathering(table, atm, q0.x, q0.y), 0.0)", {&tex}},
-      atm, [&](size_t i, glm::vec4& q0, glm::vec4&) {
+      s.parameters("gathering_sum"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const AltitudeSunCosine p = gathering_query(atm, i);
         q0 = glm::vec4(float(p.h), float(p.mu_s), 0.0f, 0.0f);
         return rgb(lookup_gathering(table, atm, q0.x, q0.y));

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "atmosphere/scattering_lut.hpp"
@@ -105,25 +106,120 @@ const BakedScene& alpha_mie_scene() {
   return scene;
 }
 
-void set_atmosphere_uniform(const ComputeProgram& program, const std::string& name,
-                            const Atmosphere& atm) {
+GlAtmosphere gl_atmosphere(const Atmosphere& atm) {
   const ScatteringPhases phases = scattering_phases(atm);
-  auto set_f = [&](const std::string& member, float v) {
+  GlAtmosphere g;
+  g.bottom_radius = float(atm.bottom_radius_m);
+  g.top_radius = float(atm.top_radius_m);
+  g.sun_illuminance = glm::vec3(atm.sun_illuminance);
+  g.sun_angular_radius = float(atm.sun_angular_radius_rad);
+  g.ground_albedo = glm::vec3(atm.ground_albedo);
+  g.rayleigh_scattering = glm::vec3(phases.rayleigh_per_m);
+  g.mie_scattering = glm::vec3(phases.mie_per_m);
+  g.mie_phase = phases.mie_phase == PhaseKind::henyey_greenstein ? 1 : 0;
+  g.mie_g = float(phases.mie_g);
+  return g;
+}
+
+namespace {
+
+// A metadata vector written as a JSON array or as "a,b,c".
+glm::vec3 meta_vec3(const nlohmann::json& v) {
+  std::vector<double> x;
+  if (v.is_array()) {
+    x = v.get<std::vector<double>>();
+  } else {
+    std::stringstream in(v.get<std::string>());
+    std::string item;
+    while (std::getline(in, item, ',')) x.push_back(std::stod(item));
+  }
+  if (x.size() != 3) throw std::runtime_error("expected 3 values, got " + v.dump());
+  return glm::vec3(float(x[0]), float(x[1]), float(x[2]));
+}
+
+float meta_float(const nlohmann::json& v) {
+  return float(v.is_number() ? v.get<double>() : std::stod(v.get<std::string>()));
+}
+
+}  // namespace
+
+GlAtmosphere BakedScene::parameters(const std::string& output) const {
+  GlAtmosphere g = gl_atmosphere(atmosphere);
+  const nlohmann::json& meta = entry(output).at("metadata");
+  g.bottom_radius = meta_float(meta.at("bottom_radius_m"));
+  g.top_radius = meta_float(meta.at("top_radius_m"));
+  if (meta.contains("rayleigh_scattering_per_m"))
+    g.rayleigh_scattering = meta_vec3(meta.at("rayleigh_scattering_per_m"));
+  if (meta.contains("mie_scattering_per_m")) g.mie_scattering = meta_vec3(meta.at("mie_scattering_per_m"));
+  if (meta.contains("mie_g")) g.mie_g = meta_float(meta.at("mie_g"));
+  if (meta.contains("mie_phase")) {
+    const std::string phase = meta.at("mie_phase").get<std::string>();
+    if (phase != "cornette_shanks" && phase != "henyey_greenstein")
+      throw std::runtime_error(output + ": unknown mie_phase " + phase);
+    g.mie_phase = phase == "henyey_greenstein" ? 1 : 0;
+  }
+  if (meta.contains("sun_angular_radius_rad"))
+    g.sun_angular_radius = meta_float(meta.at("sun_angular_radius_rad"));
+  return g;
+}
+
+void set_atmosphere_uniform(const ComputeProgram& program, const std::string& name,
+                            const GlAtmosphere& atm) {
+  auto set = [&](const std::string& member, auto v) {
     if (program.has_uniform(name + "." + member)) program.set(name + "." + member, v);
   };
-  auto set_v = [&](const std::string& member, glm::dvec3 v) {
-    if (program.has_uniform(name + "." + member)) program.set(name + "." + member, glm::vec3(v));
+  set("bottom_radius", atm.bottom_radius);
+  set("top_radius", atm.top_radius);
+  set("sun_illuminance", atm.sun_illuminance);
+  set("sun_angular_radius", atm.sun_angular_radius);
+  set("ground_albedo", atm.ground_albedo);
+  set("rayleigh_scattering", atm.rayleigh_scattering);
+  set("mie_scattering", atm.mie_scattering);
+  set("mie_phase", atm.mie_phase);
+  set("mie_g", atm.mie_g);
+}
+
+void set_medium_uniform(const ComputeProgram& program, const std::string& name,
+                        const Atmosphere& atm) {
+  constexpr int kMaxComponents = 4, kMaxLayers = 2;  // sky_raymarch.glsl
+  if (atm.components.size() > size_t(kMaxComponents))
+    throw std::runtime_error("the atmosphere has " + std::to_string(atm.components.size()) +
+                             " components, AtmosphereMedium holds " + std::to_string(kMaxComponents));
+  auto set_f = [&](const std::string& n, float v) {
+    if (program.has_uniform(n)) program.set(n, v);
   };
-  set_f("bottom_radius", float(atm.bottom_radius_m));
-  set_f("top_radius", float(atm.top_radius_m));
-  set_v("sun_illuminance", atm.sun_illuminance);
-  set_f("sun_angular_radius", float(atm.sun_angular_radius_rad));
-  set_v("ground_albedo", atm.ground_albedo);
-  set_v("rayleigh_scattering", phases.rayleigh_per_m);
-  set_v("mie_scattering", phases.mie_per_m);
-  if (program.has_uniform(name + ".mie_phase"))
-    program.set(name + ".mie_phase", phases.mie_phase == PhaseKind::henyey_greenstein ? 1 : 0);
-  set_f("mie_g", float(phases.mie_g));
+  auto set_i = [&](const std::string& n, int v) {
+    if (program.has_uniform(n)) program.set(n, v);
+  };
+  set_i(name + ".component_count", int(atm.components.size()));
+  for (size_t k = 0; k < atm.components.size(); ++k) {
+    const MediumComponent& c = atm.components[k];
+    const std::string base = name + ".components[" + std::to_string(k) + "]";
+    if (c.density.layers.size() > size_t(kMaxLayers))
+      throw std::runtime_error("component " + c.name + " has " +
+                               std::to_string(c.density.layers.size()) + " layers, at most " +
+                               std::to_string(kMaxLayers) + " fit");
+    if (program.has_uniform(base + ".scattering"))
+      program.set(base + ".scattering", glm::vec3(c.scattering_per_m));
+    if (program.has_uniform(base + ".absorption"))
+      program.set(base + ".absorption", glm::vec3(c.absorption_per_m));
+    const int phase = c.phase == PhaseKind::rayleigh            ? 1
+                      : c.phase == PhaseKind::cornette_shanks   ? 2
+                      : c.phase == PhaseKind::henyey_greenstein ? 3
+                                                                : 0;
+    set_i(base + ".phase", phase);
+    set_f(base + ".g", float(c.g));
+    set_i(base + ".layer_count", int(c.density.layers.size()));
+    for (size_t l = 0; l < c.density.layers.size(); ++l) {
+      const DensityLayer& d = c.density.layers[l];
+      const std::string lb = base + ".layers[" + std::to_string(l) + "]";
+      set_f(lb + ".width", float(d.width_m));
+      set_f(lb + ".exp_term", float(d.exp_term));
+      set_f(lb + ".exp_scale", float(d.exp_scale_per_m));
+      set_f(lb + ".linear_term", float(d.linear_term_per_m));
+      set_f(lb + ".constant_term", float(d.constant_term));
+    }
+  }
 }
 
 std::string query_shader(const std::string& declarations, const std::string& expression) {

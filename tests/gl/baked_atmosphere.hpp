@@ -20,6 +20,19 @@
 
 namespace skybake::gltest {
 
+// AtmosphereParameters of runtime/glsl/atmosphere_common.glsl, as floats.
+struct GlAtmosphere {
+  float bottom_radius = 0, top_radius = 0;
+  glm::vec3 sun_illuminance{1.0f};
+  float sun_angular_radius = 0;
+  glm::vec3 ground_albedo{0.0f}, rayleigh_scattering{0.0f}, mie_scattering{0.0f};
+  int mie_phase = 0;  // 0 Cornette-Shanks, 1 Henyey-Greenstein
+  float mie_g = 0;
+};
+
+// From the preset's atmosphere (scattering_phases for the groups).
+GlAtmosphere gl_atmosphere(const Atmosphere& atm);
+
 struct BakedScene {
   std::string folder;      // out/<scene>/
   Atmosphere atmosphere;   // as load_scene read the preset
@@ -31,6 +44,11 @@ struct BakedScene {
   // the string of one).
   double meta_number(const std::string& output, const std::string& key) const;
   std::string dds_path(const std::string& output) const;
+  // What an engine reads from the output's manifest metadata: the radii
+  // (every table), the Rayleigh and Mie coefficients, Mie phase and g (the
+  // precomputed tables), the sun's angular radius (irradiance); what the
+  // output does not record comes from the preset (gl_atmosphere).
+  GlAtmosphere parameters(const std::string& output) const;
   // The DDS file decoded by our reader (level 0): what the C++ lookups read.
   Texture texture(const std::string& output) const;
 };
@@ -45,7 +63,13 @@ const BakedScene& alpha_mie_scene();
 // runtime/glsl/atmosphere_common.glsl) from an Atmosphere; members the
 // program does not use are skipped.
 void set_atmosphere_uniform(const ComputeProgram& program, const std::string& name,
-                            const Atmosphere& atm);
+                            const GlAtmosphere& atm);
+
+// Sets the uniform struct `name` (AtmosphereMedium of
+// runtime/glsl/sky_raymarch.glsl) from the atmosphere's components; throws
+// when it has more components or layers than the struct holds.
+void set_medium_uniform(const ComputeProgram& program, const std::string& name,
+                        const Atmosphere& atm);
 
 // Runs `program` once per query: binding 0 holds the queries (two vec4 each,
 // query i at 2i and 2i + 1), binding 1 receives one vec4 per query; the

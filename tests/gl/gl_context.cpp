@@ -218,6 +218,10 @@ void ComputeProgram::set(const std::string& name, const glm::vec4& v) const {
   glProgramUniform4f(id_, uniform(name), v.x, v.y, v.z, v.w);
 }
 
+void ComputeProgram::set(const std::string& name, const glm::ivec2& v) const {
+  glProgramUniform2i(id_, uniform(name), v.x, v.y);
+}
+
 ComputeProgram compile_compute(const std::vector<std::string>& includes, const std::string& body) {
   GlContext::shared();
   const std::string source = "#version 450 core\n" + runtime_source(includes) + body;

@@ -88,6 +88,7 @@ class ComputeProgram {
   void set(const std::string& name, const glm::vec2& v) const;
   void set(const std::string& name, const glm::vec3& v) const;
   void set(const std::string& name, const glm::vec4& v) const;
+  void set(const std::string& name, const glm::ivec2& v) const;
 
  private:
   unsigned id_ = 0;
