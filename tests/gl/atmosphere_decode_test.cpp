@@ -138,7 +138,7 @@ TEST(AtmosphereDecode, LookupTransmittanceToTop) {
   const BakedScene& s = separate_mie_scene();
   const Atmosphere& atm = s.atmosphere;
   const Texture lut = s.texture("transmittance");
-  const GlTexture tex = upload_dds(s.dds_path("transmittance"), kClamp);
+  const GlTexture tex = upload_dds(s.dds_path("transmittance"), s.sampler("transmittance", kClamp));
   const Comparison c = run_case(
       {"lookup_transmittance_to_top", {"transmittance.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
        "vec4(lookup_transmittance_to_top(lut, atm, q0.x, q0.y), 0.0)", {&tex}},
@@ -154,7 +154,7 @@ TEST(AtmosphereDecode, LookupTransmittance) {
   const BakedScene& s = separate_mie_scene();
   const Atmosphere& atm = s.atmosphere;
   const Texture lut = s.texture("transmittance");
-  const GlTexture tex = upload_dds(s.dds_path("transmittance"), kClamp);
+  const GlTexture tex = upload_dds(s.dds_path("transmittance"), s.sampler("transmittance", kClamp));
   const Comparison c = run_case(
       {"lookup_transmittance", {"transmittance.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
        "vec4(lookup_transmittance(lut, atm, q0.x, q0.y, q0.z, q0.w > 0.5), 0.0)", {&tex}},
@@ -175,7 +175,7 @@ TEST(AtmosphereDecode, LookupSunTransmittance) {
   const BakedScene& s = separate_mie_scene();
   const Atmosphere& atm = s.atmosphere;
   const Texture lut = s.texture("transmittance");
-  const GlTexture tex = upload_dds(s.dds_path("transmittance"), kClamp);
+  const GlTexture tex = upload_dds(s.dds_path("transmittance"), s.sampler("transmittance", kClamp));
   const Comparison c = run_case(
       {"lookup_sun_transmittance", {"transmittance.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
        "vec4(lookup_sun_transmittance(lut, atm, q0.x, q0.y), 0.0)", {&tex}},
@@ -194,7 +194,7 @@ TEST(AtmosphereDecode, LookupMultiscattering) {
   const BakedScene& s = separate_mie_scene();
   const Atmosphere& atm = s.atmosphere;
   const Texture lut = s.texture("multiscattering");
-  const GlTexture tex = upload_dds(s.dds_path("multiscattering"), kClamp);
+  const GlTexture tex = upload_dds(s.dds_path("multiscattering"), s.sampler("multiscattering", kClamp));
   const Comparison c = run_case(
       {"lookup_multiscattering", {"multiscattering.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
        "vec4(lookup_multiscattering(lut, atm, q0.x, q0.y), 0.0)", {&tex}},
@@ -222,9 +222,15 @@ std::vector<SkyviewView> skyview_views(const BakedScene& s) {
     const nlohmann::json& v = meta.at(key);
     return v.is_array() ? v.get<std::vector<double>>() : numbers(v.get<std::string>());
   };
-  const std::vector<double> altitude = list("layer_altitude_m"), zenith = list("layer_sun_zenith_rad");
   std::vector<SkyviewView> views;
-  for (size_t k = 0; k < altitude.size(); ++k) views.push_back({altitude[k], zenith.at(k)});
+  if (meta.contains("layer_altitude_m")) {  // one list per parameter
+    const std::vector<double> altitude = list("layer_altitude_m"), zenith = list("layer_sun_zenith_rad");
+    for (size_t k = 0; k < altitude.size(); ++k) views.push_back({altitude[k], zenith.at(k)});
+    return views;
+  }
+  for (int k = 0; meta.contains("layer." + std::to_string(k) + ".altitude_m"); ++k)  // a key per layer
+    views.push_back({s.meta_number("skyview", "layer." + std::to_string(k) + ".altitude_m"),
+                     s.meta_number("skyview", "layer." + std::to_string(k) + ".sun_zenith_rad")});
   return views;
 }
 
@@ -232,7 +238,7 @@ TEST(AtmosphereDecode, LookupSkyview) {
   const BakedScene& s = separate_mie_scene();
   const Atmosphere& atm = s.atmosphere;
   const Texture lut = s.texture("skyview");
-  const GlTexture tex = upload_dds(s.dds_path("skyview"), kRepeatU, true);
+  const GlTexture tex = upload_dds(s.dds_path("skyview"), s.sampler("skyview", kRepeatU), true);
   const std::vector<SkyviewView> views = skyview_views(s);
   ASSERT_EQ(views.size(), 2u);
   const Comparison c = run_case(
@@ -293,7 +299,7 @@ TEST(AtmosphereDecode, LookupAerialPerspective) {
   const BakedScene& s = separate_mie_scene();
   const Atmosphere& atm = s.atmosphere;
   const Texture lut = s.texture("aerial_perspective");
-  const GlTexture tex = upload_dds(s.dds_path("aerial_perspective"), kClamp);
+  const GlTexture tex = upload_dds(s.dds_path("aerial_perspective"), s.sampler("aerial_perspective", kClamp));
   const AerialPerspectiveSpec spec = aerial_spec(s);
   const Comparison c = run_case(
       {"lookup_aerial_perspective", {"sky_view.glsl"},
@@ -314,7 +320,7 @@ TEST(AtmosphereDecode, LookupSunDiskLuminance) {
   const BakedScene& s = separate_mie_scene();
   const Atmosphere& atm = s.atmosphere;
   const Texture lut = s.texture("transmittance");
-  const GlTexture tex = upload_dds(s.dds_path("transmittance"), kClamp);
+  const GlTexture tex = upload_dds(s.dds_path("transmittance"), s.sampler("transmittance", kClamp));
   const double alpha = atm.sun_angular_radius_rad;
   const Comparison c = run_case(
       {"lookup_sun_disk_luminance", {"sky_view.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
@@ -361,8 +367,8 @@ TEST(AtmosphereDecode, LookupScatteringSeparateMie) {
   const Atmosphere& atm = s.atmosphere;
   const ScatteringShape shape = shape_of(s);
   const Texture scattering = s.texture("scattering"), single_mie = s.texture("single_mie");
-  const GlTexture t0 = upload_dds(s.dds_path("scattering"), kClamp);
-  const GlTexture t1 = upload_dds(s.dds_path("single_mie"), kClamp);
+  const GlTexture t0 = upload_dds(s.dds_path("scattering"), s.sampler("scattering", kClamp));
+  const GlTexture t1 = upload_dds(s.dds_path("single_mie"), s.sampler("single_mie", kClamp));
   const Comparison c = run_case(
       {"lookup_scattering (single Mie table)", {"bruneton.glsl"},
        "layout(binding = 0) uniform sampler3D scattering;\n"
@@ -385,7 +391,7 @@ TEST(AtmosphereDecode, LookupScatteringMieInAlpha) {
   const ScatteringShape shape = shape_of(s);
   const Texture scattering = s.texture("scattering");
   ASSERT_EQ(scattering.channel_count(), 4);
-  const GlTexture t0 = upload_dds(s.dds_path("scattering"), kClamp);
+  const GlTexture t0 = upload_dds(s.dds_path("scattering"), s.sampler("scattering", kClamp));
   const Comparison c = run_case(
       {"lookup_scattering (Mie in alpha)", {"bruneton.glsl"},
        "layout(binding = 0) uniform sampler3D scattering;\nuniform ScatteringShape shape;",
@@ -405,7 +411,7 @@ TEST(AtmosphereDecode, LookupIrradiance) {
   const BakedScene& s = separate_mie_scene();
   const Atmosphere& atm = s.atmosphere;
   const Texture table = s.texture("irradiance");
-  const GlTexture tex = upload_dds(s.dds_path("irradiance"), kClamp);
+  const GlTexture tex = upload_dds(s.dds_path("irradiance"), s.sampler("irradiance", kClamp));
   const double mu_s_min = s.meta_number("scattering", "mu_s_min");
   const Comparison c = run_case(
       {"lookup_irradiance", {"bruneton.glsl"}, "layout(binding = 0) uniform sampler2D table;",
@@ -422,7 +428,7 @@ TEST(AtmosphereDecode, ComputeDirectIrradiance) {
   const BakedScene& s = separate_mie_scene();
   const Atmosphere& atm = s.atmosphere;
   const Texture lut = s.texture("transmittance");
-  const GlTexture tex = upload_dds(s.dds_path("transmittance"), kClamp);
+  const GlTexture tex = upload_dds(s.dds_path("transmittance"), s.sampler("transmittance", kClamp));
   const Comparison c = run_case(
       {"compute_direct_irradiance", {"bruneton.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
        "vec4(compute_direct_irradiance(atm, lut, q0.x, q0.y), 0.0)", {&tex}},
@@ -458,7 +464,7 @@ TEST(AtmosphereDecode, LookupScattering3dMieInAlpha) {
   const Texture table = s.texture("scattering3d");
   ASSERT_EQ(table.channel_count(), 4);
   const Scattering3dShape shape{table.width, table.height, table.depth};
-  const GlTexture tex = upload_dds(s.dds_path("scattering3d"), kClamp);
+  const GlTexture tex = upload_dds(s.dds_path("scattering3d"), s.sampler("scattering3d", kClamp));
   const Comparison c = run_case(
       {"lookup_scattering3d (Mie in alpha)", {"scattering3d.glsl"},
        "layout(binding = 0) uniform sampler3D scattering;\nuniform Scattering3dShape shape;",
@@ -507,7 +513,7 @@ TEST(AtmosphereDecode, LookupGathering) {
   const BakedScene& s = separate_mie_scene();
   const Atmosphere& atm = s.atmosphere;
   const Texture table = s.texture("gathering_sum");
-  const GlTexture tex = upload_dds(s.dds_path("gathering_sum"), kClamp);
+  const GlTexture tex = upload_dds(s.dds_path("gathering_sum"), s.sampler("gathering_sum", kClamp));
   const Comparison c = run_case(
       {"lookup_gathering", {"scattering3d.glsl"}, "layout(binding = 0) uniform sampler2D table;",
        "vec4(lookup_gathering(table, atm, q0.x, q0.y), 0.0)", {&tex}},

@@ -154,13 +154,35 @@ GlAtmosphere BakedScene::parameters(const std::string& output) const {
   if (meta.contains("mie_g")) g.mie_g = meta_float(meta.at("mie_g"));
   if (meta.contains("mie_phase")) {
     const std::string phase = meta.at("mie_phase").get<std::string>();
-    if (phase != "cornette_shanks" && phase != "henyey_greenstein")
+    if (phase != "cornette_shanks" && phase != "henyey_greenstein" && phase != "none")
       throw std::runtime_error(output + ": unknown mie_phase " + phase);
     g.mie_phase = phase == "henyey_greenstein" ? 1 : 0;
+  }
+  if (meta.contains("solar_irradiance")) {
+    const nlohmann::json& e = meta.at("solar_irradiance");
+    g.sun_illuminance = e.is_number() ? glm::vec3(e.get<float>()) : meta_vec3(e);
   }
   if (meta.contains("sun_angular_radius_rad"))
     g.sun_angular_radius = meta_float(meta.at("sun_angular_radius_rad"));
   return g;
+}
+
+SamplerState BakedScene::sampler(const std::string& output, const SamplerState& fallback) const {
+  const nlohmann::json& meta = entry(output).at("metadata");
+  if (!meta.contains("filter")) return fallback;
+  auto word = [&](const char* key) { return meta.at(key).get<std::string>(); };
+  auto wrap = [&](const char* key, Wrap otherwise) {
+    if (!meta.contains(key)) return otherwise;
+    const std::string w = word(key);
+    if (w == "clamp" || w == "clamp_to_edge") return Wrap::clamp_to_edge;
+    if (w == "repeat" || w == "wrap") return Wrap::repeat;
+    throw std::runtime_error(output + ": unknown " + key + " " + w);
+  };
+  const std::string f = word("filter");
+  if (f != "linear" && f != "nearest" && f != "point")
+    throw std::runtime_error(output + ": unknown filter " + f);
+  return {f == "linear" ? Filter::linear : Filter::nearest, wrap("wrap_u", fallback.wrap_s),
+          wrap("wrap_v", fallback.wrap_t), wrap("wrap_w", fallback.wrap_r)};
 }
 
 void set_atmosphere_uniform(const ComputeProgram& program, const std::string& name,

@@ -49,6 +49,9 @@ struct BakedScene {
   // precomputed tables), the sun's angular radius (irradiance); what the
   // output does not record comes from the preset (gl_atmosphere).
   GlAtmosphere parameters(const std::string& output) const;
+  // The sampler state the output's metadata asks for (filter, wrap_u,
+  // wrap_v, wrap_w), or `fallback` when it records none.
+  SamplerState sampler(const std::string& output, const SamplerState& fallback) const;
   // The DDS file decoded by our reader (level 0): what the C++ lookups read.
   Texture texture(const std::string& output) const;
 };
