@@ -30,7 +30,11 @@
 // Channel mapping and conversions as our DDS writer: channels fill R, G, B, A
 // in order, a missing component is 0, a missing alpha 1; half clamps to
 // +-65504 and rounds to nearest even; unorm8 clamps to [0, 1] and stores
-// round(v * 255). No Inf or NaN reaches a file.
+// round(v * 255). Block-compressed formats (BC1 RGB, BC3, BC4, BC5, UNORM)
+// encode each 2D slice of a level with encode_bc (io/block_compression.hpp:
+// values clamped to [0, 1]); a 3D level is its slices in order (blocks are
+// 4x4x1) and a slice whose sides are not multiples of 4 is padded to whole
+// blocks. No Inf or NaN reaches a file.
 #pragma once
 
 #include <cstdint>

@@ -40,6 +40,44 @@ BasicDfd uncompressed(const Ktx2FormatInfo& f) {
   return d;
 }
 
+// The block-compressed models (Data Format Specification 1.3, "BC1A",
+// "BC3", "BC4", "BC5"): one 64-bit sample per independent half of a block,
+// bounds 0 and 0xFFFFFFFF (UNORM).
+BasicDfd block_compressed(const Ktx2FormatInfo& f) {
+  BasicDfd d;
+  d.bytes_plane[0] = uint8_t(f.block_bytes);
+  const auto half = [&d](uint8_t channel, uint32_t bit_offset) {
+    DfdSample s;
+    s.bit_offset = bit_offset;
+    s.bit_length = 64;
+    s.channel_type = channel;
+    s.lower = 0;
+    s.upper = 0xFFFFFFFFu;
+    d.samples.push_back(s);
+  };
+  switch (f.bc) {
+    case BcFormat::bc1:
+      d.color_model = dfd::kModelBc1a;
+      half(dfd::kChannelRed, 0);  // KHR_DF_CHANNEL_BC1A_COLOR: no alpha
+      break;
+    case BcFormat::bc3:
+      d.color_model = dfd::kModelBc3;
+      half(dfd::kChannelBc3Alpha, 0);  // the alpha block, then the colour block
+      half(dfd::kChannelRed, 64);
+      break;
+    case BcFormat::bc4:
+      d.color_model = dfd::kModelBc4;
+      half(dfd::kChannelRed, 0);  // KHR_DF_CHANNEL_BC4_DATA
+      break;
+    case BcFormat::bc5:
+      d.color_model = dfd::kModelBc5;
+      half(dfd::kChannelRed, 0);
+      half(dfd::kChannelGreen, 64);
+      break;
+  }
+  return d;
+}
+
 const char* model_name(uint8_t model) {
   switch (model) {
     case dfd::kModelRgbsda:
@@ -76,7 +114,7 @@ bool DfdSample::operator==(const DfdSample& o) const {
 BasicDfd dfd_for_vk_format(uint32_t vk_format) {
   const Ktx2FormatInfo* f = find_ktx2_format(vk_format);
   if (!f) throw Error(fmt::format("no data format descriptor for vkFormat {}", vk_format));
-  BasicDfd d = uncompressed(*f);
+  BasicDfd d = f->encoding == Ktx2Encoding::bc ? block_compressed(*f) : uncompressed(*f);
   d.vendor_id = 0;
   d.descriptor_type = 0;
   d.version = dfd::kVersion13;

@@ -20,6 +20,15 @@ const std::vector<Ktx2FormatInfo> kFormats = {
     {Ktx2Format::R16G16B16A16_SFLOAT, "R16G16B16A16_SFLOAT", 4, 8, 1, 1, 2, Ktx2Encoding::half},
     {Ktx2Format::R32_SFLOAT, "R32_SFLOAT", 1, 4, 1, 1, 4, Ktx2Encoding::float32},
     {Ktx2Format::R32G32B32A32_SFLOAT, "R32G32B32A32_SFLOAT", 4, 16, 1, 1, 4, Ktx2Encoding::float32},
+    // BC1 without alpha: our encoder stores RGB and its blocks decode alpha as 1.
+    {Ktx2Format::BC1_RGB_UNORM_BLOCK, "BC1_RGB_UNORM_BLOCK", 3, 8, 4, 4, 1, Ktx2Encoding::bc,
+     BcFormat::bc1},
+    {Ktx2Format::BC3_UNORM_BLOCK, "BC3_UNORM_BLOCK", 4, 16, 4, 4, 1, Ktx2Encoding::bc,
+     BcFormat::bc3},
+    {Ktx2Format::BC4_UNORM_BLOCK, "BC4_UNORM_BLOCK", 1, 8, 4, 4, 1, Ktx2Encoding::bc,
+     BcFormat::bc4},
+    {Ktx2Format::BC5_UNORM_BLOCK, "BC5_UNORM_BLOCK", 2, 16, 4, 4, 1, Ktx2Encoding::bc,
+     BcFormat::bc5},
 };
 
 }  // namespace

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "io/block_compression.hpp"
+
 namespace skybake {
 
 // Each value is its VkFormat code (Vulkan specification, "Formats").
@@ -18,9 +20,14 @@ enum class Ktx2Format : uint32_t {
   R16G16B16A16_SFLOAT = 97,
   R32_SFLOAT = 100,
   R32G32B32A32_SFLOAT = 109,
+  BC1_RGB_UNORM_BLOCK = 131,
+  BC3_UNORM_BLOCK = 137,
+  BC4_UNORM_BLOCK = 139,
+  BC5_UNORM_BLOCK = 141,
 };
 
-enum class Ktx2Encoding { float32, half, unorm8 };
+// bc: 4x4 blocks through io/block_compression.hpp (BcFormat in Ktx2FormatInfo::bc).
+enum class Ktx2Encoding { float32, half, unorm8, bc };
 
 struct Ktx2FormatInfo {
   Ktx2Format format;
@@ -31,6 +38,7 @@ struct Ktx2FormatInfo {
   int block_height;
   uint32_t type_size;  // KTX2 typeSize: bytes of one component, 1 for block formats
   Ktx2Encoding encoding;
+  BcFormat bc = BcFormat::bc1;  // the block format when encoding is bc
 };
 
 // Every supported format, in the order of the enum.

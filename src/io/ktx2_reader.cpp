@@ -19,6 +19,7 @@
 #include "core/error.hpp"
 #include "core/half.hpp"
 #include "core/mip_chain.hpp"
+#include "io/block_compression.hpp"
 #include "io/ktx2.hpp"
 #include "io/le_bytes.hpp"
 
@@ -333,23 +334,41 @@ void decode_texel(const Ktx2FormatInfo& f, const uint8_t* src, float* dst) {
       case Ktx2Encoding::unorm8:
         dst[c] = src[c] / 255.0f;
         break;
+      case Ktx2Encoding::bc:  // whole slices at a time: decode_level
+        break;
     }
   }
 }
 
-// Decodes the levels, keeping the first `channels.size()` components.
+// Decodes one level at `src` into `m`, keeping its channels' components.
+void decode_level(const uint8_t* src, const Ktx2FormatInfo& f, Texture& m) {
+  const size_t nc = m.channels.size();
+  if (f.encoding == Ktx2Encoding::bc) {
+    // Slice by slice (block depth 1), as the writer encodes them.
+    const size_t decoded = size_t(bc_decoded_channel_count(f.bc));
+    for (int layer = 0; layer < m.layers; ++layer)
+      for (int z = 0; z < m.depth; ++z) {
+        const std::vector<float> texels = decode_bc(src, m.width, m.height, f.bc);
+        float* dst = m.texel(0, 0, z, layer);
+        for (size_t t = 0; t < size_t(m.width) * size_t(m.height); ++t)
+          std::copy(&texels[t * decoded], &texels[t * decoded] + nc, dst + t * nc);
+        src += bc_slice_bytes(m.width, m.height, f.bc);
+      }
+    return;
+  }
+  float texel[4];
+  for (size_t t = 0; t < m.texel_count(); ++t, src += f.block_bytes) {
+    decode_texel(f, src, texel);
+    std::copy(texel, texel + nc, &m.data[t * nc]);
+  }
+}
+
 void decode_levels(const std::vector<uint8_t>& b, const Layout& l, const Ktx2FormatInfo& f,
                    Ktx2Image& image, const std::vector<std::string>& channels) {
-  const size_t nc = channels.size();
-  float texel[4];
   for (int p = 0; p < l.levels; ++p) {
     Texture m(std::max(1, l.width >> p), std::max(1, l.height >> p), std::max(1, l.depth >> p),
               l.layers, channels);
-    const uint8_t* src = b.data() + l.want[size_t(p)].byte_offset;
-    for (size_t t = 0; t < m.texel_count(); ++t, src += f.block_bytes) {
-      decode_texel(f, src, texel);
-      std::copy(texel, texel + nc, &m.data[t * nc]);
-    }
+    decode_level(b.data() + l.want[size_t(p)].byte_offset, f, m);
     image.mips.push_back(std::move(m));
   }
 }

@@ -14,6 +14,7 @@
 #include "core/error.hpp"
 #include "core/half.hpp"
 #include "core/mip_chain.hpp"
+#include "io/block_compression.hpp"
 #include "io/ktx2.hpp"
 #include "io/le_bytes.hpp"
 
@@ -39,6 +40,8 @@ void encode_texel(const Ktx2FormatInfo& f, const float* src, int nc, uint8_t* ds
         break;
       case Ktx2Encoding::unorm8:
         dst[c] = uint8_t(std::lround(std::clamp(v[c], 0.0f, 1.0f) * 255.0f));
+        break;
+      case Ktx2Encoding::bc:  // whole slices at a time: level_bytes
         break;
     }
   }
@@ -173,6 +176,30 @@ std::vector<uint8_t> file_head(const std::vector<Texture>& mips, const Ktx2Forma
   return h;
 }
 
+// One level's bytes in file order (layers, slices, rows), padded with
+// zeros to `padded` bytes.
+std::vector<uint8_t> level_bytes(const Texture& m, const Ktx2FormatInfo& f, size_t padded) {
+  const int nc = m.channel_count();
+  std::vector<uint8_t> out;
+  out.reserve(padded);
+  if (f.encoding == Ktx2Encoding::bc) {
+    // Block compression works on 2D slices; a 3D level is its slices in
+    // order (block depth 1).
+    for (int layer = 0; layer < m.layers; ++layer)
+      for (int z = 0; z < m.depth; ++z) {
+        const std::vector<uint8_t> blocks =
+            encode_bc(m.texel(0, 0, z, layer), m.width, m.height, nc, f.bc);
+        out.insert(out.end(), blocks.begin(), blocks.end());
+      }
+  } else {
+    out.resize(m.texel_count() * size_t(f.block_bytes));
+    for (size_t t = 0; t < m.texel_count(); ++t)
+      encode_texel(f, m.data.data() + t * size_t(nc), nc, &out[t * size_t(f.block_bytes)]);
+  }
+  out.resize(padded, 0);
+  return out;
+}
+
 }  // namespace
 
 void write_ktx2(const std::string& path, const std::vector<Texture>& mips, Ktx2Format format) {
@@ -185,17 +212,20 @@ void write_ktx2(const std::string& path, const std::vector<Texture>& mips, Ktx2F
     throw IoError(fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno)));
   out.write(reinterpret_cast<const char*>(head.data()), std::streamsize(head.size()));
   const uint64_t align = ktx2_level_alignment(f);
-  const int nc = mips[0].channel_count();
-  std::vector<uint8_t> buf;
-  for (size_t p = mips.size(); p-- > 0 && out;) {
-    const Texture& m = mips[p];
-    const size_t texels = m.texel_count();  // layers, slices, rows: the KTX2 level order
-    const size_t bytes = texels * size_t(f.block_bytes);
-    // Pad to the next level's alignment (the largest level ends the file).
-    buf.assign(p == 0 ? bytes : size_t(align_up(bytes, align)), 0);
-    for (size_t t = 0; t < texels; ++t)
-      encode_texel(f, m.data.data() + t * size_t(nc), nc, &buf[t * size_t(f.block_bytes)]);
-    out.write(reinterpret_cast<const char*>(buf.data()), std::streamsize(buf.size()));
+  try {
+    for (size_t p = mips.size(); p-- > 0 && out;) {  // smallest level first
+      const Texture& m = mips[p];
+      const uint64_t bytes = ktx2_level_bytes(f, uint64_t(m.width), uint64_t(m.height),
+                                              uint64_t(m.depth), uint64_t(m.layers));
+      // Padded to the next level's alignment; the largest level ends the file.
+      const std::vector<uint8_t> buf =
+          level_bytes(m, f, size_t(p == 0 ? bytes : align_up(bytes, align)));
+      out.write(reinterpret_cast<const char*>(buf.data()), std::streamsize(buf.size()));
+    }
+  } catch (...) {  // the block encoder's plugin missing: no partial file
+    out.close();
+    std::remove(path.c_str());
+    throw;
   }
   out.close();
   if (!out) {

@@ -17,6 +17,7 @@
 
 #include "core/half.hpp"
 #include "core/mip_chain.hpp"
+#include "io/block_compression.hpp"
 #include "io/ktx2.hpp"
 #include "support/run.hpp"
 
@@ -78,6 +79,22 @@ const Spec kSpecs[] = {
     {Ktx2Format::R16G16B16A16_SFLOAT, 97, 2, 4, false},
     {Ktx2Format::R32_SFLOAT, 100, 4, 1, false},
     {Ktx2Format::R32G32B32A32_SFLOAT, 109, 4, 4, false},
+};
+
+// Block-compressed formats (Data Format Specification 1.3, "BC1A", "BC3",
+// "BC4", "BC5"; the channel ids of each model): 4x4 blocks, 64-bit samples.
+struct BlockSpec {
+  Ktx2Format format;
+  BcFormat bc;
+  uint32_t vk_format;
+  int components, block_bytes, color_model;
+  std::vector<std::pair<int, int>> samples;  // channel id, bit offset
+};
+const BlockSpec kBlockSpecs[] = {
+    {Ktx2Format::BC1_RGB_UNORM_BLOCK, BcFormat::bc1, 131, 3, 8, 128, {{0, 0}}},
+    {Ktx2Format::BC3_UNORM_BLOCK, BcFormat::bc3, 137, 4, 16, 130, {{15, 0}, {0, 64}}},
+    {Ktx2Format::BC4_UNORM_BLOCK, BcFormat::bc4, 139, 1, 8, 131, {{0, 0}}},
+    {Ktx2Format::BC5_UNORM_BLOCK, BcFormat::bc5, 141, 2, 16, 132, {{0, 0}, {1, 64}}},
 };
 
 // The level's bytes as the specification lays them out: layers, slices,
@@ -188,6 +205,72 @@ void check_file(const Spec& s, int w, int h, int d, int layers, int channels, bo
   EXPECT_EQ(
       k["levels"][0]["byteOffset"].get<uint64_t>() + k["levels"][0]["byteLength"].get<uint64_t>(),
       k["fileLength"].get<uint64_t>());
+}
+
+std::string hex_of(const std::vector<uint8_t>& bytes) {
+  std::string hex;
+  for (uint8_t b : bytes) hex += fmt::format("{:02x}", b);
+  return hex;
+}
+
+void check_block_file(const BlockSpec& s, int w, int h, int d, int layers, int channels) {
+  SCOPED_TRACE(fmt::format("{} {}x{}x{}x{} {} channels", ktx2_format_name(s.format), w, h, d,
+                           layers, channels));
+  std::vector<Texture> levels;
+  const int n = mip_count(w, h, d);
+  for (int p = 0; p < n; ++p)
+    levels.push_back(make(std::max(1, w >> p), std::max(1, h >> p), std::max(1, d >> p), layers,
+                          channels, size_t(p)));
+  const std::string path = test::scratch_file(
+      "io_ktx2_external", "blocks",
+      fmt::format("{}_{}x{}x{}x{}.ktx2", ktx2_format_name(s.format), w, h, d, layers));
+  write_ktx2(path, levels, s.format);
+  const json k = ktx_parse(path);
+  if (k.is_null()) return;
+  EXPECT_EQ(k["vkFormat"], s.vk_format);
+  EXPECT_EQ(k["typeSize"], 1);  // _BLOCK formats
+  EXPECT_EQ(k["pixelDepth"], d > 1 ? d : 0);
+  EXPECT_EQ(k["layerCount"], layers > 1 ? layers : 0);
+  EXPECT_EQ(k["levelCount"], n);
+  const json& dfd = k["dfd"];
+  EXPECT_EQ(dfd["colorModel"], s.color_model);
+  EXPECT_EQ(dfd["colorPrimaries"], 1);
+  EXPECT_EQ(dfd["transferFunction"], 1);
+  EXPECT_EQ(dfd["texelBlockDimension"], json::array({3, 3, 0, 0}));  // 4x4x1 blocks
+  EXPECT_EQ(dfd["bytesPlane"], json::array({s.block_bytes, 0, 0, 0, 0, 0, 0, 0}));
+  ASSERT_EQ(dfd["samples"].size(), s.samples.size());
+  for (size_t i = 0; i < s.samples.size(); ++i) {
+    const json& sample = dfd["samples"][i];
+    EXPECT_EQ(sample["channelType"], s.samples[i].first) << i;
+    EXPECT_EQ(sample["bitOffset"], s.samples[i].second) << i;
+    EXPECT_EQ(sample["bitLength"], 63) << i;
+    EXPECT_EQ(sample["sampleLower"], 0) << i;
+    EXPECT_EQ(sample["sampleUpper"], 0xFFFFFFFFu) << i;
+  }
+  ASSERT_EQ(k["levels"].size(), size_t(n));
+  for (int p = 0; p < n; ++p) {
+    const Texture& m = levels[size_t(p)];
+    const uint64_t blocks = uint64_t((m.width + 3) / 4) * uint64_t((m.height + 3) / 4);
+    const json& level = k["levels"][size_t(p)];
+    EXPECT_EQ(level["byteLength"], blocks * uint64_t(m.depth * m.layers * s.block_bytes)) << p;
+    EXPECT_EQ(level["byteOffset"].get<uint64_t>() % uint64_t(s.block_bytes), 0u) << p;
+    std::vector<uint8_t> want;  // each slice's blocks, layers then slices
+    for (int layer = 0; layer < m.layers; ++layer)
+      for (int z = 0; z < m.depth; ++z) {
+        const std::vector<uint8_t> slice =
+            encode_bc(m.texel(0, 0, z, layer), m.width, m.height, channels, s.bc);
+        want.insert(want.end(), slice.begin(), slice.end());
+      }
+    EXPECT_EQ(level["hex"], hex_of(want)) << "level " << p;
+  }
+}
+
+TEST(Ktx2External, KtxParseReadsBlockCompressedFilesAsTheSpecificationsSay) {
+  for (const BlockSpec& s : kBlockSpecs) {
+    check_block_file(s, 10, 6, 1, 1, s.components);
+    check_block_file(s, 8, 8, 1, 2, 1);
+    check_block_file(s, 4, 4, 3, 1, std::min(s.components, 2));
+  }
 }
 
 TEST(Ktx2External, KtxParseReadsEveryFormatAndShapeAsTheSpecificationsSay) {

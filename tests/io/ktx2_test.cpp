@@ -20,6 +20,7 @@
 #include "core/error.hpp"
 #include "core/half.hpp"
 #include "core/mip_chain.hpp"
+#include "io/block_compression.hpp"
 #include "support/run.hpp"
 
 namespace skybake {
@@ -66,6 +67,8 @@ float exact_value(Ktx2Encoding e, size_t i) {
       return float_from_half(half_from_float(float(int(i % 97) - 40) / 8.0f));
     case Ktx2Encoding::float32:
       return float(std::sin(0.731 * double(i)) * 1000.0);
+    case Ktx2Encoding::bc:  // lossy: any values in [0, 1] (Ktx2BlockRoundTrip)
+      return float(0.5 + 0.5 * std::sin(0.731 * double(i)));
   }
   return 0.0f;
 }
@@ -106,7 +109,8 @@ std::vector<Case> all_cases() {
   std::vector<Case> cases;
   for (const Ktx2FormatInfo& f : ktx2_formats())
     for (bool mips : {false, true}) {
-      cases.push_back({f.format, 7, 5, 1, 1, f.components, mips});               // 2D, odd sizes
+      if (f.encoding == Ktx2Encoding::bc) continue;                 // lossy: Ktx2BlockRoundTrip
+      cases.push_back({f.format, 7, 5, 1, 1, f.components, mips});  // 2D, odd sizes
       cases.push_back({f.format, 8, 4, 1, 3, std::min(f.components, 3), mips});  // 2D array
       cases.push_back({f.format, 4, 6, 5, 1, 1, mips});                          // 3D
     }
@@ -136,6 +140,62 @@ TEST_P(Ktx2RoundTrip, EveryTexelChannelAndKeyComesBackExactly) {
 
 INSTANTIATE_TEST_SUITE_P(AllShapesAndFormats, Ktx2RoundTrip, testing::ValuesIn(all_cases()),
                          case_name);
+
+// What the reader must return for a block-compressed level: each slice
+// encoded and decoded by io/block_compression, the texture's channels kept.
+Texture through_blocks(const Texture& m, BcFormat bc) {
+  Texture out = m;
+  const size_t nc = size_t(m.channel_count()), decoded = size_t(bc_decoded_channel_count(bc));
+  for (int layer = 0; layer < m.layers; ++layer)
+    for (int z = 0; z < m.depth; ++z) {
+      const std::vector<uint8_t> blocks =
+          encode_bc(m.texel(0, 0, z, layer), m.width, m.height, int(nc), bc);
+      const std::vector<float> texels = decode_bc(blocks.data(), m.width, m.height, bc);
+      float* dst = out.texel(0, 0, z, layer);
+      for (size_t t = 0; t < size_t(m.width) * size_t(m.height); ++t)
+        for (size_t c = 0; c < nc; ++c) dst[t * nc + c] = texels[t * decoded + c];
+    }
+  return out;
+}
+
+TEST(Ktx2BlockRoundTrip, EveryLevelComesBackAsItsBlocksDecode) {
+  for (const Ktx2FormatInfo& f : ktx2_formats()) {
+    if (f.encoding != Ktx2Encoding::bc) continue;
+    const struct {
+      int w, h, d, layers;
+    } shapes[] = {{7, 5, 1, 1}, {8, 8, 1, 3}, {4, 6, 5, 1}, {1, 1, 1, 1}};
+    for (const auto& sh : shapes)
+      for (int channels = 1; channels <= f.components; ++channels) {
+        SCOPED_TRACE(fmt::format("{} {}x{}x{}x{} {} channels", f.name, sh.w, sh.h, sh.d, sh.layers,
+                                 channels));
+        const std::vector<Texture> mips =
+            chain(sh.w, sh.h, sh.d, sh.layers, channels, Ktx2Encoding::bc, true);
+        const std::string path = tmp("block_round_trip", std::string(f.name) + ".ktx2");
+        write_ktx2(path, mips, f.format);
+        const Ktx2Image image = read_ktx2(path);
+        ASSERT_EQ(image.mips.size(), mips.size());
+        for (size_t p = 0; p < mips.size(); ++p) {
+          EXPECT_EQ(image.mips[p].channels, mips[p].channels);
+          EXPECT_EQ(image.mips[p].data, through_blocks(mips[p], f.bc).data) << "level " << p;
+        }
+        EXPECT_EQ(image.mips[0].metadata, mips[0].metadata);
+      }
+  }
+}
+
+TEST(Ktx2Layout, BlockLevelsHoldWholeBlocks) {
+  // BC1, 6x5 with mips: levels 6x5, 3x2, 1x1 take 2x2, 1x1, 1x1 blocks of 8 bytes.
+  const std::string path = tmp("layout", "bc1.ktx2");
+  write_ktx2(path, chain(6, 5, 1, 1, 3, Ktx2Encoding::bc, true), Ktx2Format::BC1_RGB_UNORM_BLOCK);
+  const std::vector<uint8_t> b = bytes_of(path);
+  EXPECT_EQ(u32_at(b, 12), 131u);  // VK_FORMAT_BC1_RGB_UNORM_BLOCK
+  EXPECT_EQ(u32_at(b, 16), 1u);    // typeSize of a block format
+  const uint64_t lengths[] = {32, 8, 8};
+  for (int p = 0; p < 3; ++p) {
+    EXPECT_EQ(u64_at(b, 80 + 24 * size_t(p) + 8), lengths[p]) << p;
+    EXPECT_EQ(u64_at(b, 80 + 24 * size_t(p)) % 8, 0u) << p;
+  }
+}
 
 TEST(Ktx2Layout, HeaderIndexAndLevelsSmallestFirstAtAlignedOffsets) {
   // R16_SFLOAT: 2-byte texels, so levels need padding to lcm(2, 4) = 4.

@@ -4,6 +4,7 @@
 // file reads back through read_texture_file (what `skybake info` and
 // check-tiling use) and read_lossless_output; the loader's rules on
 // ktx2_format.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -83,6 +84,28 @@ TEST(Ktx2Output, HalfPrecisionAndAnExplicitFormat) {
   unorm.options["ktx2_format"] = "R8G8B8A8_UNORM";
   EXPECT_EQ(write_outputs(tex, *find_product("aerial_perspective"), unorm, dir)[0].encoding,
             "R8G8B8A8_UNORM");
+}
+
+TEST(Ktx2Output, BlockCompressedFormatsAreWrittenWhenAsked) {
+  const fs::path dir = test::fresh_dir("ktx2_output_bc");
+  const ProductInfo& detail = *find_product("noise_detail");
+  Texture tex(8, 4, 4, 1, {"R", "G", "B"});  // smooth ramps, as noise is inside a block
+  for (int z = 0; z < 4; ++z)
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 8; ++x)
+        for (int c = 0; c < 3; ++c) tex.at(x, y, z, 0, c) = 0.1f + 0.05f * float(x + y + z + c);
+  OutputSpec spec = spec_of("noise_detail", "bc1");
+  spec.options["ktx2_format"] = "BC1_RGB_UNORM_BLOCK";
+  const std::vector<ManifestFile> files = write_outputs(tex, detail, spec, dir);
+  EXPECT_EQ(files[0].encoding, "BC1_RGB_UNORM_BLOCK");
+  const LoadedTexture back = read_texture_file((dir / "bc1.ktx2").string());
+  EXPECT_EQ(back.encoding, "BC1_RGB_UNORM_BLOCK");
+  EXPECT_EQ(back.texture.channels, tex.channels);
+  EXPECT_EQ(back.mip_levels, mip_count(8, 4, 4));
+  // BC1 keeps two 5-6-5 endpoints per 4x4 block and thirds between them
+  // (tests/io/ktx2_test.cpp checks the blocks exactly).
+  for (size_t i = 0; i < tex.data.size(); ++i)
+    ASSERT_NEAR(back.texture.data[i], tex.data[i], 0.06) << i;
 }
 
 TEST(Ktx2Output, NoiseVolumesAre8BitWithTheirTileableMipChain) {
