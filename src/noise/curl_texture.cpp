@@ -72,14 +72,10 @@ Texture bake_curl(const CurlSpec& spec, const BakeContext& ctx) {
   });
   const float scale_rg = *std::max_element(row_max_rg.begin(), row_max_rg.end());
   const float scale_b = *std::max_element(row_max_b.begin(), row_max_b.end());
-  // A constant potential (impossible for Perlin, but cheap to guard) has no scale.
-  const float k_rg = scale_rg > 0.0f ? 0.5f / scale_rg : 0.0f;
-  const float k_b = scale_b > 0.0f ? 0.5f / scale_b : 0.0f;
   for (size_t i = 0; i < tex.data.size(); i += 3) {
-    // Clamp: v * (0.5 / max) can round one ulp past 0.5 at the maximum.
-    tex.data[i] = std::clamp(0.5f + tex.data[i] * k_rg, 0.0f, 1.0f);
-    tex.data[i + 1] = std::clamp(0.5f + tex.data[i + 1] * k_rg, 0.0f, 1.0f);
-    tex.data[i + 2] = std::clamp(0.5f + tex.data[i + 2] * k_b, 0.0f, 1.0f);
+    tex.data[i] = curl_texel_from_value(tex.data[i], scale_rg);
+    tex.data[i + 1] = curl_texel_from_value(tex.data[i + 1], scale_rg);
+    tex.data[i + 2] = curl_texel_from_value(tex.data[i + 2], scale_b);
   }
 
   Metadata& m = tex.metadata;

@@ -20,6 +20,7 @@
 // Threading: tbb::parallel_for over rows; identical output for any thread count.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -39,6 +40,18 @@ struct CurlSpec {
 };
 
 std::vector<SpecProblem> spec_problems(const CurlSpec& spec);
+
+// One component's encoding with its scale (the largest |v| of the bake; 0 for
+// a field that is 0 everywhere) and the decode shaders apply
+// (runtime/glsl/clouds_noise.glsl has both under the same names). Clamped:
+// v * (0.5 / scale) can round one ulp past 0.5 at the maximum.
+inline float curl_texel_from_value(float v, float scale) {
+  const float k = scale > 0.0f ? 0.5f / scale : 0.0f;
+  return std::clamp(0.5f + v * k, 0.0f, 1.0f);
+}
+inline float curl_value_from_texel(float c, float scale) {
+  return (2.0f * c - 1.0f) * scale;
+}
 
 // Channels "R", "G", "B"; metadata: product, seed, period, octaves, gain,
 // curl_scale_rg, curl_scale_b, encoding, channel meanings.
