@@ -19,6 +19,7 @@
 #include "cli/progress.hpp"
 #include "core/error.hpp"
 #include "farm/stamps.hpp"
+#include "io/shader_constants.hpp"
 #include "pipeline/bake.hpp"
 #include "pipeline/preset_loader.hpp"
 
@@ -91,6 +92,7 @@ class BakeRun {
     log_->info("{}: {} -> {}", scene.name, scene.file.string(), scene_dir);
     const BakeSummary summary = bake_scene(scene, options_for(scene, scene_dir));
     progress_.clear();
+    const nlohmann::json headers = emit_headers(summary);
     log_->info("{}: {:.3f} s; dependencies read back from disk: {}; computed in memory only: {}",
                scene.name, summary.seconds, names_or_none(summary.loaded),
                names_or_none(computed_in_memory(summary)));
@@ -98,7 +100,9 @@ class BakeRun {
     for (const std::string& w : summary.warnings)
       std::fprintf(stderr, "skybake: warning: %s/%s\n", scene.name.c_str(), w.c_str());
     warnings_ += summary.warnings.size();
-    report_["scenes"].push_back(scene_json(scene, summary, scene_dir));
+    nlohmann::json scene_report = scene_json(scene, summary, scene_dir);
+    if (args_.emit_shader_constants) scene_report["shader_constants"] = headers;
+    report_["scenes"].push_back(std::move(scene_report));
   }
 
   // The summary line, or the --json document with the same numbers.
@@ -136,6 +140,21 @@ class BakeRun {
       if (!args_.quiet && !args_.json) print_output(r, scene_dir);
     };
     return options;
+  }
+
+  // --emit-shader-constants: the headers of every output of the run, baked or
+  // current, from the manifest the bake just wrote.
+  nlohmann::json emit_headers(const BakeSummary& summary) {
+    nlohmann::json paths = nlohmann::json::array();
+    if (!args_.emit_shader_constants) return paths;
+    std::vector<std::string> names;
+    for (const OutputRecord& r : summary.outputs) names.push_back(r.entry.name);
+    for (const auto& path :
+         emit_shader_constants(summary.scene_dir, names, "skybake " SKYBAKE_VERSION)) {
+      log_->info("{}: wrote {}", summary.scene, path.string());
+      paths.push_back(path.string());
+    }
+    return paths;
   }
 
   void log_output(const Scene& scene, const OutputRecord& r) {

@@ -19,6 +19,7 @@ struct BakeArgs {
   bool verbose = false;  // log reasons, reads, threads and timings on stderr
   bool json = false;
   bool strict = false;  // any warning exits 1, after the files are written and recorded
+  bool emit_shader_constants = false;  // <output>.glsl and .hlsl beside each output
 };
 int run_bake(const BakeArgs& args);
 

@@ -90,6 +90,9 @@ CLI::App* add_bake_command(CLI::App& app, BakeArgs& args) {
                 "Hash every recorded file instead of trusting a matching size and time");
   cmd->add_flag("--strict", args.strict,
                 "Exit 1 when any output has a warning (after writing and recording everything)");
+  cmd->add_flag("--emit-shader-constants", args.emit_shader_constants,
+                "Write <output>.glsl and <output>.hlsl beside each output (baked or current) with "
+                "the constants its manifest entry records, and list them in the manifest");
   cmd->add_flag("-q,--quiet", args.quiet,
                 "No progress, no line per output, no summary line (warnings still on stderr)");
   cmd->add_flag("-v,--verbose", args.verbose,
