@@ -56,8 +56,12 @@ Literal literal_from_text(const std::string& s) {
   char* end = nullptr;
   errno = 0;
   if (integer) {
+    // Beyond 32 bits an integer written as text is an identifier (a hash),
+    // not a quantity.
     const long long v = std::strtoll(s.c_str(), &end, 10);
-    if (*end == '\0' && errno == 0) return integer_literal(v);
+    if (*end == '\0' && errno == 0 && v >= std::numeric_limits<int32_t>::min() &&
+        v <= std::numeric_limits<uint32_t>::max())
+      return integer_literal(v);
     return {"", s};
   }
   const double v = std::strtod(s.c_str(), &end);

@@ -10,7 +10,8 @@
 // the metadata records a key of that name itself. A name two keys map to
 // gets _2, _3... in key order.
 // Types: integers that fit an int are `int`, other integers up to 2^32 - 1
-// `uint`, other numbers `float`, printed with 17 significant digits so that
+// `uint` (a longer string of digits is a hash: a comment), other numbers
+// `float`, printed with 17 significant digits so that
 // the shader compiler rounds the recorded double itself (never a rounding
 // of a rounding); booleans `bool`. A value of any other kind (text, lists)
 // or a float beyond the float32 range is written as a comment.

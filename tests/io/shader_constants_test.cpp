@@ -117,6 +117,7 @@ ManifestEntry sample_entry() {
                 {"tileable", "true"},
                 {"parameterization", "Hillaire 2020 sec. 5.3 \xc3\xa9\nnext line"},
                 {"orders", 4},
+                {"input_hash", "1234567890123456"},  // digits only, still a hash
                 {"height", "108"}};  // the dimension, recorded by the product too
   return e;
 }
@@ -152,6 +153,7 @@ TEST(ShaderConstants, TypesLiteralsAndCollisions) {
   EXPECT_EQ(d.at("SKYBAKE_SKY_VIEW_TINY").type, "float");
   EXPECT_FALSE(d.count("SKYBAKE_SKY_VIEW_HUGE")) << "beyond float32: a comment";
   EXPECT_FALSE(d.count("SKYBAKE_SKY_VIEW_PARAMETERIZATION")) << "text: a comment";
+  EXPECT_FALSE(d.count("SKYBAKE_SKY_VIEW_INPUT_HASH")) << "a 64-bit hash is no number";
   EXPECT_NE(text.find("// parameterization: Hillaire 2020 sec. 5.3    next line\n"),
             std::string::npos)
       << text;
@@ -187,6 +189,9 @@ bool manifest_number(const nlohmann::json& v, double& out) {
   const std::string s = v.get<std::string>();
   char* end = nullptr;
   out = std::strtod(s.c_str(), &end);
+  // Digits beyond 32 bits are a hash, not a quantity (docs/runtime.md).
+  const bool digits = s.find_first_not_of("-0123456789") == std::string::npos;
+  if (digits && std::abs(out) > 4294967295.0) return false;
   return !s.empty() && *end == '\0' && std::isfinite(out) && std::abs(out) < 3.4e38 &&
          s.find_first_of("xXnN ") == std::string::npos;
 }
