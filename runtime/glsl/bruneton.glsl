@@ -38,6 +38,38 @@ float scattering_u_from_mu_s(AtmosphereParameters atm, ScatteringShape shape, fl
   return texel_coord_from_unit(clamp(max(1.0 - a / A, 0.0) / (1.0 + a), 0.0, 1.0), shape.mu_s_size);
 }
 
+// The same mapping from rho = sqrt(r^2 - Rb^2) and r mu, which the u_r and
+// u_mu of the mapping depend on: r^2 - Rb^2 = rho^2, Rt^2 - r^2 = H^2 - rho^2,
+// r - Rb = rho^2 / (r + Rb). A float radius resolves 0.5 m near Earth's
+// ground, where rho spans a few km; rho and r mu of a point along a ray
+// come out of the law of cosines without that loss (sky_radiance_to_point).
+vec4 scattering_uvwz_from_rho_r_mu(AtmosphereParameters atm, ScatteringShape shape, float rho,
+                                   float r_mu, float mu_s, float nu, bool ray_hits_ground) {
+  float rb = atm.bottom_radius, rt = atm.top_radius, H = horizon_distance(atm);
+  rho = clamp(rho, 0.0, H);
+  float r = sqrt(rho * rho + rb * rb);
+  r_mu = clamp(r_mu, -r, r);
+  float u_r = texel_coord_from_unit(rho / H, shape.r_size);
+  float u_mu;
+  if (ray_hits_ground) {
+    float c = rho * rho;
+    float d = c / max(safe_sqrt(r_mu * r_mu - c) - r_mu, 1e-30);  // distance to the ground
+    float d_min = c / (r + rb), d_max = rho;
+    float x = d_max > d_min ? (d - d_min) / (d_max - d_min) : 0.0;
+    u_mu = 0.5 - 0.5 * texel_coord_from_unit(clamp(x, 0.0, 1.0), shape.mu_size / 2);
+  } else {
+    float c = (H - rho) * (H + rho);
+    float q = safe_sqrt(c + r_mu * r_mu);
+    float d = max(r_mu > 0.0 ? c / max(r_mu + q, 1e-30) : q - r_mu, 0.0);  // distance to the top
+    float d_min = c / (rt + r), d_max = rho + H;
+    float x = (d - d_min) / (d_max - d_min);
+    u_mu = 0.5 + 0.5 * texel_coord_from_unit(clamp(x, 0.0, 1.0), shape.mu_size / 2);
+  }
+  float u_mu_s = scattering_u_from_mu_s(atm, shape, mu_s);
+  float u_nu = 0.5 * (clamp_cosine(nu) + 1.0);
+  return vec4(u_nu, u_mu_s, u_mu, u_r);
+}
+
 // (u_nu, u_mu_s, u_mu, u_r) of (r, mu, mu_s, nu); ray_hits_ground picks the
 // half of the mu axis (ray_intersects_ground(Rb, r, mu) for a ray inside):
 //   u_r  = coord(rho / H, r_size)
@@ -46,24 +78,10 @@ float scattering_u_from_mu_s(AtmosphereParameters atm, ScatteringShape shape, fl
 //   u_nu = (nu + 1) / 2, slices at nu = -1 + 2 k / (nu_size - 1).
 vec4 scattering_uvwz_from_r_mu_mu_s_nu(AtmosphereParameters atm, ScatteringShape shape, float r,
                                        float mu, float mu_s, float nu, bool ray_hits_ground) {
-  float rb = atm.bottom_radius, rt = atm.top_radius, H = horizon_distance(atm);
-  r = clamp(r, rb, rt);
-  mu = clamp_cosine(mu);
-  float rho = safe_sqrt((r - rb) * (r + rb));
-  float u_r = texel_coord_from_unit(rho / H, shape.r_size);
-  float u_mu;
-  if (ray_hits_ground) {
-    float d = distance_to_bottom_boundary(rb, r, mu), d_min = r - rb, d_max = rho;
-    float x = d_max == d_min ? 0.0 : (d - d_min) / (d_max - d_min);
-    u_mu = 0.5 - 0.5 * texel_coord_from_unit(clamp(x, 0.0, 1.0), shape.mu_size / 2);
-  } else {
-    float d = distance_to_top_boundary(rt, r, mu), d_min = rt - r, d_max = rho + H;
-    float x = (d - d_min) / (d_max - d_min);
-    u_mu = 0.5 + 0.5 * texel_coord_from_unit(clamp(x, 0.0, 1.0), shape.mu_size / 2);
-  }
-  float u_mu_s = scattering_u_from_mu_s(atm, shape, mu_s);
-  float u_nu = 0.5 * (clamp_cosine(nu) + 1.0);
-  return vec4(u_nu, u_mu_s, u_mu, u_r);
+  float rb = atm.bottom_radius;
+  r = clamp(r, rb, atm.top_radius);
+  return scattering_uvwz_from_rho_r_mu(atm, shape, safe_sqrt((r - rb) * (r + rb)),
+                                       r * clamp_cosine(mu), mu_s, nu, ray_hits_ground);
 }
 
 // The 4D read (Bruneton 2017 GetScattering): trilinear within the two nu
@@ -104,24 +122,139 @@ vec3 extrapolated_single_mie(AtmosphereParameters atm, vec4 scattering) {
   return mie;
 }
 
-// Sky radiance toward a viewer at (r, mu), single Mie in its own table:
-// p_R(nu) S + p_M(nu) S_M (the phases deferred to here, Bruneton 2017 GetSkyRadiance).
-vec3 lookup_scattering(sampler3D scattering, sampler3D single_mie, ScatteringShape shape,
-                       AtmosphereParameters atm, float r, float mu, float mu_s, float nu,
-                       bool ray_hits_ground) {
-  vec4 uvwz = scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r, mu, mu_s, nu, ray_hits_ground);
+// p_R(nu) S + p_M(nu) S_M at the table coordinates uvwz (the phases deferred
+// to here, Bruneton 2017 GetSkyRadiance), single Mie in its own table ...
+vec3 scattering_radiance_at(sampler3D scattering, sampler3D single_mie, ScatteringShape shape,
+                            AtmosphereParameters atm, vec4 uvwz, float nu) {
   vec3 rgb = read_scattering(scattering, shape, uvwz).rgb;
   vec3 mie = read_scattering(single_mie, shape, uvwz).rgb;
   return rgb * rayleigh_phase(nu) + mie * mie_phase(atm, nu);
 }
 
-// The same with single Mie in the alpha channel of `scattering` (mie: combined).
+// ... or in the alpha channel of `scattering` (mie: alpha).
+vec3 scattering_radiance_at(sampler3D scattering, ScatteringShape shape, AtmosphereParameters atm,
+                            vec4 uvwz, float nu) {
+  vec4 texel = read_scattering(scattering, shape, uvwz);
+  return texel.rgb * rayleigh_phase(nu) + extrapolated_single_mie(atm, texel) * mie_phase(atm, nu);
+}
+
+// Sky radiance toward a viewer at (r, mu), single Mie in its own table.
+vec3 lookup_scattering(sampler3D scattering, sampler3D single_mie, ScatteringShape shape,
+                       AtmosphereParameters atm, float r, float mu, float mu_s, float nu,
+                       bool ray_hits_ground) {
+  return scattering_radiance_at(
+      scattering, single_mie, shape, atm,
+      scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r, mu, mu_s, nu, ray_hits_ground), nu);
+}
+
+// The same with single Mie in the alpha channel of `scattering` (mie: alpha).
 vec3 lookup_scattering(sampler3D scattering, ScatteringShape shape, AtmosphereParameters atm,
                        float r, float mu, float mu_s, float nu, bool ray_hits_ground) {
-  vec4 texel = read_scattering(scattering, shape,
-                               scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r, mu, mu_s, nu,
-                                                                 ray_hits_ground));
-  return texel.rgb * rayleigh_phase(nu) + extrapolated_single_mie(atm, texel) * mie_phase(atm, nu);
+  return scattering_radiance_at(
+      scattering, shape, atm,
+      scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r, mu, mu_s, nu, ray_hits_ground), nu);
+}
+
+// ---- Sky radiance for a camera anywhere ---------------------------------------
+// Bruneton 2017 GetSkyRadiance and GetSkyRadianceToPoint (without light
+// shafts): positions planet-centred in m, directions unit. A camera above
+// the atmosphere reads the table where its ray enters the top; a ray that
+// misses the atmosphere sees nothing (transmittance 1).
+
+// The camera moved to where view_ray enters the atmosphere, with its radius
+// r and r mu there (Bruneton 2017 GetSkyRadiance); false when the ray
+// misses the atmosphere.
+bool move_to_top_atmosphere(AtmosphereParameters atm, inout vec3 camera, vec3 view_ray,
+                            out float r, out float r_mu) {
+  r = length(camera);
+  r_mu = dot(camera, view_ray);
+  if (r <= atm.top_radius) return true;
+  float c = (r - atm.top_radius) * (r + atm.top_radius);
+  float q = safe_sqrt(r_mu * r_mu - c);
+  if (r_mu >= 0.0 || r_mu * r_mu < c) return false;
+  float t = c / max(q - r_mu, 1e-30);  // -r mu - q without cancelling
+  camera += t * view_ray;
+  r = atm.top_radius;  // exactly, rather than the length of the moved float vector
+  r_mu += t;
+  return true;
+}
+
+// Radiance toward the camera along view_ray from the whole atmosphere
+// behind it (the sky, or the air in front of the ground), and the
+// transmittance to the top (0 when the ray meets the ground).
+vec3 sky_radiance(sampler3D scattering, sampler3D single_mie, sampler2D transmittance_lut,
+                  ScatteringShape shape, AtmosphereParameters atm, vec3 camera, vec3 view_ray,
+                  vec3 sun_dir, out vec3 transmittance) {
+  transmittance = vec3(1.0);
+  float r, r_mu;
+  if (!move_to_top_atmosphere(atm, camera, view_ray, r, r_mu)) return vec3(0.0);
+  float mu = r_mu / r, mu_s = dot(camera, sun_dir) / r;
+  bool hits = ray_intersects_ground(atm.bottom_radius, r, mu);
+  transmittance = hits ? vec3(0.0) : lookup_transmittance_to_top(transmittance_lut, atm, r, mu);
+  return lookup_scattering(scattering, single_mie, shape, atm, r, mu, mu_s, dot(view_ray, sun_dir),
+                           hits);
+}
+
+// The same with single Mie in the alpha channel of `scattering`.
+vec3 sky_radiance(sampler3D scattering, sampler2D transmittance_lut, ScatteringShape shape,
+                  AtmosphereParameters atm, vec3 camera, vec3 view_ray, vec3 sun_dir,
+                  out vec3 transmittance) {
+  transmittance = vec3(1.0);
+  float r, r_mu;
+  if (!move_to_top_atmosphere(atm, camera, view_ray, r, r_mu)) return vec3(0.0);
+  float mu = r_mu / r, mu_s = dot(camera, sun_dir) / r;
+  bool hits = ray_intersects_ground(atm.bottom_radius, r, mu);
+  transmittance = hits ? vec3(0.0) : lookup_transmittance_to_top(transmittance_lut, atm, r, mu);
+  return lookup_scattering(scattering, shape, atm, r, mu, mu_s, dot(view_ray, sun_dir), hits);
+}
+
+// The table coordinates of the far end of the segment of length d from
+// (r, mu), the sun fixed (Bruneton 2017 GetSkyRadianceToPoint), through
+// rho_p^2 = (r - Rb)(r + Rb) + d (2 r mu + d) and r_p mu_p = r mu + d.
+vec4 point_uvwz(AtmosphereParameters atm, ScatteringShape shape, float r, float mu, float mu_s,
+                float nu, float d, bool ray_hits_ground) {
+  float rb = atm.bottom_radius;
+  float rho_p = safe_sqrt((r - rb) * (r + rb) + d * (2.0 * r * mu + d));
+  float r_p = clamp(radius_after(r, mu, d), rb, atm.top_radius);
+  return scattering_uvwz_from_rho_r_mu(atm, shape, rho_p, r * mu + d, (r * mu_s + d * nu) / r_p, nu,
+                                       ray_hits_ground);
+}
+
+// Radiance scattered toward the camera between it and `point` (aerial
+// perspective from the 4D table): S(camera) - T(camera, point) S(point),
+// and the transmittance T of that segment. Bruneton's demo also fades
+// single Mie with smoothstep(0, 0.01, mu_s) to hide the subtraction's
+// artefacts with the sun below the horizon; add it where they show.
+vec3 sky_radiance_to_point(sampler3D scattering, sampler3D single_mie, sampler2D transmittance_lut,
+                           ScatteringShape shape, AtmosphereParameters atm, vec3 camera, vec3 point,
+                           vec3 sun_dir, out vec3 transmittance) {
+  vec3 view_ray = normalize(point - camera);
+  transmittance = vec3(1.0);
+  float r, r_mu;
+  if (!move_to_top_atmosphere(atm, camera, view_ray, r, r_mu)) return vec3(0.0);
+  float mu = r_mu / r, mu_s = dot(camera, sun_dir) / r;
+  float nu = dot(view_ray, sun_dir), d = length(point - camera);
+  bool hits = ray_intersects_ground(atm.bottom_radius, r, mu);
+  transmittance = lookup_transmittance(transmittance_lut, atm, r, mu, d, hits);
+  vec4 uvwz_p = point_uvwz(atm, shape, r, mu, mu_s, nu, d, hits);
+  return lookup_scattering(scattering, single_mie, shape, atm, r, mu, mu_s, nu, hits) -
+         transmittance * scattering_radiance_at(scattering, single_mie, shape, atm, uvwz_p, nu);
+}
+
+vec3 sky_radiance_to_point(sampler3D scattering, sampler2D transmittance_lut, ScatteringShape shape,
+                           AtmosphereParameters atm, vec3 camera, vec3 point, vec3 sun_dir,
+                           out vec3 transmittance) {
+  vec3 view_ray = normalize(point - camera);
+  transmittance = vec3(1.0);
+  float r, r_mu;
+  if (!move_to_top_atmosphere(atm, camera, view_ray, r, r_mu)) return vec3(0.0);
+  float mu = r_mu / r, mu_s = dot(camera, sun_dir) / r;
+  float nu = dot(view_ray, sun_dir), d = length(point - camera);
+  bool hits = ray_intersects_ground(atm.bottom_radius, r, mu);
+  transmittance = lookup_transmittance(transmittance_lut, atm, r, mu, d, hits);
+  vec4 uvwz_p = point_uvwz(atm, shape, r, mu, mu_s, nu, d, hits);
+  return lookup_scattering(scattering, shape, atm, r, mu, mu_s, nu, hits) -
+         transmittance * scattering_radiance_at(scattering, shape, atm, uvwz_p, nu);
 }
 
 // ---- Ground irradiance ----------------------------------------------------------

@@ -98,6 +98,98 @@ float3 lookup_scattering(Texture3D<float4> scattering, SamplerState table_sample
   return texel.rgb * rayleigh_phase(nu) + extrapolated_single_mie(atm, texel) * mie_phase(atm, nu);
 }
 
+// ---- Sky radiance for a camera anywhere (Bruneton 2017 GetSkyRadiance,
+// GetSkyRadianceToPoint, without light shafts; see the GLSL)
+
+bool move_to_top_atmosphere(AtmosphereParameters atm, inout float3 camera, float3 view_ray,
+                            out float r, out float r_mu) {
+  r = length(camera);
+  r_mu = dot(camera, view_ray);
+  if (r <= atm.top_radius) return true;
+  float c = (r - atm.top_radius) * (r + atm.top_radius);
+  float q = safe_sqrt(r_mu * r_mu - c);
+  if (r_mu >= 0.0 || r_mu * r_mu < c) return false;
+  float t = c / max(q - r_mu, 1e-30);  // -r mu - q without cancelling
+  camera += t * view_ray;
+  r = atm.top_radius;  // exactly, rather than the length of the moved float vector
+  r_mu += t;
+  return true;
+}
+
+float3 sky_radiance(Texture3D<float4> scattering, Texture3D<float4> single_mie,
+                    SamplerState table_sampler, Texture2D<float4> transmittance_lut,
+                    SamplerState transmittance_sampler, ScatteringShape shape,
+                    AtmosphereParameters atm, float3 camera, float3 view_ray, float3 sun_dir,
+                    out float3 transmittance) {
+  transmittance = float3(1.0, 1.0, 1.0);
+  float r, r_mu;
+  if (!move_to_top_atmosphere(atm, camera, view_ray, r, r_mu)) return float3(0.0, 0.0, 0.0);
+  float mu = r_mu / r, mu_s = dot(camera, sun_dir) / r;
+  bool hits = ray_intersects_ground(atm.bottom_radius, r, mu);
+  transmittance = hits ? float3(0.0, 0.0, 0.0)
+                       : lookup_transmittance_to_top(transmittance_lut, transmittance_sampler, atm, r, mu);
+  return lookup_scattering(scattering, single_mie, table_sampler, shape, atm, r, mu, mu_s,
+                           dot(view_ray, sun_dir), hits);
+}
+
+float3 sky_radiance(Texture3D<float4> scattering, SamplerState table_sampler,
+                    Texture2D<float4> transmittance_lut, SamplerState transmittance_sampler,
+                    ScatteringShape shape, AtmosphereParameters atm, float3 camera,
+                    float3 view_ray, float3 sun_dir, out float3 transmittance) {
+  transmittance = float3(1.0, 1.0, 1.0);
+  float r, r_mu;
+  if (!move_to_top_atmosphere(atm, camera, view_ray, r, r_mu)) return float3(0.0, 0.0, 0.0);
+  float mu = r_mu / r, mu_s = dot(camera, sun_dir) / r;
+  bool hits = ray_intersects_ground(atm.bottom_radius, r, mu);
+  transmittance = hits ? float3(0.0, 0.0, 0.0)
+                       : lookup_transmittance_to_top(transmittance_lut, transmittance_sampler, atm, r, mu);
+  return lookup_scattering(scattering, table_sampler, shape, atm, r, mu, mu_s,
+                           dot(view_ray, sun_dir), hits);
+}
+
+float3 point_parameters(AtmosphereParameters atm, float r, float mu, float mu_s, float nu, float d) {
+  float r_p = clamp(radius_after(r, mu, d), atm.bottom_radius, atm.top_radius);
+  return float3(r_p, (r * mu + d) / r_p, (r * mu_s + d * nu) / r_p);
+}
+
+float3 sky_radiance_to_point(Texture3D<float4> scattering, Texture3D<float4> single_mie,
+                             SamplerState table_sampler, Texture2D<float4> transmittance_lut,
+                             SamplerState transmittance_sampler, ScatteringShape shape,
+                             AtmosphereParameters atm, float3 camera, float3 target,
+                             float3 sun_dir, out float3 transmittance) {
+  float3 view_ray = normalize(target - camera);
+  transmittance = float3(1.0, 1.0, 1.0);
+  float r, r_mu;
+  if (!move_to_top_atmosphere(atm, camera, view_ray, r, r_mu)) return float3(0.0, 0.0, 0.0);
+  float mu = r_mu / r, mu_s = dot(camera, sun_dir) / r;
+  float nu = dot(view_ray, sun_dir), d = length(target - camera);
+  bool hits = ray_intersects_ground(atm.bottom_radius, r, mu);
+  transmittance = lookup_transmittance(transmittance_lut, transmittance_sampler, atm, r, mu, d, hits);
+  float3 p = point_parameters(atm, r, mu, mu_s, nu, d);
+  return lookup_scattering(scattering, single_mie, table_sampler, shape, atm, r, mu, mu_s, nu, hits) -
+         transmittance * lookup_scattering(scattering, single_mie, table_sampler, shape, atm, p.x,
+                                           p.y, p.z, nu, hits);
+}
+
+float3 sky_radiance_to_point(Texture3D<float4> scattering, SamplerState table_sampler,
+                             Texture2D<float4> transmittance_lut,
+                             SamplerState transmittance_sampler, ScatteringShape shape,
+                             AtmosphereParameters atm, float3 camera, float3 target,
+                             float3 sun_dir, out float3 transmittance) {
+  float3 view_ray = normalize(target - camera);
+  transmittance = float3(1.0, 1.0, 1.0);
+  float r, r_mu;
+  if (!move_to_top_atmosphere(atm, camera, view_ray, r, r_mu)) return float3(0.0, 0.0, 0.0);
+  float mu = r_mu / r, mu_s = dot(camera, sun_dir) / r;
+  float nu = dot(view_ray, sun_dir), d = length(target - camera);
+  bool hits = ray_intersects_ground(atm.bottom_radius, r, mu);
+  transmittance = lookup_transmittance(transmittance_lut, transmittance_sampler, atm, r, mu, d, hits);
+  float3 p = point_parameters(atm, r, mu, mu_s, nu, d);
+  return lookup_scattering(scattering, table_sampler, shape, atm, r, mu, mu_s, nu, hits) -
+         transmittance * lookup_scattering(scattering, table_sampler, shape, atm, p.x, p.y, p.z, nu,
+                                           hits);
+}
+
 // ---- Ground irradiance
 
 float2 irradiance_uv_from_r_mu_s(AtmosphereParameters atm, float r, float mu_s, int width,

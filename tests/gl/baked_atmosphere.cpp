@@ -285,16 +285,24 @@ Comparison compare(const std::vector<glm::vec4>& gl, const std::vector<glm::dvec
     for (int k = 0; k < channels; ++k) max_ref = std::max(max_ref, std::abs(v[k]));
   const double floor = kRelativeFloor * max_ref;
   double worst = -1.0;
+  size_t not_finite = 0;
   for (size_t i = 0; i < cpu.size(); ++i)
     for (int k = 0; k < channels; ++k) {
+      if (!std::isfinite(gl[i][k]) || !std::isfinite(cpu[i][k])) {
+        if (not_finite++ == 0) c.worst_query = i;
+        worst = INFINITY;
+        continue;
+      }
       tally.add(gl[i][k], cpu[i][k]);
       const double rel = std::abs(gl[i][k] - cpu[i][k]) / std::max(std::abs(cpu[i][k]), floor);
-      if (rel > worst) {
+      if (rel > worst && not_finite == 0) {
         worst = rel;
         c.worst_query = i;
       }
     }
   c.stats = tally.stats();
+  c.not_finite = not_finite;
+  if (not_finite > 0) c.stats.max_rel = c.stats.rms_rel = INFINITY;  // fails every bar
   return c;
 }
 
@@ -302,6 +310,9 @@ void print_comparison(const std::string& what, const Comparison& c) {
   std::printf("[ measured ] %s: rms_rel %.3g, max_rel %.3g (max_abs %.3g, %zu values, worst query %zu)\n",
               what.c_str(), c.stats.rms_rel, c.stats.max_rel, c.stats.max_abs, c.stats.samples,
               c.worst_query);
+  if (c.not_finite > 0)
+    std::printf("             %zu values not finite, the first at query %zu\n", c.not_finite,
+                c.worst_query);
 }
 
 }  // namespace skybake::gltest

@@ -89,7 +89,8 @@ std::string query_shader(const std::string& declarations, const std::string& exp
 // with the floor of core/error_stats.hpp (1e-3 of the largest reference).
 struct Comparison {
   ErrorStats stats;
-  size_t worst_query = 0;
+  size_t worst_query = 0;  // the worst, or the first with a value that is not finite
+  size_t not_finite = 0;   // NaN or Inf on either side: the comparison fails
 };
 Comparison compare(const std::vector<glm::vec4>& gl, const std::vector<glm::dvec4>& cpu,
                    int channels);
