@@ -70,7 +70,28 @@ Literal literal_from_text(const std::string& s) {
   return {"", s};
 }
 
-Literal literal_from_json(const json& v) {
+// int2/int3 and double2/double3 metadata: JSON arrays of 2 or 3 numbers.
+Literal vector_literal(const json& v, ShaderLanguage language) {
+  bool integers = true;
+  for (const json& e : v) {
+    if (!e.is_number()) return {"", v.dump()};
+    integers &= e.is_number_integer();
+  }
+  std::string values;
+  for (const json& e : v) {
+    const Literal l =
+        integers ? integer_literal(e.get<long long>()) : number_literal(e.get<double>());
+    if (l.type != (integers ? "int" : "float")) return {"", v.dump()};
+    values += (values.empty() ? "" : ", ") + l.value;
+  }
+  const bool glsl = language == ShaderLanguage::glsl;
+  const char* base = integers ? (glsl ? "ivec" : "int") : (glsl ? "vec" : "float");
+  const std::string type = fmt::format("{}{}", base, v.size());
+  return {type, fmt::format("{}({})", type, values)};
+}
+
+Literal literal_from_json(const json& v, ShaderLanguage language) {
+  if (v.is_array() && (v.size() == 2 || v.size() == 3)) return vector_literal(v, language);
   if (v.is_boolean()) return {"bool", v.get<bool>() ? "true" : "false"};
   if (v.is_number_unsigned()) {
     const uint64_t u = v.get<uint64_t>();
@@ -139,7 +160,7 @@ std::string shader_constants_text(const ManifestEntry& entry, ShaderLanguage lan
   // Metadata that records a dimension itself ("width") keeps the name.
   std::set<std::string> metadata_ids;
   for (const auto& item : entry.metadata.items())
-    if (!literal_from_json(item.value()).type.empty())
+    if (!literal_from_json(item.value(), language).type.empty())
       metadata_ids.insert(prefix + "_" + shader_identifier(item.key()));
   Names names;
   auto dimension = [&](const char* axis, int value) {
@@ -155,7 +176,7 @@ std::string shader_constants_text(const ManifestEntry& entry, ShaderLanguage lan
   for (const std::string& c : entry.channels) channels += (channels.empty() ? "" : " ") + c;
   out += fmt::format("// channels: {}\n", comment_text(channels));
   for (const auto& [key, value] : entry.metadata.items()) {
-    const Literal l = literal_from_json(value);
+    const Literal l = literal_from_json(value, language);
     const std::string id = shader_identifier(key);
     if (l.type.empty() || id.empty())
       out += fmt::format("// {}: {}\n", comment_text(key), comment_text(l.value));

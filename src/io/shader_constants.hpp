@@ -13,8 +13,10 @@
 // `uint` (a longer string of digits is a hash: a comment), other numbers
 // `float`, printed with 17 significant digits so that
 // the shader compiler rounds the recorded double itself (never a rounding
-// of a rounding); booleans `bool`. A value of any other kind (text, lists)
-// or a float beyond the float32 range is written as a comment.
+// of a rounding); booleans `bool`; arrays of 2 or 3 numbers (int2, double3
+// metadata) `ivec2`... `vec3` (HLSL `int2`... `float3`). A value of any
+// other kind (text, longer lists) or a float beyond the float32 range is
+// written as a comment.
 // GLSL: `const float NAME = v;`  HLSL: `static const float NAME = v;`.
 #pragma once
 

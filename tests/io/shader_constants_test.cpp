@@ -33,7 +33,8 @@ struct Declared {
 // name -> (type, literal) of every `[static ]const T NAME = v;` line.
 std::map<std::string, Declared> declarations(const std::string& text) {
   std::map<std::string, Declared> out;
-  const std::regex line(R"(^(?:static )?const (int|uint|float|bool) (\w+) = ([^;]+);$)");
+  const std::regex line(
+      R"(^(?:static )?const (int|uint|float|bool|[i]?vec[23]|int[23]|float[23]) (\w+) = ([^;]+);$)");
   std::istringstream in(text);
   std::string l;
   while (std::getline(in, l)) {
@@ -47,10 +48,23 @@ std::map<std::string, Declared> declarations(const std::string& text) {
 }
 
 // The value of a literal as the shader compiler reads it (a trailing 'u' is
-// the unsigned suffix).
-double literal_value(std::string literal) {
-  if (!literal.empty() && literal.back() == 'u') literal.pop_back();
-  return std::strtod(literal.c_str(), nullptr);
+// the unsigned suffix); the components of a vector constructor.
+std::vector<double> literal_values(std::string literal) {
+  std::vector<double> out;
+  const size_t open = literal.find('(');
+  if (open != std::string::npos) literal = literal.substr(open + 1, literal.size() - open - 2);
+  std::istringstream parts(literal);
+  std::string part;
+  while (std::getline(parts, part, ',')) {
+    if (!part.empty() && part.back() == 'u') part.pop_back();
+    out.push_back(std::strtod(part.c_str(), nullptr));
+  }
+  return out;
+}
+double literal_value(const std::string& literal) {
+  const std::vector<double> v = literal_values(literal);
+  EXPECT_EQ(v.size(), 1u) << literal;
+  return v.empty() ? 0.0 : v[0];
 }
 
 // The test's own naming rule (docs/runtime.md "Shader constants"), written
@@ -106,19 +120,22 @@ ManifestEntry sample_entry() {
   e.dimensions = {192, 108};
   e.layers = 8;
   e.channels = {"R", "G", "B"};
-  e.metadata = {{"bottom_radius_m", "6360000"},
-                {"mu_s.min", "-0.20791169081775931"},
-                {"mu_s_min", "0.5"},  // the same identifier as mu_s.min
+  e.metadata = {{"bottom_radius_m", 6360000.0},
+                {"mu_s.min", -0.20791169081775931},
+                {"mu_s_min", 0.5},  // the same identifier as mu_s.min
                 {"sun_angular_radius", 0.004675},
-                {"mie_g", "0.80000000000000004"},
-                {"seed", "4294967295"},
-                {"tiny", "1.0000000000000001e-300"},
-                {"huge", "1e300"},
-                {"tileable", "true"},
+                {"mie_g", 0.80000000000000004},
+                {"seed", 4294967295u},
+                {"tiny", 1.0000000000000001e-300},
+                {"huge", 1e300},
+                {"tileable", true},
+                {"solar_irradiance", {1.474, 1.8504, 1.91198}},
+                {"period", {3, 24}},
+                {"mixed", {1, "a"}},
                 {"parameterization", "Hillaire 2020 sec. 5.3 \xc3\xa9\nnext line"},
                 {"orders", 4},
                 {"input_hash", "1234567890123456"},  // digits only, still a hash
-                {"height", "108"}};  // the dimension, recorded by the product too
+                {"height", 108}};  // the dimension, recorded by the product too
   return e;
 }
 
@@ -139,7 +156,17 @@ TEST(ShaderConstants, TypesLiteralsAndCollisions) {
   EXPECT_EQ(d.at("SKYBAKE_SKY_VIEW_LAYERS").literal, "8");
   EXPECT_FALSE(d.count("SKYBAKE_SKY_VIEW_DEPTH"));
   EXPECT_FALSE(d.count("SKYBAKE_SKY_VIEW_HEIGHT_2")) << "one height";
-  EXPECT_EQ(d.at("SKYBAKE_SKY_VIEW_BOTTOM_RADIUS_M").type, "int");
+  EXPECT_EQ(d.at("SKYBAKE_SKY_VIEW_BOTTOM_RADIUS_M").type, "float");
+  EXPECT_EQ(d.at("SKYBAKE_SKY_VIEW_BOTTOM_RADIUS_M").literal, "6360000.0");
+  EXPECT_EQ(d.at("SKYBAKE_SKY_VIEW_SOLAR_IRRADIANCE").type, "vec3");
+  EXPECT_EQ(literal_values(d.at("SKYBAKE_SKY_VIEW_SOLAR_IRRADIANCE").literal),
+            (std::vector<double>{1.474, 1.8504, 1.91198}));
+  EXPECT_EQ(d.at("SKYBAKE_SKY_VIEW_PERIOD").type, "ivec2");
+  EXPECT_EQ(d.at("SKYBAKE_SKY_VIEW_PERIOD").literal, "ivec2(3, 24)");
+  EXPECT_FALSE(d.count("SKYBAKE_SKY_VIEW_MIXED")) << "not a numeric tuple: a comment";
+  const auto hlsl = declarations(shader_constants_text(e, ShaderLanguage::hlsl, "skybake test"));
+  EXPECT_EQ(hlsl.at("SKYBAKE_SKY_VIEW_SOLAR_IRRADIANCE").type, "float3");
+  EXPECT_EQ(hlsl.at("SKYBAKE_SKY_VIEW_PERIOD").literal, "int2(3, 24)");
   // Keys in order: "mu_s.min" < "mu_s_min", so the second takes _2.
   EXPECT_EQ(literal_value(d.at("SKYBAKE_SKY_VIEW_MU_S_MIN").literal), -0.20791169081775931);
   EXPECT_EQ(literal_value(d.at("SKYBAKE_SKY_VIEW_MU_S_MIN_2").literal), 0.5);
@@ -231,11 +258,20 @@ TEST(ShaderConstants, BakeEmitsHeadersEqualToTheManifest) {
         for (size_t i = 0; i < dims.size(); ++i)
           EXPECT_EQ(literal_value(d.at(prefix + "_" + axes[i]).literal), dims[i].get<double>());
         for (const auto& [key, value] : o["metadata"].items()) {
+          std::vector<double> expected;
           double v;
-          if (!manifest_number(value, v)) continue;
+          if (value.is_array() && (value.size() == 2 || value.size() == 3)) {
+            for (const auto& e : value)
+              if (manifest_number(e, v)) expected.push_back(v);
+            if (expected.size() != value.size()) continue;
+          } else if (manifest_number(value, v)) {
+            expected = {v};
+          } else {
+            continue;
+          }
           const std::string id = expected_name(name, key);
           ASSERT_TRUE(d.count(id)) << header << " lacks " << id << " for " << key;
-          EXPECT_EQ(literal_value(d.at(id).literal), v) << header << " " << key;
+          EXPECT_EQ(literal_values(d.at(id).literal), expected) << header << " " << key;
           ++checked_values;
         }
       }
