@@ -20,46 +20,30 @@
 #include <fmt/ranges.h>
 
 #include "core/error.hpp"
-#include "core/half.hpp"
 #include "core/mip_chain.hpp"
 #include "core/suggest.hpp"
+#include "io/block_compression.hpp"
+#include "io/dds_format_table.hpp"
 
 namespace skybake {
 namespace {
 
-struct FormatInfo {
-  DdsFormat format;
-  const char* name;
-  int components;
-  int bytes;
-};
-
-constexpr FormatInfo kFormats[] = {
-    {DdsFormat::R32G32B32A32_FLOAT, "R32G32B32A32_FLOAT", 4, 16},
-    {DdsFormat::R16G16B16A16_FLOAT, "R16G16B16A16_FLOAT", 4, 8},
-    {DdsFormat::R11G11B10_FLOAT, "R11G11B10_FLOAT", 3, 4},
-    {DdsFormat::R8G8B8A8_UNORM, "R8G8B8A8_UNORM", 4, 4},
-    {DdsFormat::R16_FLOAT, "R16_FLOAT", 1, 2},
-    {DdsFormat::R8_UNORM, "R8_UNORM", 1, 1},
-};
+using FormatInfo = DdsFormatInfo;
 
 const FormatInfo* find_format(uint32_t dxgi) {
-  for (const FormatInfo& f : kFormats)
-    if (uint32_t(f.format) == dxgi) return &f;
-  return nullptr;
+  return find_dds_format(dxgi);
 }
 
 const FormatInfo& info(DdsFormat format) {
-  const FormatInfo* f = find_format(uint32_t(format));
-  if (!f) throw Error(fmt::format("unknown DdsFormat value {}", uint32_t(format)));
-  return *f;
+  return dds_format_info(format);
 }
 
 std::string format_list(bool with_codes) {
   std::string s;
-  for (const FormatInfo& f : kFormats) {
+  for (DdsFormat format : dds_formats()) {
     if (!s.empty()) s += ", ";
-    s += with_codes ? fmt::format("{} ({})", f.name, uint32_t(f.format)) : f.name;
+    s += with_codes ? fmt::format("{} ({})", dxgi_format_name(format), uint32_t(format))
+                    : dxgi_format_name(format);
   }
   return s;
 }
@@ -69,88 +53,8 @@ std::string format_list(bool with_codes) {
 void put_u32(uint8_t* p, uint32_t v) {
   for (int i = 0; i < 4; ++i) p[i] = uint8_t(v >> (8 * i));
 }
-void put_u16(uint8_t* p, uint16_t v) {
-  p[0] = uint8_t(v);
-  p[1] = uint8_t(v >> 8);
-}
 uint32_t get_u32(const uint8_t* p) {
   return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
-}
-uint16_t get_u16(const uint8_t* p) {
-  return uint16_t(p[0] | p[1] << 8);
-}
-void put_f32(uint8_t* p, float v) {
-  uint32_t u;
-  std::memcpy(&u, &v, 4);
-  put_u32(p, u);
-}
-float get_f32(const uint8_t* p) {
-  const uint32_t u = get_u32(p);
-  float v;
-  std::memcpy(&v, &u, 4);
-  return v;
-}
-
-// ---- texel conversion ------------------------------------------------------
-
-uint8_t unorm8_from_float(float v) {
-  return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
-}
-uint16_t half_saturated(float v) {
-  return half_from_float(std::clamp(v, -kHalfMax, kHalfMax));
-}
-
-// Encodes one texel of `nc` channels (nc <= components of the format).
-void encode_texel(DdsFormat format, const float* src, int nc, uint8_t* dst) {
-  float v[4] = {0.0f, 0.0f, 0.0f, 1.0f};  // missing components 0, missing alpha 1
-  std::copy(src, src + nc, v);
-  switch (format) {
-    case DdsFormat::R32G32B32A32_FLOAT:
-      for (int c = 0; c < 4; ++c) put_f32(dst + 4 * c, v[c]);
-      break;
-    case DdsFormat::R16G16B16A16_FLOAT:
-      for (int c = 0; c < 4; ++c) put_u16(dst + 2 * c, half_saturated(v[c]));
-      break;
-    case DdsFormat::R11G11B10_FLOAT:
-      put_u32(dst, r11g11b10_from_rgb(std::min(v[0], kFloat11Max), std::min(v[1], kFloat11Max),
-                                      std::min(v[2], kFloat10Max)));
-      break;
-    case DdsFormat::R8G8B8A8_UNORM:
-      for (int c = 0; c < 4; ++c) dst[c] = unorm8_from_float(v[c]);
-      break;
-    case DdsFormat::R16_FLOAT:
-      put_u16(dst, half_saturated(v[0]));
-      break;
-    case DdsFormat::R8_UNORM:
-      dst[0] = unorm8_from_float(v[0]);
-      break;
-  }
-}
-
-// Decodes one texel into all components of the format.
-void decode_texel(DdsFormat format, const uint8_t* src, float* dst) {
-  switch (format) {
-    case DdsFormat::R32G32B32A32_FLOAT:
-      for (int c = 0; c < 4; ++c) dst[c] = get_f32(src + 4 * c);
-      break;
-    case DdsFormat::R16G16B16A16_FLOAT:
-      for (int c = 0; c < 4; ++c) dst[c] = float_from_half(get_u16(src + 2 * c));
-      break;
-    case DdsFormat::R11G11B10_FLOAT: {
-      const Rgb rgb = rgb_from_r11g11b10(get_u32(src));
-      dst[0] = rgb.r, dst[1] = rgb.g, dst[2] = rgb.b;
-      break;
-    }
-    case DdsFormat::R8G8B8A8_UNORM:
-      for (int c = 0; c < 4; ++c) dst[c] = src[c] / 255.0f;
-      break;
-    case DdsFormat::R16_FLOAT:
-      dst[0] = float_from_half(get_u16(src));
-      break;
-    case DdsFormat::R8_UNORM:
-      dst[0] = src[0] / 255.0f;
-      break;
-  }
 }
 
 // ---- shapes ----------------------------------------------------------------
@@ -166,7 +70,7 @@ Shape level_shape(Shape top, int level) {
 
 // Refuses anything that would not make a valid DDS file, before any I/O.
 void check_writable(const std::string& path, const std::vector<Texture>& mips,
-                    const FormatInfo& format) {
+                    const FormatInfo& format, DdsHeader header) {
   if (mips.empty()) throw IoError(path + ": expected at least one mip level, got none");
   const Texture& top = mips[0];
   if (top.width < 1 || top.height < 1 || top.depth < 1 || top.layers < 1)
@@ -177,6 +81,14 @@ void check_writable(const std::string& path, const std::vector<Texture>& mips,
         fmt::format("{}: expected a volume or a 2D array (DDS has no volume arrays), "
                     "got {}",
                     path, top.shape_string()));
+  if (header == DdsHeader::legacy && !format.legacy)
+    throw IoError(fmt::format("{}: {} has no legacy (pre-DX10) pixel format; write it with the "
+                              "DX10 header",
+                              path, format.name));
+  if (header == DdsHeader::legacy && top.layers > 1)
+    throw IoError(fmt::format("{}: a legacy (pre-DX10) header has no array size, got {} layers; "
+                              "write a 2D array with the DX10 header",
+                              path, top.layers));
   if (top.channel_count() < 1 || top.channel_count() > format.components)
     throw IoError(fmt::format("{}: expected 1 to {} channels for {}, got {}", path,
                               format.components, format.name, top.channel_count()));
@@ -202,38 +114,91 @@ void check_writable(const std::string& path, const std::vector<Texture>& mips,
   }
 }
 
-std::vector<uint8_t> make_header(const std::vector<Texture>& mips, const FormatInfo& format) {
+// miscFlags2 of the DX10 header (dds.hpp says why).
+uint32_t alpha_mode(const FormatInfo& format, int channels) {
+  if (!format.has_alpha) return dds::kAlphaModeUnknown;
+  return channels == 4 ? dds::kAlphaModeCustom : dds::kAlphaModeOpaque;
+}
+
+std::vector<uint8_t> make_header(const std::vector<Texture>& mips, const FormatInfo& format,
+                                 DdsHeader header) {
   const Texture& top = mips[0];
   const bool volume = top.depth > 1;
   const bool has_mips = mips.size() > 1;
-  std::vector<uint8_t> h(dds::kHeaderBytes, 0);
-  uint32_t flags =
-      dds::kDdsdCaps | dds::kDdsdHeight | dds::kDdsdWidth | dds::kDdsdPixelFormat | dds::kDdsdPitch;
+  const bool dx10 = header == DdsHeader::dx10;
+  std::vector<uint8_t> h(dx10 ? dds::kHeaderBytes : dds::kLegacyHeaderBytes, 0);
+  uint32_t flags = dds::kDdsdCaps | dds::kDdsdHeight | dds::kDdsdWidth | dds::kDdsdPixelFormat |
+                   (format.block ? dds::kDdsdLinearSize : dds::kDdsdPitch);
   if (volume) flags |= dds::kDdsdDepth;
   if (has_mips) flags |= dds::kDdsdMipMapCount;
   uint32_t caps = dds::kCapsTexture;
   if (has_mips) caps |= dds::kCapsComplex | dds::kCapsMipMap;
   if (volume || top.layers > 1) caps |= dds::kCapsComplex;
+  // Row pitch, or for a block format the bytes of one top-level slice.
+  const uint64_t pitch = format.block ? dds_level_bytes(format, top.width, top.height, 1)
+                                      : uint64_t(top.width) * uint64_t(format.bytes);
 
   put_u32(&h[0], dds::kMagic);
   put_u32(&h[4], 124);  // DDS_HEADER.dwSize
   put_u32(&h[8], flags);
   put_u32(&h[12], uint32_t(top.height));
   put_u32(&h[16], uint32_t(top.width));
-  put_u32(&h[20], uint32_t(top.width) * uint32_t(format.bytes));  // row pitch
+  put_u32(&h[20], uint32_t(pitch));
   put_u32(&h[24], volume ? uint32_t(top.depth) : 0);
   put_u32(&h[28], uint32_t(mips.size()));
-  put_u32(&h[76], 32);  // DDS_PIXELFORMAT.dwSize
-  put_u32(&h[80], dds::kDdpfFourCC);
-  put_u32(&h[84], dds::kFourCCDx10);
+  const DdsPixelFormat pf = dx10 ? DdsPixelFormat{32, dds::kDdpfFourCC, dds::kFourCCDx10}
+                                 : *format.legacy;
+  const uint32_t pf_fields[] = {pf.size,       pf.flags,      pf.four_cc,    pf.rgb_bit_count,
+                                pf.r_bit_mask, pf.g_bit_mask, pf.b_bit_mask, pf.a_bit_mask};
+  for (int i = 0; i < 8; ++i) put_u32(&h[76 + 4 * i], pf_fields[i]);
   put_u32(&h[108], caps);
   put_u32(&h[112], volume ? dds::kCaps2Volume : 0);
+  if (!dx10) return h;
   put_u32(&h[128], uint32_t(format.format));
   put_u32(&h[132], volume ? dds::kDimensionTexture3D : dds::kDimensionTexture2D);
   put_u32(&h[136], 0);  // miscFlag: no cube map
   put_u32(&h[140], uint32_t(top.layers));
-  put_u32(&h[144], dds::kAlphaModeUnknown);
+  put_u32(&h[144], alpha_mode(format, top.channel_count()));
   return h;
+}
+
+// The bytes of one mip level of one array slice: every depth slice, in order.
+std::vector<uint8_t> encode_level(const Texture& m, int layer, const FormatInfo& f) {
+  const int nc = m.channel_count();
+  const size_t slice_texels = size_t(m.width) * size_t(m.height);
+  if (f.block) {
+    std::vector<uint8_t> out;
+    out.reserve(dds_level_bytes(f, m.width, m.height, m.depth));
+    for (int z = 0; z < m.depth; ++z) {
+      const std::vector<uint8_t> slice =
+          encode_bc(m.texel(0, 0, z, layer), m.width, m.height, nc, *f.block);
+      out.insert(out.end(), slice.begin(), slice.end());
+    }
+    return out;
+  }
+  const size_t texels = slice_texels * size_t(m.depth);
+  std::vector<uint8_t> out(texels * size_t(f.bytes));
+  const float* src = m.texel(0, 0, 0, layer);
+  for (size_t t = 0; t < texels; ++t)
+    encode_dds_texel(f.format, src + t * nc, nc, &out[t * size_t(f.bytes)]);
+  return out;
+}
+
+// Decodes one mip level of one array slice from `p` into `m` (layer `layer`).
+void decode_level(const uint8_t* p, const FormatInfo& f, Texture& m, int layer) {
+  const int nc = f.decoded_components;
+  const size_t slice_texels = size_t(m.width) * size_t(m.height);
+  if (f.block) {
+    const size_t slice_bytes = dds_level_bytes(f, m.width, m.height, 1);
+    for (int z = 0; z < m.depth; ++z) {
+      const std::vector<float> texels = decode_bc(p + z * slice_bytes, m.width, m.height, *f.block);
+      std::copy(texels.begin(), texels.end(), m.texel(0, 0, z, layer));
+    }
+    return;
+  }
+  float* dst = m.texel(0, 0, 0, layer);
+  const size_t texels = slice_texels * size_t(m.depth);
+  for (size_t t = 0; t < texels; ++t, p += f.bytes) decode_dds_texel(f.format, p, dst + t * nc);
 }
 
 // ---- reading ---------------------------------------------------------------
@@ -298,6 +263,7 @@ DdsHeaderInfo parse_header(const std::string& path, const std::vector<uint8_t>& 
 struct Layout {
   const FormatInfo* format;
   int width, height, depth, layers, levels;
+  uint32_t header_bytes;
   uint64_t data_bytes;
 };
 
@@ -317,33 +283,50 @@ constexpr uint64_t kU64Max = std::numeric_limits<uint64_t>::max();
 uint64_t mul_saturated(uint64_t a, uint64_t b) {
   return a != 0 && b > kU64Max / a ? kU64Max : a * b;
 }
-uint64_t add_saturated(uint64_t a, uint64_t b) {
-  return b > kU64Max - a ? kU64Max : a + b;
+
+// The format, the dimension and the array size, from the DX10 header or, in
+// a legacy file, from the pixel format and caps2.
+struct Described {
+  const FormatInfo* format;
+  bool volume;
+  uint32_t array_size;
+  uint32_t header_bytes;
+};
+
+Described describe_legacy(const std::string& path, const DdsHeaderInfo& h) {
+  const DdsPixelFormat& pf = h.pixel_format;
+  const FormatInfo* format = find_legacy_format(pf);
+  if (!format) {
+    std::string legacy;
+    for (DdsFormat f : dds_formats())
+      if (dds_has_legacy_form(f)) legacy += std::string(legacy.empty() ? "" : ", ") + dxgi_format_name(f);
+    throw IoError(fmt::format(
+        "{}: expected a DX10 header or the legacy pixel format of one of {}, got {}", path, legacy,
+        (pf.flags & dds::kDdpfFourCC)
+            ? fmt::format("FourCC \"{}\" ({})", four_cc_string(pf.four_cc), pf.four_cc)
+            : fmt::format("flags 0x{:x}, {} bits, masks 0x{:x} 0x{:x} 0x{:x} 0x{:x}", pf.flags,
+                          pf.rgb_bit_count, pf.r_bit_mask, pf.g_bit_mask, pf.b_bit_mask,
+                          pf.a_bit_mask)));
+  }
+  if (h.caps2 & dds::kCaps2CubeMap)
+    throw IoError(fmt::format("{}: expected no cube map, got caps2 0x{:x}", path, h.caps2));
+  return {format, (h.caps2 & dds::kCaps2Volume) != 0, 1, dds::kLegacyHeaderBytes};
 }
 
-Layout validate(const std::string& path, const DdsHeaderInfo& h) {
+Described describe(const std::string& path, const DdsHeaderInfo& h) {
   if (h.size != 124)
     throw IoError(fmt::format("{}: expected DDS_HEADER size 124, got {}", path, h.size));
   if (h.pixel_format.size != 32)
     throw IoError(
         fmt::format("{}: expected DDS_PIXELFORMAT size 32, got {}", path, h.pixel_format.size));
-  if (!h.has_dx10) {
-    const bool four_cc = h.pixel_format.flags & dds::kDdpfFourCC;
-    throw IoError(fmt::format(
-        "{}: expected a DX10 header (pixel format FourCC \"DX10\"), got {}; only DX10 files "
-        "are supported",
-        path,
-        four_cc ? fmt::format("FourCC \"{}\"", four_cc_string(h.pixel_format.four_cc))
-                : fmt::format("a legacy pixel format (flags 0x{:x})", h.pixel_format.flags)));
-  }
+  if (!h.has_dx10) return describe_legacy(path, h);
   if (h.file_size < dds::kHeaderBytes)
     throw IoError(
         fmt::format("{}: expected at least {} bytes (magic, DDS_HEADER and "
                     "DDS_HEADER_DXT10), got {}",
                     path, dds::kHeaderBytes, h.file_size));
-  Layout l{};
-  l.format = find_format(h.dxgi_format);
-  if (!l.format)
+  const FormatInfo* format = find_format(h.dxgi_format);
+  if (!format)
     throw IoError(fmt::format("{}: expected a DXGI format among {}, got {}", path,
                               format_list(true), h.dxgi_format));
   const bool volume = h.resource_dimension == dds::kDimensionTexture3D;
@@ -354,6 +337,15 @@ Layout validate(const std::string& path, const DdsHeaderInfo& h) {
                     path, h.resource_dimension));
   if (h.misc_flag & dds::kMiscTextureCube)
     throw IoError(fmt::format("{}: expected no cube map, got miscFlag 0x{:x}", path, h.misc_flag));
+  return {format, volume, h.array_size, dds::kHeaderBytes};
+}
+
+Layout validate(const std::string& path, const DdsHeaderInfo& h) {
+  const Described d = describe(path, h);
+  Layout l{};
+  l.format = d.format;
+  l.header_bytes = d.header_bytes;
+  const bool volume = d.volume;
   const uint32_t depth = volume ? h.depth : 1;
   // Direct3D 12's resource limits, which every file skybake writes is within:
   // they bound each header size before anything is computed from it.
@@ -365,41 +357,41 @@ Layout validate(const std::string& path, const DdsHeaderInfo& h) {
     if (value < 1 || value > side_limit)
       throw IoError(fmt::format("{}: expected {} from 1 to {} for {}, got {}", path, field,
                                 side_limit, kind, value));
-  if (volume && h.array_size != 1)
-    throw IoError(fmt::format("{}: expected arraySize 1 for a volume, got {}", path, h.array_size));
-  if (h.array_size < 1 || h.array_size > kMaxDdsArraySize)
+  if (volume && d.array_size != 1)
+    throw IoError(fmt::format("{}: expected arraySize 1 for a volume, got {}", path, d.array_size));
+  if (d.array_size < 1 || d.array_size > kMaxDdsArraySize)
     throw IoError(fmt::format("{}: expected arraySize from 1 to {}, got {}", path,
-                              kMaxDdsArraySize, h.array_size));
+                              kMaxDdsArraySize, d.array_size));
   l.width = int(h.width), l.height = int(h.height), l.depth = int(depth);
-  l.layers = int(h.array_size);
+  l.layers = int(d.array_size);
   // DirectXTex reads mipMapCount even without DDSD_MIPMAPCOUNT; 0 means 1.
   const int full = mip_count(l.width, l.height, l.depth);
   if (h.mip_map_count > uint32_t(full))
     throw IoError(fmt::format("{}: expected mipMapCount at most {} for {}x{}x{}, got {}", path, full,
                               l.width, l.height, l.depth, h.mip_map_count));
   l.levels = std::max(1, int(h.mip_map_count));
-  uint64_t per_layer = 0;
+  uint64_t per_layer = 0, texels_per_layer = 0;
   for (int i = 0; i < l.levels; ++i) {
-    const uint64_t texels =
-        mul_saturated(mul_saturated(std::max(1, l.width >> i), std::max(1, l.height >> i)),
-                      std::max(1, l.depth >> i));
-    per_layer = add_saturated(per_layer, mul_saturated(texels, uint64_t(l.format->bytes)));
+    const Shape s = level_shape({l.width, l.height, l.depth}, i);
+    // Sides are at most 16384, so these products fit in 64 bits.
+    per_layer += dds_level_bytes(*l.format, s.width, s.height, s.depth);
+    texels_per_layer += uint64_t(s.width) * uint64_t(s.height) * uint64_t(s.depth);
   }
   l.data_bytes = mul_saturated(per_layer, uint64_t(l.layers));
-  const uint64_t decoded = mul_saturated(
-      mul_saturated(l.data_bytes / uint64_t(l.format->bytes), uint64_t(l.format->components)),
-      sizeof(float));
+  const uint64_t decoded =
+      mul_saturated(mul_saturated(texels_per_layer, uint64_t(l.layers)),
+                    uint64_t(l.format->decoded_components) * sizeof(float));
   if (decoded > kMaxDdsDecodedBytes)
     throw IoError(fmt::format(
         "{}: expected at most {} GiB of float32 texels (all mip levels and layers), got {} "
         "bytes for {}x{}x{} with arraySize {} and {} mip levels",
         path, kMaxDdsDecodedBytes >> 30, decoded, l.width, l.height, l.depth, l.layers, l.levels));
-  const uint64_t got = h.file_size - dds::kHeaderBytes;
+  const uint64_t got = h.file_size - l.header_bytes;
   if (got != l.data_bytes)
     throw IoError(
         fmt::format("{}: expected {} bytes of pixel data after the {}-byte header, got "
                     "{}{}",
-                    path, l.data_bytes, dds::kHeaderBytes, got,
+                    path, l.data_bytes, l.header_bytes, got,
                     got < l.data_bytes ? " (truncated file)" : " (trailing bytes)"));
   return l;
 }
@@ -415,7 +407,7 @@ const std::vector<std::string>& channel_names(int components) {
 const std::vector<DdsFormat>& dds_formats() {
   static const std::vector<DdsFormat> all = [] {
     std::vector<DdsFormat> v;
-    for (const FormatInfo& f : kFormats) v.push_back(f.format);
+    for (const FormatInfo& f : dds_format_infos()) v.push_back(f.format);
     return v;
   }();
   return all;
@@ -430,15 +422,21 @@ int dds_component_count(DdsFormat format) {
 int dds_bytes_per_texel(DdsFormat format) {
   return info(format).bytes;
 }
+bool dds_is_block_compressed(DdsFormat format) {
+  return info(format).block.has_value();
+}
+bool dds_has_legacy_form(DdsFormat format) {
+  return info(format).legacy.has_value();
+}
 
 DdsFormat dds_format_from_name(const std::string& name, const std::string& context) {
   const std::string prefix = "DXGI_FORMAT_";
   const std::string bare =
       name.compare(0, prefix.size(), prefix) == 0 ? name.substr(prefix.size()) : name;
-  for (const FormatInfo& f : kFormats)
+  for (const FormatInfo& f : dds_format_infos())
     if (bare == f.name) return f.format;
   std::vector<std::string> names;
-  for (const FormatInfo& f : kFormats) names.push_back(f.name);
+  for (const FormatInfo& f : dds_format_infos()) names.push_back(f.name);
   const std::string* best = closest_name(bare, names, 2);
   throw IoError(fmt::format("{}: expected one of {}, got \"{}\"{}", context, format_list(false),
                             name, best ? fmt::format(" (did you mean \"{}\"?)", *best) : ""));
@@ -453,10 +451,11 @@ std::string four_cc_string(uint32_t four_cc) {
   return s;
 }
 
-void write_dds(const std::string& path, const std::vector<Texture>& mips, DdsFormat format) {
+void write_dds(const std::string& path, const std::vector<Texture>& mips, DdsFormat format,
+               DdsHeader header_kind) {
   const FormatInfo& f = info(format);
-  check_writable(path, mips, f);
-  const std::vector<uint8_t> header = make_header(mips, f);
+  check_writable(path, mips, f, header_kind);
+  const std::vector<uint8_t> header = make_header(mips, f, header_kind);
 
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out)
@@ -465,15 +464,10 @@ void write_dds(const std::string& path, const std::vector<Texture>& mips, DdsFor
   // Array slices outermost, then mip levels; a level's depth slices are
   // contiguous in both Texture and DDS order, so one loop serves 2D arrays
   // (slice -> mips) and volumes (mip -> slices, with a single "slice").
-  const int nc = mips[0].channel_count();
-  std::vector<uint8_t> buf;
   for (int layer = 0; layer < mips[0].layers && out; ++layer) {
     for (const Texture& m : mips) {
-      const size_t texels = size_t(m.width) * m.height * m.depth;
-      buf.resize(texels * size_t(f.bytes));
-      const float* src = m.texel(0, 0, 0, layer);
-      for (size_t t = 0; t < texels; ++t) encode_texel(format, src + t * nc, nc, &buf[t * f.bytes]);
-      out.write(reinterpret_cast<const char*>(buf.data()), std::streamsize(buf.size()));
+      const std::vector<uint8_t> bytes = encode_level(m, layer, f);
+      out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
     }
   }
   out.close();
@@ -503,18 +497,17 @@ DdsImage read_dds(const std::string& path) {
                               h.file_size, bytes.size()));
   DdsImage image;
   image.format = l.format->format;
-  const int nc = l.format->components;
+  image.header = h.has_dx10 ? DdsHeader::dx10 : DdsHeader::legacy;
   for (int i = 0; i < l.levels; ++i) {
     const Shape s = level_shape({l.width, l.height, l.depth}, i);
-    image.mips.emplace_back(s.width, s.height, s.depth, l.layers, channel_names(nc));
+    image.mips.emplace_back(s.width, s.height, s.depth, l.layers,
+                            channel_names(l.format->decoded_components));
   }
-  const uint8_t* p = bytes.data() + dds::kHeaderBytes;
+  const uint8_t* p = bytes.data() + l.header_bytes;
   for (int layer = 0; layer < l.layers; ++layer) {
     for (Texture& m : image.mips) {
-      const size_t texels = size_t(m.width) * m.height * m.depth;
-      float* dst = m.texel(0, 0, 0, layer);
-      for (size_t t = 0; t < texels; ++t, p += l.format->bytes)
-        decode_texel(image.format, p, dst + t * nc);
+      decode_level(p, *l.format, m, layer);
+      p += dds_level_bytes(*l.format, m.width, m.height, m.depth);
     }
   }
   return image;

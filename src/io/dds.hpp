@@ -1,13 +1,19 @@
-// Our DDS writer and reader: the "DDS " magic, DDS_HEADER (124 bytes) and
-// always the DDS_HEADER_DXT10 extension (20 bytes), then the pixel data.
+// Our DDS writer and reader: the "DDS " magic, DDS_HEADER (124 bytes), by
+// default the DDS_HEADER_DXT10 extension (20 bytes), then the pixel data.
 // References (Microsoft Learn): "DDS_HEADER structure", "DDS_PIXELFORMAT",
-// "DDS_HEADER_DXT10 structure", "Programming Guide for DDS", "DXGI_FORMAT".
+// "DDS_HEADER_DXT10 structure", "Programming Guide for DDS", "DXGI_FORMAT",
+// "Block Compression (Direct3D 10)"; docs/formats.md "DDS".
 //
 // Shapes: 2D, 2D array (Texture::layers > 1) and volume (Texture::depth > 1),
 // each with or without a mip chain. Data order (Programming Guide for DDS):
 // a 2D array stores, for each array slice, all of its mip levels; a volume
 // stores, for each mip level, all of its depth slices. Rows are tightly packed
-// (pitch = width * bytes per texel), all integers little-endian.
+// (pitch = width * bytes per texel), all integers little-endian. Block
+// formats (BC1, BC3, BC4, BC5) store each depth slice of each level as rows of
+// 4x4 blocks (block_compression.hpp), a level below 4 texels padded to one
+// block per axis; dwPitchOrLinearSize then holds the linear size of one slice
+// of the top level (blocks across * blocks down * block bytes, as DirectXTex
+// writes it) with DDSD_LINEARSIZE instead of DDSD_PITCH.
 //
 // Channel mapping: the texture's channels fill the format's components in
 // order (R, G, B, A). A missing component is written as 0, a missing alpha as
@@ -16,11 +22,18 @@
 // half rounds to nearest even and clamps finite values beyond +-65504 to
 // +-65504, since no Inf may reach a file (docs/architecture.md "Files on
 // disk"); R11G11B10 rounds to nearest even, stores negatives as 0 and clamps
-// to the largest finite value (65024 for R and G, 64512 for B).
+// to the largest finite value (65024 for R and G, 64512 for B); block formats
+// clamp to [0, 1] and round to 8 bits before encoding.
 //
-// miscFlags2 (alpha mode) is DDS_ALPHA_MODE_UNKNOWN (0): our alpha channels
-// hold data (a fourth LUT component), not coverage, so we do not claim
-// straight or premultiplied alpha, and readers must not reinterpret it.
+// Headers: DX10 (the default) names the DXGI format; its miscFlags2 (alpha
+// mode) is DDS_ALPHA_MODE_CUSTOM when the texture's fourth channel fills the
+// format's alpha (our alpha channels hold data, a fourth LUT component, not
+// coverage), DDS_ALPHA_MODE_OPAQUE when the format has alpha and the texture
+// leaves it at 1, DDS_ALPHA_MODE_UNKNOWN for formats without alpha. The
+// legacy header (pre-DX10, DdsHeader::legacy) describes the format with a
+// FourCC or bit masks instead (dds_format_table.hpp lists them); it has no
+// array size, so only single 2D textures and volumes can use it, and
+// R11G11B10_FLOAT has no legacy form.
 #pragma once
 
 #include <array>
@@ -38,9 +51,18 @@ enum class DdsFormat : uint32_t {
   R16G16B16A16_FLOAT = 10,
   R11G11B10_FLOAT = 26,
   R8G8B8A8_UNORM = 28,
+  R8G8_UNORM = 49,
   R16_FLOAT = 54,
   R8_UNORM = 61,
+  BC1_UNORM = 71,
+  BC3_UNORM = 77,
+  BC4_UNORM = 80,
+  BC5_UNORM = 83,
 };
+
+// Which header describes the format: DDS_HEADER_DXT10 (DXGI code) or the
+// pre-DX10 pixel format alone.
+enum class DdsHeader { dx10, legacy };
 
 // Every supported format, in the order above.
 const std::vector<DdsFormat>& dds_formats();
@@ -50,28 +72,39 @@ const char* dxgi_format_name(DdsFormat format);
 // accepted too). Throws IoError "<context>: expected one of R32G32B32A32_FLOAT,
 // ..., got "x"" with a "did you mean" suggestion when one is close.
 DdsFormat dds_format_from_name(const std::string& name, const std::string& context = "DDS format");
-// Components stored per texel (4, 3 for R11G11B10, 1 for R8/R16).
+// Channels the format stores: 4 (RGBA formats, BC3), 3 (R11G11B10, BC1),
+// 2 (R8G8, BC5), 1 (R8, R16, BC4).
 int dds_component_count(DdsFormat format);
-// Bytes per texel: 16, 8, 4, 4, 2, 1.
+// Bytes per texel: 16, 8, 4, 4, 2, 2, 1; 0 for the block formats.
 int dds_bytes_per_texel(DdsFormat format);
+// BC1_UNORM .. BC5_UNORM.
+bool dds_is_block_compressed(DdsFormat format);
+// Whether the format has a pre-DX10 pixel format (all but R11G11B10_FLOAT).
+bool dds_has_legacy_form(DdsFormat format);
 
 // Writes `mips` (mips[0] full size; level i is max(1, size0 >> i) on every
 // axis; all levels share layers and channels; at most a full chain) to exactly
 // `path`. Checks everything (shape, chain, channel count, check_finite of
 // every level) before the file is opened, so a refused texture creates no
-// file. Throws IoError on a bad input or a failed write. Single-threaded.
-void write_dds(const std::string& path, const std::vector<Texture>& mips, DdsFormat format);
+// file; a legacy header for a format without one, or for a 2D array, is such
+// a refusal. Throws IoError on a bad input or a failed write. Block formats
+// are encoded with tbb::parallel_for (bytes independent of the thread count).
+void write_dds(const std::string& path, const std::vector<Texture>& mips, DdsFormat format,
+               DdsHeader header = DdsHeader::dx10);
 
 struct DdsImage {
   std::vector<Texture> mips;  // decoded float values; channels R, G, B, A as the format has
   DdsFormat format = DdsFormat::R32G32B32A32_FLOAT;
+  DdsHeader header = DdsHeader::dx10;
 };
 
-// Reads a DDS file with a DX10 header in one of our formats (2D, 2D array or
-// volume; no cube maps). Validates the magic, the structure sizes, the
+// Reads a DDS file in one of our formats (2D, 2D array or volume; no cube
+// maps), with a DX10 header or the legacy pixel format of one of our formats
+// (FourCC 116, 113, 111, DXT1, DXT5, ATI1 or BC4U, ATI2 or BC5U; RGBA8, R8G8
+// or luminance R8 masks). Validates the magic, the structure sizes, the
 // dimension, and that the file holds exactly the bytes the header announces
-// (a truncated file is an error). Legacy (non-DX10) files are refused with an
-// IoError that says so.
+// (a truncated file is an error). Block formats are decoded by decode_bc
+// (BC1 gives R, G, B, A).
 DdsImage read_dds(const std::string& path);
 
 // DDS_PIXELFORMAT, field by field.
@@ -113,8 +146,9 @@ constexpr uint32_t kCaps2Volume = 0x200000, kCaps2CubeMap = 0x200;
 constexpr uint32_t kFourCCDx10 = 0x30315844;  // "DX10" little-endian
 constexpr uint32_t kDimensionTexture2D = 3, kDimensionTexture3D = 4;
 constexpr uint32_t kMiscTextureCube = 0x4;
-constexpr uint32_t kAlphaModeUnknown = 0;
+constexpr uint32_t kAlphaModeUnknown = 0, kAlphaModeOpaque = 3, kAlphaModeCustom = 4;
 constexpr uint32_t kHeaderBytes = 4 + 124 + 20;  // magic + DDS_HEADER + DDS_HEADER_DXT10
+constexpr uint32_t kLegacyHeaderBytes = 4 + 124;  // magic + DDS_HEADER
 }  // namespace dds
 
 }  // namespace skybake

@@ -65,6 +65,16 @@ LoadedTexture load_dds(const std::string& path) {
                  {"resource_dimension", h.resource_dimension},
                  {"array_size", h.array_size},
                  {"file_size", h.file_size}};
+  if (!h.has_dx10) {  // no DDS_HEADER_DXT10: the pixel format says what the data is
+    for (const char* key : {"dxgi_format", "resource_dimension", "array_size"}) out.details.erase(key);
+    const DdsPixelFormat& pf = h.pixel_format;
+    out.details["legacy_pixel_format"] =
+        (pf.flags & dds::kDdpfFourCC)
+            ? fmt::format("FourCC \"{}\" ({})", four_cc_string(pf.four_cc), pf.four_cc)
+            : fmt::format("flags 0x{:x}, {} bits, masks 0x{:x} 0x{:x} 0x{:x} 0x{:x}", pf.flags,
+                          pf.rgb_bit_count, pf.r_bit_mask, pf.g_bit_mask, pf.b_bit_mask,
+                          pf.a_bit_mask);
+  }
   attach_manifest_metadata(path, out.texture);
   return out;
 }

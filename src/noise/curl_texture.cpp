@@ -44,7 +44,9 @@ Texture bake_curl(const CurlSpec& spec, const BakeContext& ctx) {
   // The 3D potentials use their own seed so that B is not built from the
   // same random numbers as R and G.
   const uint32_t seed3 = stream_seed(spec.seed, 0x33643344);  // "3d3D"
-  Texture tex(n, n, 1, 1, {"R", "G", "B"});
+  const int nc = spec.with_z ? 3 : 2;
+  Texture tex(n, n, 1, 1, spec.with_z ? std::vector<std::string>{"R", "G", "B"}
+                                      : std::vector<std::string>{"R", "G"});
   // Per-row maxima, reduced serially afterwards: a max is exact, so the scale
   // (and every texel) is independent of the thread count.
   std::vector<float> row_max_rg(n), row_max_b(n);
@@ -55,15 +57,16 @@ Texture bake_curl(const CurlSpec& spec, const BakeContext& ctx) {
     for (int x = 0; x < n; ++x) {
       const float px = cell_coord_from_texel(x, n, spec.period);
       const glm::vec2 v = curl2({px, py}, period2, spec.octaves, spec.seed, spec.gain);
+      float* t = tex.texel(x, y);
+      t[0] = v.x;
+      t[1] = v.y;
+      max_rg = std::max({max_rg, std::abs(t[0]), std::abs(t[1])});
+      if (!spec.with_z) continue;
       // z of curl3 = d psi2 / dx - d psi1 / dy; the other potential is not needed.
       const glm::vec3 p3(px, py, spec.slice_z);
       const glm::vec3 d1 = curl3_potential(0, p3, period3, spec.octaves, seed3, spec.gain).gradient;
       const glm::vec3 d2 = curl3_potential(1, p3, period3, spec.octaves, seed3, spec.gain).gradient;
-      float* t = tex.texel(x, y);
-      t[0] = v.x;
-      t[1] = v.y;
       t[2] = d2.x - d1.y;
-      max_rg = std::max({max_rg, std::abs(t[0]), std::abs(t[1])});
       max_b = std::max(max_b, std::abs(t[2]));
     }
     row_max_rg[y] = max_rg;
@@ -72,10 +75,10 @@ Texture bake_curl(const CurlSpec& spec, const BakeContext& ctx) {
   });
   const float scale_rg = *std::max_element(row_max_rg.begin(), row_max_rg.end());
   const float scale_b = *std::max_element(row_max_b.begin(), row_max_b.end());
-  for (size_t i = 0; i < tex.data.size(); i += 3) {
+  for (size_t i = 0; i < tex.data.size(); i += size_t(nc)) {
     tex.data[i] = curl_texel_from_value(tex.data[i], scale_rg);
     tex.data[i + 1] = curl_texel_from_value(tex.data[i + 1], scale_rg);
-    tex.data[i + 2] = curl_texel_from_value(tex.data[i + 2], scale_b);
+    if (spec.with_z) tex.data[i + 2] = curl_texel_from_value(tex.data[i + 2], scale_b);
   }
 
   Metadata& m = tex.metadata;
@@ -87,11 +90,12 @@ Texture bake_curl(const CurlSpec& spec, const BakeContext& ctx) {
   set_meta(m, "gain", double(spec.gain));
   set_meta(m, "slice_z", double(spec.slice_z));
   set_meta(m, "curl_scale_rg", double(scale_rg));
-  set_meta(m, "curl_scale_b", double(scale_b));
+  if (spec.with_z) set_meta(m, "curl_scale_b", double(scale_b));
   set_meta(m, "encoding", "v = (2 * c - 1) * curl_scale, per lattice cell of the base period");
   set_meta(m, "channel.R", "2D curl x: d psi / dy of a periodic Perlin fBm potential");
   set_meta(m, "channel.G", "2D curl y: -d psi / dx");
-  set_meta(m, "channel.B", "3D curl z on the plane z = slice_z (independent potentials)");
+  if (spec.with_z)
+    set_meta(m, "channel.B", "3D curl z on the plane z = slice_z (independent potentials)");
   return tex;
 }
 

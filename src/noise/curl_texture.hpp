@@ -37,6 +37,7 @@ struct CurlSpec {
   int octaves = 3;       // potential octaves: periods 4, 8, 16 (8 texels per finest cell)
   float gain = 0.5f;     // amplitude ratio between potential octaves, (0, 1]
   float slice_z = 0.5f;  // B: plane of the 3D curl, lattice cells (mid-cell: off the lattice plane)
+  bool with_z = true;     // bake B; false: R, G only (two-channel formats such as BC5, R8G8)
 };
 
 std::vector<SpecProblem> spec_problems(const CurlSpec& spec);
@@ -53,8 +54,9 @@ inline float curl_value_from_texel(float c, float scale) {
   return (2.0f * c - 1.0f) * scale;
 }
 
-// Channels "R", "G", "B"; metadata: product, seed, period, octaves, gain,
-// curl_scale_rg, curl_scale_b, encoding, channel meanings.
+// Channels "R", "G", "B" ("R", "G" without with_z); metadata: product, seed,
+// period, octaves, gain, curl_scale_rg, curl_scale_b (with B), encoding,
+// channel meanings.
 Texture bake_curl(const CurlSpec& spec, const BakeContext& ctx);
 
 }  // namespace skybake

@@ -63,6 +63,7 @@ CurlSpec curl_spec(const OutputSpec& spec) {
   s.period = spec.options.value("period", s.period);
   s.octaves = spec.options.value("octaves", s.octaves);
   s.gain = spec.options.value("gain", s.gain);
+  s.with_z = option_string(spec, "channels", "rgb") == "rgb";
   return s;
 }
 

@@ -80,6 +80,7 @@ int output_channels(const OutputSpec& spec) {
   if (p == "noise_detail") return option_string(spec, "pack", "none") != "none" ? 1 : 3;
   if (p == "weather") return option_string(spec, "layout", "schneider") == "frostbite" ? 2 : 3;
   if (p == "cloud_types") return 2;
+  if (p == "curl") return option_string(spec, "channels", "rgb") == "rg" ? 2 : 3;
   if (p == "aerial_perspective" || p == "height_gradients") return 4;
   if (limits_table().count(p)) return 3;
   return 4;

@@ -13,24 +13,12 @@
 #include "io/ktx2.hpp"
 #include "io/png_preview.hpp"
 #include "io/vdb.hpp"
+#include "pipeline/dds_output.hpp"
 #include "pipeline/product_options.hpp"
 
 namespace skybake {
 
 namespace {
-
-// DDS format when the output does not name one: float32 RGBA keeps every bit
-// (transmittance stays float32, docs/reference.md "Transmittance"); half asks
-// for 16-bit floats.
-DdsFormat choose_dds_format(const Texture& tex, const ProductInfo& info, const OutputSpec& spec) {
-  std::string name = option_string(spec, "dds_format", info.default_dds_format);
-  if (name == "unorm8")
-    return tex.channel_count() == 1 ? DdsFormat::R8_UNORM : DdsFormat::R8G8B8A8_UNORM;
-  if (!name.empty()) return dds_format_from_name(name);
-  if (spec.precision == "half")
-    return tex.channel_count() == 1 ? DdsFormat::R16_FLOAT : DdsFormat::R16G16B16A16_FLOAT;
-  return DdsFormat::R32G32B32A32_FLOAT;
-}
 
 // KTX2 format when the output does not name one: the DDS defaults' choice
 // (unorm8 for the products that default to it, else float32 or half by
@@ -58,9 +46,10 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
     return half ? "half" : "float";
   }
   if (format == "dds") {
-    const DdsFormat dds = choose_dds_format(tex, info, spec);
+    const DdsFormat dds = output_dds_format(spec, info, tex.channel_count());
     const bool mips = spec.options.value("mips", info.default_mips);
-    write_dds(tmp, mips ? build_mip_chain(tex, MipEdge::wrap) : std::vector<Texture>{tex}, dds);
+    write_dds(tmp, mips ? build_mip_chain(tex, MipEdge::wrap) : std::vector<Texture>{tex}, dds,
+              output_dds_header(spec));
     return dxgi_format_name(dds);
   }
   if (format == "ktx2") {

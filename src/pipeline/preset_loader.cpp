@@ -23,6 +23,7 @@
 #include "io/dds.hpp"
 #include "io/ktx2_format.hpp"
 #include "pipeline/cloud_products.hpp"
+#include "pipeline/dds_output.hpp"
 #include "pipeline/output_budget.hpp"
 #include "pipeline/product_tables.hpp"
 #include "pipeline/schema_validator.hpp"
@@ -42,7 +43,7 @@ const std::vector<std::string> kCommonOutputKeys = {
 const std::vector<std::string> kNonSemanticKeys = {"$schema", "description"};
 
 // Output keys of the file writers, which every product takes too.
-const std::vector<std::string> kWriterOutputKeys = {"exr_compression"};
+const std::vector<std::string> kWriterOutputKeys = {"exr_compression", "dds_header"};
 
 // Where a JSON subtree came from: the file and the subtree's pointer in it.
 struct Source {
@@ -427,19 +428,6 @@ void check_scene_budget(const std::vector<OutputSpec>& outputs, const Source& sr
                                    kMaxBakeBytes >> 30));
 }
 
-// A DDS format with fewer components than the product's texture has channels.
-void check_dds_format(const OutputSpec& spec, const Source& src) {
-  if (!spec.options.contains("dds_format")) return;
-  const std::string name = spec.options["dds_format"].get<std::string>();
-  const int components = dds_component_count(dds_format_from_name(name));
-  const int channels = output_channels(spec);
-  if (channels > components)
-    src.fail("/dds_format", fmt::format("expected a format with at least {} channels ({} has "
-                                        "{}), got {} ({} channel{})",
-                                        channels, spec.product, channels, name, components,
-                                        components == 1 ? "" : "s"));
-}
-
 // A KTX2 format with fewer components than the product's texture has channels.
 void check_ktx2_format(const OutputSpec& spec, const Source& src) {
   if (!spec.options.contains("ktx2_format")) return;
@@ -585,7 +573,8 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
                              "tables), so max_error has nothing to limit",
                              info->name));
   spec.options = out;
-  check_dds_format(spec, src);
+  for (const ProductProblem& problem : dds_output_problems(spec, *info))
+    problems.add(src, problem.pointer, problem.rule);
   problems.collect([&] { check_ktx2_format(spec, src); });
   if (size_ok) check_output_budget(spec, src);  // a size already refused is not budgeted
   // Product-specific rules the schema cannot say (e.g. a noise octave finer

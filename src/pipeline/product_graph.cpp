@@ -31,7 +31,9 @@ OutputSpec default_spec(const ProductInfo& info) {
 namespace {
 
 // Keys of an output object read only by the file writers.
-bool is_writer_key(const std::string& key) { return key == "exr_compression"; }
+bool is_writer_key(const std::string& key) {
+  return key == "exr_compression" || key == "dds_header";
+}
 
 // Keys of an output object that shape files or the manifest's record but not
 // texture values (max_error decides a warning: its output is recorded again,

@@ -48,6 +48,23 @@ TEST(CurlTexture, DecodesToTheCurlAtTexelCentres) {
     }
 }
 
+TEST(CurlTexture, WithoutZIsRAndGOfTheFullTexture) {
+  // R and G do not depend on B: the two-channel texture is the first two
+  // channels of the three-channel one, bit for bit, with no B metadata.
+  CurlSpec spec;
+  spec.size = 32;
+  const Texture rgb = bake_with_threads(spec, 2);
+  spec.with_z = false;
+  const Texture rg = bake_with_threads(spec, 2);
+  EXPECT_EQ(rg.channels, (std::vector<std::string>{"R", "G"}));
+  EXPECT_EQ(rg.metadata.count("curl_scale_b"), 0u);
+  EXPECT_EQ(rg.metadata.count("channel.B"), 0u);
+  EXPECT_EQ(rg.metadata.at("curl_scale_rg"), rgb.metadata.at("curl_scale_rg"));
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x)
+      for (int c = 0; c < 2; ++c) ASSERT_EQ(rg.at(x, y, 0, 0, c), rgb.at(x, y, 0, 0, c));
+}
+
 TEST(CurlTexture, ChannelsSpanTheUnitRangeAndTile) {
   const Texture t = bake_with_threads(CurlSpec{}, 2);
   float lo[3] = {1, 1, 1}, hi[3] = {0, 0, 0};

@@ -1,0 +1,201 @@
+// The DDS format table and texel conversions (dds_format_table.hpp).
+#include "io/dds_format_table.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "core/half.hpp"
+
+namespace skybake {
+namespace {
+
+constexpr uint32_t four_cc(const char (&s)[5]) {
+  return uint32_t(uint8_t(s[0])) | uint32_t(uint8_t(s[1])) << 8 | uint32_t(uint8_t(s[2])) << 16 |
+         uint32_t(uint8_t(s[3])) << 24;
+}
+
+// A legacy pixel format given by a FourCC (a D3DFMT code for the float
+// formats, e.g. 113 = D3DFMT_A16B16G16R16F, stored as the FourCC's integer).
+constexpr DdsPixelFormat fourcc_format(uint32_t code) {
+  return {32, dds::kDdpfFourCC, code, 0, 0, 0, 0, 0};
+}
+// A legacy pixel format given by flags, bit count and masks.
+constexpr DdsPixelFormat mask_format(uint32_t flags, uint32_t bits, uint32_t r, uint32_t g,
+                                     uint32_t b, uint32_t a) {
+  return {32, flags, 0, bits, r, g, b, a};
+}
+
+// Legacy forms: D3DFMT_A32B32G32R32F (116), D3DFMT_A16B16G16R16F (113) and
+// D3DFMT_R16F (111) by FourCC; RGBA8 as DDPF_RGB | DDPF_ALPHAPIXELS with byte
+// masks R, G, B, A from the low byte up; R8G8 as 16-bit DDPF_RGB with masks R
+// 0xff, G 0xff00; R8 as DDPF_LUMINANCE; the block formats by their FourCCs
+// DXT1, DXT5, ATI1, ATI2. R11G11B10_FLOAT has none.
+const std::vector<DdsFormatInfo> kFormats = {
+    {DdsFormat::R32G32B32A32_FLOAT, "R32G32B32A32_FLOAT", 4, 4, 16, std::nullopt, true,
+     fourcc_format(116)},
+    {DdsFormat::R16G16B16A16_FLOAT, "R16G16B16A16_FLOAT", 4, 4, 8, std::nullopt, true,
+     fourcc_format(113)},
+    {DdsFormat::R11G11B10_FLOAT, "R11G11B10_FLOAT", 3, 3, 4, std::nullopt, false, std::nullopt},
+    {DdsFormat::R8G8B8A8_UNORM, "R8G8B8A8_UNORM", 4, 4, 4, std::nullopt, true,
+     mask_format(dds::kDdpfRgb | dds::kDdpfAlphaPixels, 32, 0xff, 0xff00, 0xff0000, 0xff000000)},
+    {DdsFormat::R8G8_UNORM, "R8G8_UNORM", 2, 2, 2, std::nullopt, false,
+     mask_format(dds::kDdpfRgb, 16, 0xff, 0xff00, 0, 0)},
+    {DdsFormat::R16_FLOAT, "R16_FLOAT", 1, 1, 2, std::nullopt, false, fourcc_format(111)},
+    {DdsFormat::R8_UNORM, "R8_UNORM", 1, 1, 1, std::nullopt, false,
+     mask_format(dds::kDdpfLuminance, 8, 0xff, 0, 0, 0)},
+    {DdsFormat::BC1_UNORM, "BC1_UNORM", 3, 4, 0, BcFormat::bc1, false,
+     fourcc_format(four_cc("DXT1"))},
+    {DdsFormat::BC3_UNORM, "BC3_UNORM", 4, 4, 0, BcFormat::bc3, true,
+     fourcc_format(four_cc("DXT5"))},
+    {DdsFormat::BC4_UNORM, "BC4_UNORM", 1, 1, 0, BcFormat::bc4, false,
+     fourcc_format(four_cc("ATI1"))},
+    {DdsFormat::BC5_UNORM, "BC5_UNORM", 2, 2, 0, BcFormat::bc5, false,
+     fourcc_format(four_cc("ATI2"))},
+};
+
+bool same_masks(const DdsPixelFormat& a, const DdsPixelFormat& b) {
+  return a.rgb_bit_count == b.rgb_bit_count && a.r_bit_mask == b.r_bit_mask &&
+         a.g_bit_mask == b.g_bit_mask && a.b_bit_mask == b.b_bit_mask &&
+         a.a_bit_mask == b.a_bit_mask;
+}
+
+// ---- little-endian texels --------------------------------------------------
+
+void put_u32(uint8_t* p, uint32_t v) {
+  for (int i = 0; i < 4; ++i) p[i] = uint8_t(v >> (8 * i));
+}
+void put_u16(uint8_t* p, uint16_t v) {
+  p[0] = uint8_t(v);
+  p[1] = uint8_t(v >> 8);
+}
+uint32_t get_u32(const uint8_t* p) {
+  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+}
+uint16_t get_u16(const uint8_t* p) {
+  return uint16_t(p[0] | p[1] << 8);
+}
+void put_f32(uint8_t* p, float v) {
+  uint32_t u;
+  std::memcpy(&u, &v, 4);
+  put_u32(p, u);
+}
+float get_f32(const uint8_t* p) {
+  const uint32_t u = get_u32(p);
+  float v;
+  std::memcpy(&v, &u, 4);
+  return v;
+}
+uint8_t unorm8_from_float(float v) {
+  return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+}
+uint16_t half_saturated(float v) {
+  return half_from_float(std::clamp(v, -kHalfMax, kHalfMax));
+}
+
+}  // namespace
+
+const std::vector<DdsFormatInfo>& dds_format_infos() {
+  return kFormats;
+}
+
+const DdsFormatInfo* find_dds_format(uint32_t dxgi) {
+  for (const DdsFormatInfo& f : kFormats)
+    if (uint32_t(f.format) == dxgi) return &f;
+  return nullptr;
+}
+
+const DdsFormatInfo& dds_format_info(DdsFormat format) {
+  const DdsFormatInfo* f = find_dds_format(uint32_t(format));
+  if (!f) throw Error(fmt::format("unknown DdsFormat value {}", uint32_t(format)));
+  return *f;
+}
+
+const DdsFormatInfo* find_legacy_format(const DdsPixelFormat& pf) {
+  uint32_t code = pf.four_cc;
+  if (pf.flags & dds::kDdpfFourCC) {
+    if (code == four_cc("BC4U")) code = four_cc("ATI1");
+    if (code == four_cc("BC5U")) code = four_cc("ATI2");
+    for (const DdsFormatInfo& f : kFormats)
+      if (f.legacy && (f.legacy->flags & dds::kDdpfFourCC) && f.legacy->four_cc == code) return &f;
+    return nullptr;
+  }
+  const uint32_t kind = pf.flags & (dds::kDdpfRgb | dds::kDdpfLuminance | dds::kDdpfAlphaPixels);
+  for (const DdsFormatInfo& f : kFormats)
+    if (f.legacy && !(f.legacy->flags & dds::kDdpfFourCC) && f.legacy->flags == kind &&
+        same_masks(*f.legacy, pf))
+      return &f;
+  return nullptr;
+}
+
+uint64_t dds_level_bytes(const DdsFormatInfo& f, uint64_t w, uint64_t h, uint64_t d) {
+  if (f.block)
+    return ((w + 3) / 4) * ((h + 3) / 4) * uint64_t(bc_block_bytes(*f.block)) * d;
+  return w * h * d * uint64_t(f.bytes);
+}
+
+void encode_dds_texel(DdsFormat format, const float* src, int nc, uint8_t* dst) {
+  float v[4] = {0.0f, 0.0f, 0.0f, 1.0f};  // missing components 0, missing alpha 1
+  std::copy(src, src + nc, v);
+  switch (format) {
+    case DdsFormat::R32G32B32A32_FLOAT:
+      for (int c = 0; c < 4; ++c) put_f32(dst + 4 * c, v[c]);
+      break;
+    case DdsFormat::R16G16B16A16_FLOAT:
+      for (int c = 0; c < 4; ++c) put_u16(dst + 2 * c, half_saturated(v[c]));
+      break;
+    case DdsFormat::R11G11B10_FLOAT:
+      put_u32(dst, r11g11b10_from_rgb(std::min(v[0], kFloat11Max), std::min(v[1], kFloat11Max),
+                                      std::min(v[2], kFloat10Max)));
+      break;
+    case DdsFormat::R8G8B8A8_UNORM:
+      for (int c = 0; c < 4; ++c) dst[c] = unorm8_from_float(v[c]);
+      break;
+    case DdsFormat::R8G8_UNORM:
+      for (int c = 0; c < 2; ++c) dst[c] = unorm8_from_float(v[c]);
+      break;
+    case DdsFormat::R16_FLOAT:
+      put_u16(dst, half_saturated(v[0]));
+      break;
+    case DdsFormat::R8_UNORM:
+      dst[0] = unorm8_from_float(v[0]);
+      break;
+    default:
+      throw Error(fmt::format("encode_dds_texel: {} is a block format", uint32_t(format)));
+  }
+}
+
+void decode_dds_texel(DdsFormat format, const uint8_t* src, float* dst) {
+  switch (format) {
+    case DdsFormat::R32G32B32A32_FLOAT:
+      for (int c = 0; c < 4; ++c) dst[c] = get_f32(src + 4 * c);
+      break;
+    case DdsFormat::R16G16B16A16_FLOAT:
+      for (int c = 0; c < 4; ++c) dst[c] = float_from_half(get_u16(src + 2 * c));
+      break;
+    case DdsFormat::R11G11B10_FLOAT: {
+      const Rgb rgb = rgb_from_r11g11b10(get_u32(src));
+      dst[0] = rgb.r, dst[1] = rgb.g, dst[2] = rgb.b;
+      break;
+    }
+    case DdsFormat::R8G8B8A8_UNORM:
+      for (int c = 0; c < 4; ++c) dst[c] = src[c] / 255.0f;
+      break;
+    case DdsFormat::R8G8_UNORM:
+      for (int c = 0; c < 2; ++c) dst[c] = src[c] / 255.0f;
+      break;
+    case DdsFormat::R16_FLOAT:
+      dst[0] = float_from_half(get_u16(src));
+      break;
+    case DdsFormat::R8_UNORM:
+      dst[0] = src[0] / 255.0f;
+      break;
+    default:
+      throw Error(fmt::format("decode_dds_texel: {} is a block format", uint32_t(format)));
+  }
+}
+
+}  // namespace skybake
