@@ -98,9 +98,10 @@ bool gl_format_from_dxgi(uint32_t dxgi_format, GlPixelFormat* out) {
       return true;
     case DdsFormat::R8G8B8A8_UNORM: *out = {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, 4}; return true;
     case DdsFormat::R16_FLOAT: *out = {GL_R16F, GL_RED, GL_HALF_FLOAT, 2}; return true;
+    case DdsFormat::R8G8_UNORM: *out = {GL_RG8, GL_RG, GL_UNSIGNED_BYTE, 2}; return true;
     case DdsFormat::R8_UNORM: *out = {GL_R8, GL_RED, GL_UNSIGNED_BYTE, 1}; return true;
+    default: return false;  // block formats: not uploaded by these tests
   }
-  return false;
 }
 
 GlTexture upload_dds(const std::string& path, const SamplerState& sampler, bool array) {
