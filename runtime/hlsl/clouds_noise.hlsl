@@ -72,7 +72,8 @@ float pack_single_channel(float4 texel, int mode, float4 weights) {
 // The base cloud shape from an unpacked noise_shape volume at uvw (tiles).
 float lookup_base_cloud(Texture3D<float4> noise_shape, SamplerState wrap_linear, float3 uvw,
                         float lod) {
-  return pack_single_channel(noise_shape.SampleLevel(wrap_linear, uvw, lod), SKYBAKE_PACK_DILATE_BASE,
+  return pack_single_channel(noise_shape.SampleLevel(wrap_linear, uvw, lod),
+                             SKYBAKE_PACK_DILATE_BASE,
                              shape_pack_weights());
 }
 
@@ -95,7 +96,8 @@ float curl_texel_from_value(float v, float scale) {
 
 // The 2D curl (R, G) and the 3D curl's z (B) of a curl texel.
 float3 curl_from_texel(float3 c, float curl_scale_rg, float curl_scale_b) {
-  return float3(curl_value_from_texel(c.x, curl_scale_rg), curl_value_from_texel(c.y, curl_scale_rg),
+  return float3(curl_value_from_texel(c.x, curl_scale_rg),
+                curl_value_from_texel(c.y, curl_scale_rg),
               curl_value_from_texel(c.z, curl_scale_b));
 }
 

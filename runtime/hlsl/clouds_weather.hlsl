@@ -122,7 +122,8 @@ float lookup_height_gradient(Texture2D<float4> height_gradients, SamplerState cl
 // across one repeat, the streaks (fibres along the texture's x) turned to
 // run along the unit vector wind_dir; sample with WRAP addressing.
 float2 cirrus_uv_from_world(float2 position_m, float tile_m, float2 wind_dir) {
-  float2 along = float2(dot(position_m, wind_dir), dot(position_m, float2(-wind_dir.y, wind_dir.x)));
+  float2 along =
+      float2(dot(position_m, wind_dir), dot(position_m, float2(-wind_dir.y, wind_dir.x)));
   return along / tile_m;
 }
 

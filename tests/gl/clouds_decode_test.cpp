@@ -48,15 +48,16 @@ std::vector<float> uniform_points(size_t count, float lo, float hi, uint32_t see
   return out;
 }
 
-double bar(double expected) { return 1e-5 * std::max(1.0, std::abs(expected)); }
+double bar(double expected) {
+  return 1e-5 * std::max(1.0, std::abs(expected));
+}
 
 // Runs `body` (which reads `in[]` and writes `out[]`, kPoints invocations)
 // with the cloud includes and returns out.
 std::vector<float> run_points(const std::string& body, const std::vector<float>& in,
                               size_t out_per_point) {
   GlContext::shared();
-  ComputeProgram program =
-      compile_compute({"clouds_noise.glsl", "clouds_weather.glsl"}, R"(
+  ComputeProgram program = compile_compute({"clouds_noise.glsl", "clouds_weather.glsl"}, R"(
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer In { float in_[]; };
 layout(std430, binding = 1) buffer Out { float out_[]; };
@@ -106,7 +107,8 @@ void main() {
   const Texture shape_packed = pack_single_channel(shape, shape_pack_weights());
   const Texture detail_packed = pack_single_channel(detail, detail_pack_weights());
   const PerlinWorleyRemap remaps[3] = {PerlinWorleyRemap::worley_new_min,
-                                       PerlinWorleyRemap::worley_old_min, PerlinWorleyRemap::dilate};
+                                       PerlinWorleyRemap::worley_old_min,
+                                       PerlinWorleyRemap::dilate};
   for (int i = 0; i < kPoints; ++i) {
     for (int r = 0; r < 3; ++r) {
       const float expected = perlin_worley(p[i], w[i], remaps[r]);

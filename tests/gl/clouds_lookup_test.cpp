@@ -6,7 +6,8 @@
 //  - the two weather layouts of one map decode to the same type index;
 //  - curl's signed decode of the baked texels against the curl the bake
 //    evaluated (noise/curl.hpp), from float texels and from the unorm8 DDS
-//    with the scales the manifest records.
+//    with the scales the manifest records;
+//  - lookup_base_cloud and lookup_detail_fbm against pack_single_channel.
 // Bars as in clouds_decode_test.cpp: 1e-5 x max(1, |C++|) for float data.
 #include <gtest/gtest.h>
 
@@ -27,6 +28,7 @@
 #include "noise/curl.hpp"
 #include "noise/curl_texture.hpp"
 #include "noise/lattice_hash.hpp"
+#include "noise/noise_volume.hpp"
 #include "noise/volume_rows.hpp"
 #include "support/run.hpp"
 
@@ -37,7 +39,9 @@ namespace {
 
 constexpr int kPoints = 4096;
 
-double bar(double expected) { return 1e-5 * std::max(1.0, std::abs(expected)); }
+double bar(double expected) {
+  return 1e-5 * std::max(1.0, std::abs(expected));
+}
 
 std::vector<float> uniform_points(size_t count, float lo, float hi, uint32_t seed) {
   std::vector<float> out(count);
@@ -96,7 +100,8 @@ void main() {
 )",
                        in, kPoints, 2 * kPoints, {&tex});
   for (int i = 0; i < kPoints; ++i) {
-    const glm::dvec4 cpu = sample_bilinear(types, type_u_from_index(index[i], 5), h[i], 0, 0, false);
+    const glm::dvec4 cpu =
+        sample_bilinear(types, type_u_from_index(index[i], 5), h[i], 0, 0, false);
     ASSERT_NEAR(out[2 * i], cpu.x, bar(cpu.x)) << "density at " << index[i] << ", " << h[i];
     ASSERT_NEAR(out[2 * i + 1], cpu.y, bar(cpu.y)) << "erosion at " << index[i] << ", " << h[i];
   }
@@ -271,6 +276,49 @@ TEST(CloudsLookup, CurlDecodeOfTheUnorm8FileIsTheCurlWithinItsQuantisation) {
     }
   // The bar is not loose: the quantisation really reaches most of it.
   EXPECT_GT(worst_rg, 0.5 * scale_rg / 255.0);
+}
+
+}  // namespace
+}  // namespace skybake::gltest
+
+namespace skybake::gltest {
+namespace {
+
+// lookup_base_cloud and lookup_detail_fbm on the shipped unorm8 volumes,
+// read at texel centres (the filter returns the texel), against
+// pack_single_channel of the same texels as our DDS reader decodes them.
+TEST(CloudsLookup, BaseCloudAndDetailFbmArePackSingleChannelOfTheTexels) {
+  const fs::path out = test::fresh_dir("gl_noise_pack");
+  const auto r = test::run_skybake(
+      {"bake", test::source_path("presets/clouds/horizon_zero_dawn.json").string(), "-o",
+       out.string(), "-q", "--only", "noise_shape,noise_detail"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const SamplerState repeat{Filter::linear, Wrap::repeat, Wrap::repeat, Wrap::repeat};
+  for (const std::string name : {"noise_shape", "noise_detail"}) {
+    const std::string file = (out / "clouds_hzd" / (name + ".dds")).string();
+    Texture texels = read_dds(file).mips.at(0);
+    if (name == "noise_detail") {  // R8G8B8A8 holds R G B and an unused A
+      Texture rgb(texels.width, texels.height, texels.depth, 1, {"R", "G", "B"});
+      for (size_t t = 0; t < texels.texel_count(); ++t)
+        for (int c = 0; c < 3; ++c) rgb.data[t * 3 + c] = texels.data[t * 4 + c];
+      texels = rgb;
+    }
+    const Texture packed = pack_single_channel(
+        texels, name == "noise_shape" ? shape_pack_weights() : detail_pack_weights());
+    const GlTexture tex = upload_dds(file, repeat);
+    const size_t count = texels.texel_count();
+    const auto v = run(std::string("layout(binding = 0) uniform sampler3D volume;\n") + R"(
+void main() {
+  int i = int(gl_GlobalInvocationID.x);
+  ivec3 n = textureSize(volume, 0);
+  if (i >= n.x * n.y * n.z) return;
+  vec3 uvw = (vec3(i % n.x, (i / n.x) % n.y, i / (n.x * n.y)) + 0.5) / vec3(n);
+  out_[i] = )" + (name == "noise_shape" ? "lookup_base_cloud" : "lookup_detail_fbm") +
+                           "(volume, uvw, 0.0);\n}\n",
+                       {}, count, count, {&tex});
+    for (size_t t = 0; t < count; ++t)
+      ASSERT_NEAR(v[t], packed.data[t], bar(packed.data[t])) << name << " texel " << t;
+  }
 }
 
 }  // namespace

@@ -134,8 +134,7 @@ Agreement compare_with_cpu(const Texture& texels, const Texture& samples, const 
         const glm::ivec3 o(x, y, z);
         const glm::dvec3 uvw = glm::dvec3(o) * glm::dvec3(g.scale) + glm::dvec3(g.offset);
         for (int c = 0; c < 4; ++c) {
-          const double d =
-              std::abs(samples.at(x, y, z, 0, c) - periodic_trilinear(texels, uvw, c));
+          const double d = std::abs(samples.at(x, y, z, 0, c) - periodic_trilinear(texels, uvw, c));
           double& m = o[g.axis] == 0 ? a.max_border : a.max_inside;
           m = std::max(m, d);
         }
@@ -201,8 +200,7 @@ TEST(CloudsTiling, ClampToEdgeDisagreesWithPeriodicInterpolationAtTheBorder) {
   GlContext::shared();
   const std::string file = (baked_noise() / "noise_shape.dds").string();
   const Texture texels = read_dds(file).mips.at(0);
-  SamplerState clamp{Filter::linear, Wrap::clamp_to_edge, Wrap::clamp_to_edge,
-                     Wrap::clamp_to_edge};
+  SamplerState clamp{Filter::linear, Wrap::clamp_to_edge, Wrap::clamp_to_edge, Wrap::clamp_to_edge};
   const GlTexture volume = upload_dds(file, clamp);
   const FaceGrid g = face_grid(texels, 0, 4);
   const Agreement a = compare_with_cpu(texels, sample_on_gpu(volume, g), g);

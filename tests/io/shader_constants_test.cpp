@@ -106,10 +106,10 @@ ToolResult compile_header(const std::string& text, ShaderLanguage language, cons
   std::ofstream(file) << (glsl ? "#version 450\n" : "") << text
                       << (glsl ? "layout(local_size_x = 1) in;\nvoid main() {}\n"
                                : "[numthreads(1, 1, 1)] void main() {}\n");
-  const std::string command =
-      glsl ? "glslangValidator '" + file.string() + "'"
-           : "glslangValidator -V -D -S comp -e main -o '" + (dir / "wrapper.spv").string() +
-                 "' '" + file.string() + "'";
+  const std::string command = glsl ? "glslangValidator '" + file.string() + "'"
+                                   : "glslangValidator -V -D -S comp -e main -o '" +
+                                         (dir / "wrapper.spv").string() + "' '" + file.string() +
+                                         "'";
   return run_tool(command);
 }
 
@@ -135,7 +135,7 @@ ManifestEntry sample_entry() {
                 {"parameterization", "Hillaire 2020 sec. 5.3 \xc3\xa9\nnext line"},
                 {"orders", 4},
                 {"input_hash", "1234567890123456"},  // digits only, still a hash
-                {"height", 108}};  // the dimension, recorded by the product too
+                {"height", 108}};                    // the dimension, recorded by the product too
   return e;
 }
 
