@@ -1,5 +1,6 @@
-// The baked noise volumes read the way an engine reads them: hardware
-// trilinear filtering with GL_REPEAT, across the tile border.
+// The baked noise volumes (and the tileable 2D textures: weather, cirrus,
+// curl) read the way an engine reads them: hardware trilinear (bilinear)
+// filtering with GL_REPEAT, across the tile border.
 //
 // For each axis the volume is sampled at the faces between texels (u = i / n
 // along the axis, texel centres across it), so that every sample blends two
@@ -14,6 +15,7 @@
 //     volume made not to tile (the shape volume cropped along x).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -55,26 +57,30 @@ FaceGrid face_grid(const Texture& tex, int axis, int stride) {
   g.axis = axis;
   for (int a = 0; a < 3; ++a) {
     const bool along = a == axis;
-    g.size[a] = along ? n[a] : n[a] / stride;
+    g.size[a] = along ? n[a] : std::max(1, n[a] / stride);
     g.scale[a] = float(along ? 1.0 : double(stride)) / float(n[a]);
     g.offset[a] = along ? 0.0f : 0.5f / float(n[a]);
   }
   return g;
 }
 
-// The GPU's filtered samples on the grid, as a texture of the grid's shape.
-Texture sample_on_gpu(const GlTexture& volume, const FaceGrid& g) {
-  ComputeProgram program = compile_compute({}, R"(
+// The GPU's filtered samples on the grid, as a texture of the grid's shape;
+// a texture of depth 1 is read as a sampler2D.
+Texture sample_on_gpu(const GlTexture& texture, const FaceGrid& g, bool volume = true) {
+  ComputeProgram program = compile_compute(
+      {},
+      std::string(volume ? "layout(binding = 0) uniform sampler3D tex;\n#define UVW(p) (p)\n"
+                         : "layout(binding = 0) uniform sampler2D tex;\n#define UVW(p) (p).xy\n") +
+          R"(
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) buffer Out { vec4 samples[]; };
-layout(binding = 0) uniform sampler3D volume;
 uniform int size_x, size_y, size_z;
 uniform vec3 scale, offset;
 void main() {
   int id = int(gl_GlobalInvocationID.x);
   if (id >= size_x * size_y * size_z) return;
   ivec3 o = ivec3(id % size_x, (id / size_x) % size_y, id / (size_x * size_y));
-  samples[id] = textureLod(volume, vec3(o) * scale + offset, 0.0);
+  samples[id] = textureLod(tex, UVW(vec3(o) * scale + offset), 0.0);
 }
 )");
   program.set("size_x", g.size.x);
@@ -85,7 +91,7 @@ void main() {
   const size_t count = size_t(g.size.x) * g.size.y * g.size.z;
   StorageBuffer out(count * 4 * sizeof(float));
   out.bind(0);
-  volume.bind(0);
+  texture.bind(0);
   dispatch(program, unsigned((count + 63) / 64));
   Texture samples(g.size.x, g.size.y, g.size.z, 1, {"R", "G", "B", "A"});
   samples.data = out.read_floats();
@@ -165,15 +171,18 @@ std::string describe(const std::vector<AxisTiling>& v) {
 constexpr double kUnorm8Bar = 0.5 / 255.0 + 1e-6;
 constexpr double kFloatBar = 1e-5;
 
-void expect_volume_tiles(const std::string& file, int stride) {
+// Reads `file` (a DDS of ours) with repeat along every axis and checks both
+// properties along each axis; `stride` thins the lines across the axis.
+void expect_tiles_through_the_filter(const std::string& file, int stride) {
   GlContext::shared();
   const DdsImage dds = read_dds(file);
   const Texture& texels = dds.mips.at(0);
+  const bool volume = texels.depth > 1;
   SamplerState repeat{Filter::linear, Wrap::repeat, Wrap::repeat, Wrap::repeat};
-  const GlTexture volume = upload_dds(file, repeat);
-  for (int axis = 0; axis < 3; ++axis) {
+  const GlTexture texture = upload_dds(file, repeat);
+  for (int axis = 0; axis < (volume ? 3 : 2); ++axis) {
     const FaceGrid g = face_grid(texels, axis, stride);
-    const Texture samples = sample_on_gpu(volume, g);
+    const Texture samples = sample_on_gpu(texture, g, volume);
     const Agreement a = compare_with_cpu(texels, samples, g);
     EXPECT_LE(a.max_border, kUnorm8Bar) << file << " axis " << axis;
     EXPECT_LE(a.max_inside, kUnorm8Bar) << file << " axis " << axis;
@@ -189,11 +198,22 @@ void expect_volume_tiles(const std::string& file, int stride) {
 }
 
 TEST(CloudsTiling, ShapeVolumeFiltersAcrossTheBorderWithoutSeam) {
-  expect_volume_tiles((baked_noise() / "noise_shape.dds").string(), 4);
+  expect_tiles_through_the_filter((baked_noise() / "noise_shape.dds").string(), 4);
 }
 
 TEST(CloudsTiling, DetailVolumeFiltersAcrossTheBorderWithoutSeam) {
-  expect_volume_tiles((baked_noise() / "noise_detail.dds").string(), 1);
+  expect_tiles_through_the_filter((baked_noise() / "noise_detail.dds").string(), 1);
+}
+
+// The tileable 2D products: weather and cirrus of the storm preset, curl.
+TEST(CloudsTiling, WeatherCirrusAndCurlFilterAcrossTheBorderWithoutSeam) {
+  const fs::path out = test::fresh_dir("gl_clouds_tiling_2d");
+  const auto r = test::run_skybake({"bake", test::source_path("presets/earth_storm.json").string(),
+                                    "-o", out.string(), "-q", "--only", "weather,cirrus"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_tiles_through_the_filter((out / "earth_storm" / "weather.dds").string(), 1);
+  expect_tiles_through_the_filter((out / "earth_storm" / "cirrus.dds").string(), 1);
+  expect_tiles_through_the_filter((baked_noise() / "curl.dds").string(), 1);
 }
 
 TEST(CloudsTiling, ClampToEdgeDisagreesWithPeriodicInterpolationAtTheBorder) {
