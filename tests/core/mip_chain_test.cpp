@@ -1,6 +1,7 @@
 // Tests for core/mip_chain.hpp: level sizes (halve each axis, floor, min 1),
 // the area-weighted box filter on hand-computed cases, mean preservation,
-// constants, tiling of periodic textures at every level, 3D and arrays.
+// constants, tiling of periodic textures at every level, 3D and arrays, and
+// the same bits for 1 and 2 threads.
 #include "core/mip_chain.hpp"
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <cmath>
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include "core/math.hpp"
 
@@ -224,6 +226,26 @@ TEST(MipChain, ArrayLayersFilteredIndependently) {
   }
   // Layer 2, level 2 (1x1): mean of x over 0..3 plus 20.
   EXPECT_FLOAT_EQ(chain[2].at(0, 0, 0, 2, 1), 21.5f);
+}
+
+TEST(MipChain, SameBitsForOneAndTwoThreads) {
+  // Odd sizes, so that the footprints of 2 + 1/n texels sum in doubles;
+  // rows run in tbb::parallel_for, each texel on its own.
+  Texture t(37, 29, 11, 1, {"R", "G", "B", "A"});
+  for (size_t i = 0; i < t.data.size(); ++i)
+    t.data[i] = float(std::sin(0.37 * double(i)) * 0.5 + 0.5);
+  std::vector<Texture> one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = build_mip_chain(t, MipEdge::wrap);
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = build_mip_chain(t, MipEdge::wrap);
+  }
+  ASSERT_EQ(one.size(), two.size());
+  for (size_t level = 0; level < one.size(); ++level)
+    EXPECT_EQ(one[level].data, two[level].data) << "level " << level;
 }
 
 }  // namespace
