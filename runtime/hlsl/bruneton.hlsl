@@ -22,26 +22,42 @@ float scattering_u_from_mu_s(AtmosphereParameters atm, ScatteringShape shape, fl
   return texel_coord_from_unit(clamp(max(1.0 - a / A, 0.0) / (1.0 + a), 0.0, 1.0), shape.mu_s_size);
 }
 
-float4 scattering_uvwz_from_r_mu_mu_s_nu(AtmosphereParameters atm, ScatteringShape shape, float r,
-                                         float mu, float mu_s, float nu, bool ray_hits_ground) {
+// The mapping from rho = sqrt(r^2 - Rb^2) and r mu (see the GLSL: a float
+// radius resolves 0.5 m near the ground; rho and r mu of a point along a ray
+// do not cancel).
+float4 scattering_uvwz_from_rho_r_mu(AtmosphereParameters atm, ScatteringShape shape, float rho,
+                                     float r_mu, float mu_s, float nu, bool ray_hits_ground) {
   float rb = atm.bottom_radius, rt = atm.top_radius, H = horizon_distance(atm);
-  r = clamp(r, rb, rt);
-  mu = clamp_cosine(mu);
-  float rho = safe_sqrt((r - rb) * (r + rb));
+  rho = clamp(rho, 0.0, H);
+  float r = sqrt(rho * rho + rb * rb);
+  r_mu = clamp(r_mu, -r, r);
   float u_r = texel_coord_from_unit(rho / H, shape.r_size);
   float u_mu;
   if (ray_hits_ground) {
-    float d = distance_to_bottom_boundary(rb, r, mu), d_min = r - rb, d_max = rho;
-    float x = d_max == d_min ? 0.0 : (d - d_min) / (d_max - d_min);
+    float c = rho * rho;
+    float d = c / max(safe_sqrt(r_mu * r_mu - c) - r_mu, 1e-30);
+    float d_min = c / (r + rb), d_max = rho;
+    float x = d_max > d_min ? (d - d_min) / (d_max - d_min) : 0.0;
     u_mu = 0.5 - 0.5 * texel_coord_from_unit(clamp(x, 0.0, 1.0), shape.mu_size / 2);
   } else {
-    float d = distance_to_top_boundary(rt, r, mu), d_min = rt - r, d_max = rho + H;
+    float c = (H - rho) * (H + rho);
+    float q = safe_sqrt(c + r_mu * r_mu);
+    float d = max(r_mu > 0.0 ? c / max(r_mu + q, 1e-30) : q - r_mu, 0.0);
+    float d_min = c / (rt + r), d_max = rho + H;
     float x = (d - d_min) / (d_max - d_min);
     u_mu = 0.5 + 0.5 * texel_coord_from_unit(clamp(x, 0.0, 1.0), shape.mu_size / 2);
   }
   float u_mu_s = scattering_u_from_mu_s(atm, shape, mu_s);
   float u_nu = 0.5 * (clamp_cosine(nu) + 1.0);
   return float4(u_nu, u_mu_s, u_mu, u_r);
+}
+
+float4 scattering_uvwz_from_r_mu_mu_s_nu(AtmosphereParameters atm, ScatteringShape shape, float r,
+                                         float mu, float mu_s, float nu, bool ray_hits_ground) {
+  float rb = atm.bottom_radius;
+  r = clamp(r, rb, atm.top_radius);
+  return scattering_uvwz_from_rho_r_mu(atm, shape, safe_sqrt((r - rb) * (r + rb)),
+                                       r * clamp_cosine(mu), mu_s, nu, ray_hits_ground);
 }
 
 // Bruneton 2017 GetScattering: the two nu slices blended.
@@ -77,25 +93,41 @@ float3 extrapolated_single_mie(AtmosphereParameters atm, float4 scattering) {
   return mie;
 }
 
+// p_R(nu) S + p_M(nu) S_M at the table coordinates uvwz, single Mie in its
+// own table ...
+float3 scattering_radiance_at(Texture3D<float4> scattering, Texture3D<float4> single_mie,
+                              SamplerState table_sampler, ScatteringShape shape,
+                              AtmosphereParameters atm, float4 uvwz, float nu) {
+  float3 rgb = read_scattering(scattering, table_sampler, shape, uvwz).rgb;
+  float3 mie = read_scattering(single_mie, table_sampler, shape, uvwz).rgb;
+  return rgb * rayleigh_phase(nu) + mie * mie_phase(atm, nu);
+}
+
+// ... or in the alpha channel.
+float3 scattering_radiance_at(Texture3D<float4> scattering, SamplerState table_sampler,
+                              ScatteringShape shape, AtmosphereParameters atm, float4 uvwz,
+                              float nu) {
+  float4 texel = read_scattering(scattering, table_sampler, shape, uvwz);
+  return texel.rgb * rayleigh_phase(nu) + extrapolated_single_mie(atm, texel) * mie_phase(atm, nu);
+}
+
 // Single Mie in its own table.
 float3 lookup_scattering(Texture3D<float4> scattering, Texture3D<float4> single_mie,
                          SamplerState table_sampler, ScatteringShape shape,
                          AtmosphereParameters atm, float r, float mu, float mu_s, float nu,
                          bool ray_hits_ground) {
-  float4 uvwz = scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r, mu, mu_s, nu, ray_hits_ground);
-  float3 rgb = read_scattering(scattering, table_sampler, shape, uvwz).rgb;
-  float3 mie = read_scattering(single_mie, table_sampler, shape, uvwz).rgb;
-  return rgb * rayleigh_phase(nu) + mie * mie_phase(atm, nu);
+  return scattering_radiance_at(
+      scattering, single_mie, table_sampler, shape, atm,
+      scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r, mu, mu_s, nu, ray_hits_ground), nu);
 }
 
 // Single Mie in the alpha channel.
 float3 lookup_scattering(Texture3D<float4> scattering, SamplerState table_sampler,
                          ScatteringShape shape, AtmosphereParameters atm, float r, float mu,
                          float mu_s, float nu, bool ray_hits_ground) {
-  float4 texel = read_scattering(scattering, table_sampler, shape,
-                                 scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r, mu, mu_s, nu,
-                                                                   ray_hits_ground));
-  return texel.rgb * rayleigh_phase(nu) + extrapolated_single_mie(atm, texel) * mie_phase(atm, nu);
+  return scattering_radiance_at(
+      scattering, table_sampler, shape, atm,
+      scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r, mu, mu_s, nu, ray_hits_ground), nu);
 }
 
 // ---- Sky radiance for a camera anywhere (Bruneton 2017 GetSkyRadiance,
@@ -147,9 +179,15 @@ float3 sky_radiance(Texture3D<float4> scattering, SamplerState table_sampler,
                            dot(view_ray, sun_dir), hits);
 }
 
-float3 point_parameters(AtmosphereParameters atm, float r, float mu, float mu_s, float nu, float d) {
-  float r_p = clamp(radius_after(r, mu, d), atm.bottom_radius, atm.top_radius);
-  return float3(r_p, (r * mu + d) / r_p, (r * mu_s + d * nu) / r_p);
+// The far end of the segment of length d from (r, mu), through
+// rho_p^2 = (r - Rb)(r + Rb) + d (2 r mu + d) and r_p mu_p = r mu + d.
+float4 point_uvwz(AtmosphereParameters atm, ScatteringShape shape, float r, float mu, float mu_s,
+                  float nu, float d, bool ray_hits_ground) {
+  float rb = atm.bottom_radius;
+  float rho_p = safe_sqrt((r - rb) * (r + rb) + d * (2.0 * r * mu + d));
+  float r_p = clamp(radius_after(r, mu, d), rb, atm.top_radius);
+  return scattering_uvwz_from_rho_r_mu(atm, shape, rho_p, r * mu + d, (r * mu_s + d * nu) / r_p, nu,
+                                       ray_hits_ground);
 }
 
 float3 sky_radiance_to_point(Texture3D<float4> scattering, Texture3D<float4> single_mie,
@@ -165,10 +203,10 @@ float3 sky_radiance_to_point(Texture3D<float4> scattering, Texture3D<float4> sin
   float nu = dot(view_ray, sun_dir), d = length(target - camera);
   bool hits = ray_intersects_ground(atm.bottom_radius, r, mu);
   transmittance = lookup_transmittance(transmittance_lut, transmittance_sampler, atm, r, mu, d, hits);
-  float3 p = point_parameters(atm, r, mu, mu_s, nu, d);
+  float4 uvwz_p = point_uvwz(atm, shape, r, mu, mu_s, nu, d, hits);
   return lookup_scattering(scattering, single_mie, table_sampler, shape, atm, r, mu, mu_s, nu, hits) -
-         transmittance * lookup_scattering(scattering, single_mie, table_sampler, shape, atm, p.x,
-                                           p.y, p.z, nu, hits);
+         transmittance * scattering_radiance_at(scattering, single_mie, table_sampler, shape, atm,
+                                                uvwz_p, nu);
 }
 
 float3 sky_radiance_to_point(Texture3D<float4> scattering, SamplerState table_sampler,
@@ -184,10 +222,9 @@ float3 sky_radiance_to_point(Texture3D<float4> scattering, SamplerState table_sa
   float nu = dot(view_ray, sun_dir), d = length(target - camera);
   bool hits = ray_intersects_ground(atm.bottom_radius, r, mu);
   transmittance = lookup_transmittance(transmittance_lut, transmittance_sampler, atm, r, mu, d, hits);
-  float3 p = point_parameters(atm, r, mu, mu_s, nu, d);
+  float4 uvwz_p = point_uvwz(atm, shape, r, mu, mu_s, nu, d, hits);
   return lookup_scattering(scattering, table_sampler, shape, atm, r, mu, mu_s, nu, hits) -
-         transmittance * lookup_scattering(scattering, table_sampler, shape, atm, p.x, p.y, p.z, nu,
-                                           hits);
+         transmittance * scattering_radiance_at(scattering, table_sampler, shape, atm, uvwz_p, nu);
 }
 
 // ---- Ground irradiance

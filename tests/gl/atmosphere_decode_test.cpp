@@ -44,7 +44,26 @@ struct DecodeCase {
   std::string expression;              // vec4 from q0, q1, atm
   std::vector<const GlTexture*> units;  // bound to units 0, 1, ...
   int channels = 3;
+  // The HLSL twin (hlsl_query_shader), run on the same textures and points.
+  std::string hlsl_declarations;
+  std::string hlsl_expression;
+  std::vector<glm::vec4> extra;  // extra(k) of the HLSL shader
 };
+
+// Compares and prints one run, with the worst point's inputs and values.
+Comparison report(const std::string& what, const std::vector<glm::vec4>& queries,
+                  const std::vector<glm::vec4>& gl, const std::vector<glm::dvec4>& cpu,
+                  int channels) {
+  const Comparison result = compare(gl, cpu, channels);
+  print_comparison(what, result);
+  const size_t w = result.worst_query;
+  const glm::vec4 q0 = queries[2 * w], q1 = queries[2 * w + 1];
+  std::printf("             worst: q0 (%.9g, %.9g, %.9g, %.9g) q1 (%.9g, %.9g, %.9g, %.9g)\n"
+              "             GL (%.9g, %.9g, %.9g, %.9g) C++ (%.9g, %.9g, %.9g, %.9g)\n",
+              q0.x, q0.y, q0.z, q0.w, q1.x, q1.y, q1.z, q1.w, gl[w].x, gl[w].y, gl[w].z, gl[w].w,
+              cpu[w].x, cpu[w].y, cpu[w].z, cpu[w].w);
+  return result;
+}
 
 Comparison run_case(const DecodeCase& c, const GlAtmosphere& atm, const QueryFn& query,
                     const std::function<void(const ComputeProgram&)>& uniforms = {}) {
@@ -57,15 +76,19 @@ Comparison run_case(const DecodeCase& c, const GlAtmosphere& atm, const QueryFn&
   std::vector<glm::vec4> queries(2 * kQueries, glm::vec4(0.0f));
   std::vector<glm::dvec4> cpu(kQueries);
   for (size_t i = 0; i < kQueries; ++i) cpu[i] = query(i, queries[2 * i], queries[2 * i + 1]);
-  const std::vector<glm::vec4> gl = run_queries(program, queries);
-  const Comparison result = compare(gl, cpu, c.channels);
-  print_comparison(c.what, result);
-  const size_t w = result.worst_query;
-  const glm::vec4 q0 = queries[2 * w], q1 = queries[2 * w + 1];
-  std::printf("             worst: q0 (%.9g, %.9g, %.9g, %.9g) q1 (%.9g, %.9g, %.9g, %.9g)\n"
-              "             GL (%.9g, %.9g, %.9g, %.9g) C++ (%.9g, %.9g, %.9g, %.9g)\n",
-              q0.x, q0.y, q0.z, q0.w, q1.x, q1.y, q1.z, q1.w, gl[w].x, gl[w].y, gl[w].z, gl[w].w,
-              cpu[w].x, cpu[w].y, cpu[w].z, cpu[w].w);
+  Comparison result = report(c.what, queries, run_queries(program, queries), cpu, c.channels);
+  if (c.hlsl_expression.empty()) return result;
+  std::vector<std::string> hlsl_includes;
+  for (const std::string& name : c.includes)
+    hlsl_includes.push_back(name.substr(0, name.size() - 5) + ".hlsl");
+  const ComputeProgram hlsl = compile_compute_hlsl(
+      hlsl_includes, hlsl_query_shader(c.hlsl_declarations, c.hlsl_expression));
+  for (size_t u = 0; u < c.units.size(); ++u) c.units[u]->bind(unsigned(u));
+  const Comparison twin = report(c.what + " [HLSL]", queries,
+                                 run_hlsl_queries(hlsl, atm, c.extra, queries), cpu, c.channels);
+  // The worse of the two against the bars.
+  result.stats.max_rel = std::max(result.stats.max_rel, twin.stats.max_rel);
+  result.stats.rms_rel = std::max(result.stats.rms_rel, twin.stats.rms_rel);
   return result;
 }
 
@@ -104,6 +127,16 @@ ScatteringShape shape_of(const BakedScene& s) {
   shape.nu_size = int(s.meta_number("scattering", "nu_size"));
   shape.mu_s_min = s.meta_number("scattering", "mu_s_min");
   return shape;
+}
+
+std::vector<glm::vec4> shape_extra(const ScatteringShape& shape) {
+  return {glm::vec4(float(shape.r_size), float(shape.mu_size), float(shape.mu_s_size),
+                    float(shape.nu_size)),
+          glm::vec4(float(shape.mu_s_min), 0.0f, 0.0f, 0.0f)};
+}
+
+std::vector<glm::vec4> shape3d_extra(const Texture& t) {
+  return {glm::vec4(float(t.width), float(t.height), float(t.depth), 0.0f)};
 }
 
 void set_shape(const ComputeProgram& p, const ScatteringShape& shape) {
@@ -145,7 +178,8 @@ TEST(AtmosphereDecode, LookupTransmittanceToTop) {
   const GlTexture tex = upload_dds(s.dds_path("transmittance"), s.sampler("transmittance", kClamp));
   const Comparison c = run_case(
       {"lookup_transmittance_to_top", {"transmittance.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
-       "vec4(lookup_transmittance_to_top(lut, atm, q0.x, q0.y), 0.0)", {&tex}},
+       "vec4(lookup_transmittance_to_top(lut, atm, q0.x, q0.y), 0.0)", {&tex}, 3, "Texture2D<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);",
+       "float4(lookup_transmittance_to_top(lut, lut_sampler, atm, q0.x, q0.y), 0.0)", {}},
       s.parameters("transmittance"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const RadiusCosine p = transmittance_query(atm, i);
         q0 = glm::vec4(float(p.r), float(p.mu), 0.0f, 0.0f);
@@ -161,7 +195,8 @@ TEST(AtmosphereDecode, LookupTransmittance) {
   const GlTexture tex = upload_dds(s.dds_path("transmittance"), s.sampler("transmittance", kClamp));
   const Comparison c = run_case(
       {"lookup_transmittance", {"transmittance.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
-       "vec4(lookup_transmittance(lut, atm, q0.x, q0.y, q0.z, q0.w > 0.5), 0.0)", {&tex}},
+       "vec4(lookup_transmittance(lut, atm, q0.x, q0.y, q0.z, q0.w > 0.5), 0.0)", {&tex}, 3, "Texture2D<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);",
+       "float4(lookup_transmittance(lut, lut_sampler, atm, q0.x, q0.y, q0.z, q0.w > 0.5), 0.0)", {}},
       s.parameters("transmittance"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         // Any direction: rays toward the ground read the reversed rays.
         const double r = as_float(transmittance_query(atm, i).r);
@@ -182,7 +217,8 @@ TEST(AtmosphereDecode, LookupSunTransmittance) {
   const GlTexture tex = upload_dds(s.dds_path("transmittance"), s.sampler("transmittance", kClamp));
   const Comparison c = run_case(
       {"lookup_sun_transmittance", {"transmittance.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
-       "vec4(lookup_sun_transmittance(lut, atm, q0.x, q0.y), 0.0)", {&tex}},
+       "vec4(lookup_sun_transmittance(lut, atm, q0.x, q0.y), 0.0)", {&tex}, 3, "Texture2D<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);",
+       "float4(lookup_sun_transmittance(lut, lut_sampler, atm, q0.x, q0.y), 0.0)", {}},
       s.parameters("transmittance"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const double r = as_float(transmittance_query(atm, i).r);
         const double mu_s = as_float(2.0 * unit(i, 92) - 1.0);
@@ -201,7 +237,8 @@ TEST(AtmosphereDecode, LookupMultiscattering) {
   const GlTexture tex = upload_dds(s.dds_path("multiscattering"), s.sampler("multiscattering", kClamp));
   const Comparison c = run_case(
       {"lookup_multiscattering", {"multiscattering.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
-       "vec4(lookup_multiscattering(lut, atm, q0.x, q0.y), 0.0)", {&tex}},
+       "vec4(lookup_multiscattering(lut, atm, q0.x, q0.y), 0.0)", {&tex}, 3, "Texture2D<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);",
+       "float4(lookup_multiscattering(lut, lut_sampler, atm, q0.x, q0.y), 0.0)", {}},
       s.parameters("multiscattering"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const RadiusCosine p = multiscattering_query(atm, i);
         q0 = glm::vec4(float(p.r), float(p.mu), 0.0f, 0.0f);
@@ -247,7 +284,9 @@ TEST(AtmosphereDecode, LookupSkyview) {
   ASSERT_EQ(views.size(), 2u);
   const Comparison c = run_case(
       {"lookup_skyview", {"sky_view.glsl"}, "layout(binding = 0) uniform sampler2DArray lut;",
-       "vec4(lookup_skyview(lut, int(q0.x), atm, q0.y, SkyviewDirection(q0.z, q0.w)), 0.0)", {&tex}},
+       "vec4(lookup_skyview(lut, int(q0.x), atm, q0.y, SkyviewDirection(q0.z, q0.w)), 0.0)", {&tex}, 3,
+       "Texture2DArray<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);",
+       "float4(lookup_skyview(lut, lut_sampler, int(q0.x), atm, q0.y, make_skyview_direction(q0.z, q0.w)), 0.0)", {}},
       s.parameters("skyview"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const SkyviewQueryPoint p = skyview_query(atm, views, i);
         q0 = glm::vec4(float(p.layer), float(p.r), float(p.view.mu), float(p.view.azimuth_rad));
@@ -262,7 +301,9 @@ TEST(AtmosphereDecode, SkyviewDirectionFromVectors) {
       {"skyview_direction_from_vectors (mu, azimuth / 2 pi)", {"sky_view.glsl"}, "",
        "vec4(skyview_direction_from_vectors(vec3(0.0, 0.0, 1.0), q0.xyz, q1.xyz).mu, "
        "skyview_direction_from_vectors(vec3(0.0, 0.0, 1.0), q0.xyz, q1.xyz).azimuth / (2.0 * kPi), 0.0, 0.0)",
-       {}, 2},
+       {}, 2, "",
+       "float4(skyview_direction_from_vectors(float3(0.0, 0.0, 1.0), q0.xyz, q1.xyz).mu, "
+       "skyview_direction_from_vectors(float3(0.0, 0.0, 1.0), q0.xyz, q1.xyz).azimuth / (2.0 * kPi), 0.0, 0.0)", {}},
       s.parameters("transmittance"), [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
         // Directions uniform on the sphere; azimuths near 0 / 2 pi (the
         // wrap) left out, where 1 ulp moves the result by a whole turn.
@@ -308,7 +349,10 @@ TEST(AtmosphereDecode, LookupAerialPerspective) {
   const Comparison c = run_case(
       {"lookup_aerial_perspective", {"sky_view.glsl"},
        "layout(binding = 0) uniform sampler3D lut;\nuniform float depth_range_m;",
-       "lookup_aerial_perspective(lut, depth_range_m, q0.xy, q0.z)", {&tex}, 4},
+       "lookup_aerial_perspective(lut, depth_range_m, q0.xy, q0.z)", {&tex}, 4,
+       "Texture3D<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);",
+       "lookup_aerial_perspective(lut, lut_sampler, extra(0).x, q0.xy, q0.z)",
+       {glm::vec4(float(spec.depth_range_m), 0.0f, 0.0f, 0.0f)}},
       s.parameters("aerial_perspective"),
       [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const AerialQueryPoint p = aerial_query(atm, spec, i);
@@ -328,7 +372,8 @@ TEST(AtmosphereDecode, LookupSunDiskLuminance) {
   const double alpha = atm.sun_angular_radius_rad;
   const Comparison c = run_case(
       {"lookup_sun_disk_luminance", {"sky_view.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
-       "vec4(lookup_sun_disk_luminance(atm, lut, vec3(0.0, 0.0, q0.x), q0.yzw, q1.xyz), 0.0)", {&tex}},
+       "vec4(lookup_sun_disk_luminance(atm, lut, vec3(0.0, 0.0, q0.x), q0.yzw, q1.xyz), 0.0)", {&tex}, 3, "Texture2D<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);",
+       "float4(lookup_sun_disk_luminance(atm, lut, lut_sampler, float3(0.0, 0.0, q0.x), q0.yzw, q1.xyz), 0.0)", {}},
       s.parameters("transmittance"), [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
         // Viewers from the ground to space; suns from the zenith to below
         // the horizon; view directions within 2 alpha of the sun, away from
@@ -378,7 +423,11 @@ TEST(AtmosphereDecode, LookupScatteringSeparateMie) {
        "layout(binding = 0) uniform sampler3D scattering;\n"
        "layout(binding = 1) uniform sampler3D single_mie;\nuniform ScatteringShape shape;",
        "vec4(lookup_scattering(scattering, single_mie, shape, atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
-       {&t0, &t1}},
+       {&t0, &t1}, 3,
+       "Texture3D<float4> scattering : register(t0);\nTexture3D<float4> single_mie : register(t1);\n"
+       "SamplerState table_sampler : register(s0);\n" "ScatteringShape load_shape() {\n  ScatteringShape s;\n  s.r_size = int(extra(0).x);\n  s.mu_size = int(extra(0).y);\n  s.mu_s_size = int(extra(0).z);\n  s.nu_size = int(extra(0).w);\n  s.mu_s_min = extra(1).x;\n  return s;\n}\n",
+       "float4(lookup_scattering(scattering, single_mie, table_sampler, load_shape(), atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
+       shape_extra(shape)},
       s.parameters("scattering"),
       [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
         const glm::dvec4 q = scattering_query(s, shape, i, q0, q1);
@@ -400,7 +449,10 @@ TEST(AtmosphereDecode, LookupScatteringMieInAlpha) {
       {"lookup_scattering (Mie in alpha)", {"bruneton.glsl"},
        "layout(binding = 0) uniform sampler3D scattering;\nuniform ScatteringShape shape;",
        "vec4(lookup_scattering(scattering, shape, atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
-       {&t0}},
+       {&t0}, 3,
+       "Texture3D<float4> scattering : register(t0);\nSamplerState table_sampler : register(s0);\n" "ScatteringShape load_shape() {\n  ScatteringShape s;\n  s.r_size = int(extra(0).x);\n  s.mu_size = int(extra(0).y);\n  s.mu_s_size = int(extra(0).z);\n  s.nu_size = int(extra(0).w);\n  s.mu_s_min = extra(1).x;\n  return s;\n}\n",
+       "float4(lookup_scattering(scattering, table_sampler, load_shape(), atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
+       shape_extra(shape)},
       s.parameters("scattering"),
       [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
         const glm::dvec4 q = scattering_query(s, shape, i, q0, q1);
@@ -507,6 +559,13 @@ void sky_radiance_case(const BakedScene& s, bool separate, bool to_point) {
   for (size_t i = 0; i < kQueries; ++i) camera_query(atm, i, q0s[i], q1s[i], points[i]);
   const StorageBuffer point_data(points);
   point_data.bind(2);
+  point_data.bind(10);  // the HLSL twin's t10
+  const std::string hlsl_mie = separate ? "scattering, single_mie, s, " : "scattering, s, ";
+  const std::string hlsl_call =
+      to_point ? "sky_radiance_to_point(" + hlsl_mie +
+                     "lut, s, load_shape(), atm, float3(0.0, 0.0, q0.x), points[i].xyz, q1.xyz, T)"
+               : "sky_radiance(" + hlsl_mie +
+                     "lut, s, load_shape(), atm, float3(0.0, 0.0, q0.x), q0.yzw, q1.xyz, T)";
   const Comparison c = run_case(
       {what, {"bruneton.glsl"},
        "layout(binding = 0) uniform sampler3D scattering;\n"
@@ -515,7 +574,16 @@ void sky_radiance_case(const BakedScene& s, bool separate, bool to_point) {
        "layout(std430, binding = 2) readonly buffer Points { vec4 points[]; };\n"
        "uniform ScatteringShape shape;\n"
        "vec3 radiance(int i, vec4 q0, vec4 q1) { vec3 T; return " + call + "; }",
-       "vec4(radiance(i, q0, q1), 0.0)", {&t0, &t1, &t2}},
+       "vec4(radiance(i, q0, q1), 0.0)", {&t0, &t1, &t2}, 3,
+       "Texture3D<float4> scattering : register(t0);\nTexture2D<float4> lut : register(t1);\n"
+       "Texture3D<float4> single_mie : register(t2);\nSamplerState s : register(s0);\n"
+       "StructuredBuffer<float4> points : register(t10);\n"
+       "ScatteringShape load_shape() {\n  ScatteringShape sh;\n  sh.r_size = int(extra(0).x);\n"
+       "  sh.mu_size = int(extra(0).y);\n  sh.mu_s_size = int(extra(0).z);\n"
+       "  sh.nu_size = int(extra(0).w);\n  sh.mu_s_min = extra(1).x;\n  return sh;\n}\n"
+       "float3 radiance(int i, float4 q0, float4 q1, AtmosphereParameters atm) {\n"
+       "  float3 T;\n  return " + hlsl_call + ";\n}\n",
+       "float4(radiance(i, q0, q1, atm), 0.0)", shape_extra(shape)},
       s.parameters("scattering"),
       [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
         q0 = q0s[i];
@@ -549,7 +617,8 @@ TEST(AtmosphereDecode, LookupIrradiance) {
   const double mu_s_min = s.meta_number("scattering", "mu_s_min");
   const Comparison c = run_case(
       {"lookup_irradiance", {"bruneton.glsl"}, "layout(binding = 0) uniform sampler2D table;",
-       "vec4(lookup_irradiance(table, atm, q0.x, q0.y), 0.0)", {&tex}},
+       "vec4(lookup_irradiance(table, atm, q0.x, q0.y), 0.0)", {&tex}, 3, "Texture2D<float4> table : register(t0);\nSamplerState table_sampler : register(s0);",
+       "float4(lookup_irradiance(table, table_sampler, atm, q0.x, q0.y), 0.0)", {}},
       s.parameters("irradiance"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const RadiusCosine p = irradiance_query(atm, i, mu_s_min);
         q0 = glm::vec4(float(p.r), float(p.mu), 0.0f, 0.0f);
@@ -565,7 +634,8 @@ TEST(AtmosphereDecode, ComputeDirectIrradiance) {
   const GlTexture tex = upload_dds(s.dds_path("transmittance"), s.sampler("transmittance", kClamp));
   const Comparison c = run_case(
       {"compute_direct_irradiance", {"bruneton.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
-       "vec4(compute_direct_irradiance(atm, lut, q0.x, q0.y), 0.0)", {&tex}},
+       "vec4(compute_direct_irradiance(atm, lut, q0.x, q0.y), 0.0)", {&tex}, 3, "Texture2D<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);",
+       "float4(compute_direct_irradiance(atm, lut, lut_sampler, q0.x, q0.y), 0.0)", {}},
       s.parameters("transmittance"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const double u = unit(i, 120);
         const double r = atm.bottom_radius_m + (atm.top_radius_m - atm.bottom_radius_m) * u * u;
@@ -603,7 +673,10 @@ TEST(AtmosphereDecode, LookupScattering3dMieInAlpha) {
       {"lookup_scattering3d (Mie in alpha)", {"scattering3d.glsl"},
        "layout(binding = 0) uniform sampler3D scattering;\nuniform Scattering3dShape shape;",
        "vec4(lookup_scattering3d(scattering, shape, atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
-       {&tex}},
+       {&tex}, 3,
+       "Texture3D<float4> scattering : register(t0);\nSamplerState table_sampler : register(s0);\n" "Scattering3dShape load_shape3d() {\n  Scattering3dShape s;\n  s.height_size = int(extra(0).x);\n  s.view_size = int(extra(0).y);\n  s.sun_size = int(extra(0).z);\n  return s;\n}\n",
+       "float4(lookup_scattering3d(scattering, table_sampler, load_shape3d(), atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
+       shape3d_extra(table)},
       s.parameters("scattering3d"),
       [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
         const glm::dvec4 q = scattering3d_query(atm, i, q0, q1);
@@ -632,7 +705,11 @@ TEST(AtmosphereDecode, LookupScattering3dSeparateMie) {
        "layout(binding = 0) uniform sampler3D scattering;\n"
        "layout(binding = 1) uniform sampler3D mie;\nuniform Scattering3dShape shape;",
        "vec4(lookup_scattering3d(scattering, mie, shape, atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
-       {&t0, &t1}},
+       {&t0, &t1}, 3,
+       "Texture3D<float4> scattering : register(t0);\nTexture3D<float4> mie : register(t1);\n"
+       "SamplerState table_sampler : register(s0);\n" "Scattering3dShape load_shape3d() {\n  Scattering3dShape s;\n  s.height_size = int(extra(0).x);\n  s.view_size = int(extra(0).y);\n  s.sun_size = int(extra(0).z);\n  return s;\n}\n",
+       "float4(lookup_scattering3d(scattering, mie, table_sampler, load_shape3d(), atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
+       shape3d_extra(baked.scattering)},
       s.parameters("scattering3d"),
       [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
         const glm::dvec4 q = scattering3d_query(atm, i, q0, q1);
@@ -650,7 +727,8 @@ TEST(AtmosphereDecode, LookupGathering) {
   const GlTexture tex = upload_dds(s.dds_path("gathering_sum"), s.sampler("gathering_sum", kClamp));
   const Comparison c = run_case(
       {"lookup_gathering", {"scattering3d.glsl"}, "layout(binding = 0) uniform sampler2D table;",
-       "vec4(lookup_gathering(table, atm, q0.x, q0.y), 0.0)", {&tex}},
+       "vec4(lookup_gathering(table, atm, q0.x, q0.y), 0.0)", {&tex}, 3, "Texture2D<float4> table : register(t0);\nSamplerState table_sampler : register(s0);",
+       "float4(lookup_gathering(table, table_sampler, atm, q0.x, q0.y), 0.0)", {}},
       s.parameters("gathering_sum"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const AltitudeSunCosine p = gathering_query(atm, i);
         q0 = glm::vec4(float(p.h), float(p.mu_s), 0.0f, 0.0f);

@@ -201,6 +201,18 @@ void set_atmosphere_uniform(const ComputeProgram& program, const std::string& na
   set("mie_g", atm.mie_g);
 }
 
+namespace {
+
+// sky_raymarch.glsl's PHASE_* codes.
+int phase_code(PhaseKind phase) {
+  return phase == PhaseKind::rayleigh            ? 1
+         : phase == PhaseKind::cornette_shanks   ? 2
+         : phase == PhaseKind::henyey_greenstein ? 3
+                                                 : 0;
+}
+
+}  // namespace
+
 void set_medium_uniform(const ComputeProgram& program, const std::string& name,
                         const Atmosphere& atm) {
   constexpr int kMaxComponents = 4, kMaxLayers = 2;  // sky_raymarch.glsl
@@ -225,11 +237,7 @@ void set_medium_uniform(const ComputeProgram& program, const std::string& name,
       program.set(base + ".scattering", glm::vec3(c.scattering_per_m));
     if (program.has_uniform(base + ".absorption"))
       program.set(base + ".absorption", glm::vec3(c.absorption_per_m));
-    const int phase = c.phase == PhaseKind::rayleigh            ? 1
-                      : c.phase == PhaseKind::cornette_shanks   ? 2
-                      : c.phase == PhaseKind::henyey_greenstein ? 3
-                                                                : 0;
-    set_i(base + ".phase", phase);
+    set_i(base + ".phase", phase_code(c.phase));
     set_f(base + ".g", float(c.g));
     set_i(base + ".layer_count", int(c.density.layers.size()));
     for (size_t l = 0; l < c.density.layers.size(); ++l) {
@@ -242,6 +250,52 @@ void set_medium_uniform(const ComputeProgram& program, const std::string& name,
       set_f(lb + ".constant_term", float(d.constant_term));
     }
   }
+}
+
+// Per component 7 values: (scattering, phase), (absorption, g),
+// (layer count, 0, 0, 0), then per layer (width, exp_term, exp_scale,
+// linear_term), (constant_term, 0, 0, 0); the count first.
+std::vector<glm::vec4> medium_extra(const Atmosphere& atm) {
+  std::vector<glm::vec4> v = {glm::vec4(float(atm.components.size()), 0.0f, 0.0f, 0.0f)};
+  for (const MediumComponent& c : atm.components) {
+    v.push_back(glm::vec4(glm::vec3(c.scattering_per_m), float(phase_code(c.phase))));
+    v.push_back(glm::vec4(glm::vec3(c.absorption_per_m), float(c.g)));
+    v.push_back(glm::vec4(float(c.density.layers.size()), 0.0f, 0.0f, 0.0f));
+    for (size_t l = 0; l < 2; ++l) {
+      const DensityLayer d = l < c.density.layers.size() ? c.density.layers[l] : DensityLayer{};
+      v.push_back(glm::vec4(float(d.width_m), float(d.exp_term), float(d.exp_scale_per_m),
+                            float(d.linear_term_per_m)));
+      v.push_back(glm::vec4(float(d.constant_term), 0.0f, 0.0f, 0.0f));
+    }
+  }
+  return v;
+}
+
+std::string hlsl_load_medium(int first) {
+  const std::string f = std::to_string(first);
+  return R"(
+AtmosphereMedium load_medium() {
+  AtmosphereMedium m;
+  m.component_count = int(extra()" + f + R"().x);
+  for (int k = 0; k < MEDIUM_MAX_COMPONENTS; ++k) {
+    int b = )" + f + R"( + 1 + 7 * min(k, max(m.component_count - 1, 0));
+    m.components[k].scattering = extra(b).xyz;
+    m.components[k].phase = int(extra(b).w);
+    m.components[k].absorption = extra(b + 1).xyz;
+    m.components[k].g = extra(b + 1).w;
+    m.components[k].layer_count = int(extra(b + 2).x);
+    for (int l = 0; l < MEDIUM_MAX_LAYERS; ++l) {
+      float4 a = extra(b + 3 + 2 * l), c = extra(b + 4 + 2 * l);
+      m.components[k].layers[l].width = a.x;
+      m.components[k].layers[l].exp_term = a.y;
+      m.components[k].layers[l].exp_scale = a.z;
+      m.components[k].layers[l].linear_term = a.w;
+      m.components[k].layers[l].constant_term = c.x;
+    }
+  }
+  return m;
+}
+)";
 }
 
 std::string query_shader(const std::string& declarations, const std::string& expression) {
@@ -259,6 +313,60 @@ void main() {
   results[i] = )" + expression + R"(;
 }
 )";
+}
+
+std::string hlsl_query_shader(const std::string& declarations, const std::string& expression) {
+  return R"(
+StructuredBuffer<float4> queries : register(t8);
+StructuredBuffer<float4> params : register(t9);
+RWStructuredBuffer<float4> results : register(u0);
+AtmosphereParameters load_atmosphere() {
+  AtmosphereParameters a;
+  a.bottom_radius = params[0].x;
+  a.top_radius = params[0].y;
+  a.sun_angular_radius = params[0].z;
+  a.mie_g = params[0].w;
+  a.sun_illuminance = params[1].xyz;
+  a.mie_phase = int(params[1].w);
+  a.ground_albedo = params[2].xyz;
+  a.rayleigh_scattering = params[3].xyz;
+  a.mie_scattering = params[4].xyz;
+  return a;
+}
+float4 extra(int k) { return params[5 + k]; }
+)" + declarations + R"(
+[numthreads(64, 1, 1)]
+void main(uint3 id : SV_DispatchThreadID) {
+  int i = int(id.x);
+  if (i >= int(params[2].w)) return;
+  float4 q0 = queries[2 * i], q1 = queries[2 * i + 1];
+  AtmosphereParameters atm = load_atmosphere();
+  results[i] = )" + expression + R"(;
+}
+)";
+}
+
+std::vector<glm::vec4> run_hlsl_queries(const ComputeProgram& program, const GlAtmosphere& atm,
+                                        const std::vector<glm::vec4>& extra,
+                                        const std::vector<glm::vec4>& queries) {
+  const size_t n = queries.size() / 2;
+  std::vector<glm::vec4> params = {
+      {atm.bottom_radius, atm.top_radius, atm.sun_angular_radius, atm.mie_g},
+      {atm.sun_illuminance, float(atm.mie_phase)},
+      {atm.ground_albedo, float(n)},
+      {atm.rayleigh_scattering, 0.0f},
+      {atm.mie_scattering, 0.0f}};
+  params.insert(params.end(), extra.begin(), extra.end());
+  StorageBuffer in(queries), parameters(params);
+  StorageBuffer out(std::max<size_t>(n, 1) * sizeof(glm::vec4));
+  in.bind(8);
+  parameters.bind(9);
+  out.bind(0);
+  dispatch(program, unsigned((n + 63) / 64));
+  const std::vector<float> f = out.read_floats();
+  std::vector<glm::vec4> results(n);
+  for (size_t i = 0; i < n; ++i) results[i] = {f[4 * i], f[4 * i + 1], f[4 * i + 2], f[4 * i + 3]};
+  return results;
 }
 
 std::vector<glm::vec4> run_queries(const ComputeProgram& program,

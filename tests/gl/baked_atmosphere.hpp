@@ -74,6 +74,11 @@ void set_atmosphere_uniform(const ComputeProgram& program, const std::string& na
 void set_medium_uniform(const ComputeProgram& program, const std::string& name,
                         const Atmosphere& atm);
 
+// The same medium for the HLSL twin, packed into extra(first ..) values,
+// and the HLSL function `AtmosphereMedium load_medium()` that unpacks it.
+std::vector<glm::vec4> medium_extra(const Atmosphere& atm);
+std::string hlsl_load_medium(int first);
+
 // Runs `program` once per query: binding 0 holds the queries (two vec4 each,
 // query i at 2i and 2i + 1), binding 1 receives one vec4 per query; the
 // uniform `count` holds the number of queries. Local size 64.
@@ -84,6 +89,17 @@ std::vector<glm::vec4> run_queries(const ComputeProgram& program,
 // of the query's q0 and q1 (vec4 each) and the uniform `atm`, after the
 // declarations in `declarations` (samplers, further uniforms).
 std::string query_shader(const std::string& declarations, const std::string& expression);
+
+// The HLSL twins: hlsl_query_shader wraps `expression` (a float4 of q0,
+// q1 and `atm`, an AtmosphereParameters read from the parameter buffer, and
+// extra(k), the case's own float4 values) after `declarations` (textures at
+// t0.., samplers at s0..); run_hlsl_queries binds the queries (t8), the
+// parameters (t9: the atmosphere, the count, then `extra`) and the results
+// (u0) and runs it once per query.
+std::string hlsl_query_shader(const std::string& declarations, const std::string& expression);
+std::vector<glm::vec4> run_hlsl_queries(const ComputeProgram& program, const GlAtmosphere& atm,
+                                        const std::vector<glm::vec4>& extra,
+                                        const std::vector<glm::vec4>& queries);
 
 // GL results against C++ references, channel by channel, relative error
 // with the floor of core/error_stats.hpp (1e-3 of the largest reference).

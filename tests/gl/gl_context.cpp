@@ -6,7 +6,12 @@
 #define GL_GLEXT_PROTOTYPES
 #include <GL/glcorearb.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <filesystem>
+#include <functional>
+#include <iterator>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -258,6 +263,71 @@ ComputeProgram compile_compute(const std::vector<std::string>& includes, const s
     const std::string log = log_of(program, true);
     glDeleteProgram(program);
     throw GlError("compute program (includes:" + names + ") does not link:\n" + log);
+  }
+  return ComputeProgram(program);
+}
+
+namespace {
+
+std::string run_command(const std::string& command, int* status) {
+  std::string output;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) throw GlError("cannot run " + command);
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) output.append(buf, n);
+  *status = pclose(pipe);
+  return output;
+}
+
+}  // namespace
+
+ComputeProgram compile_compute_hlsl(const std::vector<std::string>& includes,
+                                    const std::string& body) {
+  GlContext::shared();
+  const std::string source = runtime_source(includes) + body;
+  const std::string base = std::string(SKYBAKE_TEST_TMP) + "/hlsl_" + std::to_string(getpid()) +
+                           "_" + std::to_string(std::hash<std::string>()(source));
+  std::filesystem::create_directories(SKYBAKE_TEST_TMP);
+  {
+    std::ofstream out(base + ".hlsl", std::ios::binary);
+    out << source;
+  }
+  int status = 0;
+  const std::string log = run_command("glslangValidator -D -V -S comp -e main --auto-sampled-textures -o '" +
+                                          base + ".spv' '" + base + ".hlsl'",
+                                      &status);
+  if (status != 0)
+    throw GlError("HLSL compute shader does not compile (glslangValidator exit " +
+                  std::to_string(status) + "):\n" + log + "\n" + numbered(source));
+  std::ifstream in(base + ".spv", std::ios::binary);
+  const std::vector<char> spirv((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::filesystem::remove(base + ".hlsl");
+  std::filesystem::remove(base + ".spv");
+  auto specialize = reinterpret_cast<PFNGLSPECIALIZESHADERARBPROC>(
+      eglGetProcAddress("glSpecializeShaderARB"));
+  if (!specialize) throw GlError("the context has no glSpecializeShaderARB (GL_ARB_gl_spirv)");
+  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+  glShaderBinary(1, &shader, GL_SHADER_BINARY_FORMAT_SPIR_V_ARB, spirv.data(), GLsizei(spirv.size()));
+  specialize(shader, "main", 0, nullptr, nullptr);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    GLint length = 0;
+    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+    std::string info(size_t(std::max(length, 1)), '\0');
+    glGetShaderInfoLog(shader, length, nullptr, info.data());
+    glDeleteShader(shader);
+    throw GlError("the driver refuses the SPIR-V of an HLSL compute shader: " + info);
+  }
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, shader);
+  glLinkProgram(program);
+  glDeleteShader(shader);
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    glDeleteProgram(program);
+    throw GlError("an HLSL compute program does not link");
   }
   return ComputeProgram(program);
 }

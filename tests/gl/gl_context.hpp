@@ -100,6 +100,18 @@ class ComputeProgram {
 // source when compiling or linking fails.
 ComputeProgram compile_compute(const std::vector<std::string>& includes, const std::string& body);
 
+// The HLSL twin: the runtime/hlsl includes and `body` (an HLSL compute
+// shader with entry point `main`) compiled by glslangValidator's HLSL front
+// end to SPIR-V (-D -V --auto-sampled-textures: each Texture becomes a
+// combined sampler, its SamplerState comes from the GL texture object) and
+// loaded through GL_ARB_gl_spirv. Bindings follow the registers: t<n> is
+// texture unit n or, for a StructuredBuffer, storage buffer n; u<n> storage
+// buffer n. SPIR-V keeps no uniform names: pass parameters in buffers.
+// Throws GlError with the compiler's output when glslangValidator is
+// missing or fails, or when the driver refuses the module.
+ComputeProgram compile_compute_hlsl(const std::vector<std::string>& includes,
+                                    const std::string& body);
+
 // Runs `program` over groups_x * groups_y * groups_z work groups and waits
 // for its writes to buffers and images to be visible.
 void dispatch(const ComputeProgram& program, unsigned groups_x, unsigned groups_y = 1,

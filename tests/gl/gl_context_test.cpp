@@ -218,5 +218,39 @@ void main() {
     EXPECT_LE(worst, 1e-6) << n;
   }
 }
+// The HLSL path: glslang's HLSL front end to SPIR-V, loaded through
+// GL_ARB_gl_spirv, registers as bindings, a Texture and its SamplerState
+// read as one combined sampler; a compile error names the line.
+TEST(GlContext, HlslComputeProgramRunsThroughSpirv) {
+  Texture t(2, 1, 1, 1, {"R"});
+  t.data = {1.0f, 3.0f};
+  const GlTexture tex = upload_texture(t, {Filter::linear});
+  const ComputeProgram program = compile_compute_hlsl({}, R"(
+Texture2D<float4> tex : register(t0);
+SamplerState tex_sampler : register(s0);
+RWStructuredBuffer<float4> values : register(u3);
+[numthreads(4, 1, 1)]
+void main(uint3 id : SV_DispatchThreadID) {
+  float u = 0.25 + 0.5 * float(id.x) / 3.0;
+  values[id.x] = float4(tex.SampleLevel(tex_sampler, float2(u, 0.5), 0.0).r, atan2(1.0, -1.0), 0.0, 0.0);
+}
+)");
+  StorageBuffer out(4 * 4 * sizeof(float));
+  out.bind(3);
+  tex.bind(0);
+  dispatch(program, 1);
+  const std::vector<float> v = out.read_floats();
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(v[4 * i], 1.0f + 2.0f * float(i) / 3.0f, 1e-6) << i;
+    EXPECT_NEAR(v[4 * i + 1], 3.0f * 3.14159265f / 4.0f, 1e-5) << i;
+  }
+  try {
+    compile_compute_hlsl({}, "[numthreads(1, 1, 1)]\nvoid main() { undefined_name = 1.0; }\n");
+    FAIL() << "an HLSL shader with an undefined name compiled";
+  } catch (const GlError& e) {
+    EXPECT_NE(std::string(e.what()).find("undefined_name"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace skybake::gltest

@@ -292,6 +292,28 @@ TEST(SkyPreviewGl, RayMarchMatchesTheCpuMarch) {
   print_comparison("integrate_scattered_luminance", c);
   EXPECT_LE(c.stats.max_rel, 5e-4);
   EXPECT_LE(c.stats.rms_rel, 5e-5);
+  // The HLSL twin on the same points.
+  const ComputeProgram hlsl = compile_compute_hlsl(
+      {"sky_raymarch.hlsl"},
+      hlsl_query_shader("Texture2D<float4> transmittance_lut : register(t0);\n"
+                        "Texture2D<float4> multiscattering_lut : register(t1);\n"
+                        "SamplerState s : register(s0);\n" +
+                            hlsl_load_medium(0) +
+                            "float3 march(float4 q0, float4 q1, AtmosphereParameters atm) {\n"
+                            "  float3 T;\n"
+                            "  return integrate_scattered_luminance(atm, load_medium(),\n"
+                            "      transmittance_lut, s, multiscattering_lut, s, float3(0.0, 0.0, q0.x),\n"
+                            "      q0.yzw, q1.xyz, 3.0e38, 32, q1.w > 0.5, true, T);\n"
+                            "}\n",
+                        "float4(march(q0, q1, atm), 0.0)"));
+  transmittance.bind(0);
+  multiscattering.bind(1);
+  const Comparison h = compare(run_hlsl_queries(hlsl, scene.baked.parameters("transmittance"),
+                                                medium_extra(atm), queries),
+                               cpu, 3);
+  print_comparison("integrate_scattered_luminance [HLSL]", h);
+  EXPECT_LE(h.stats.max_rel, 5e-4);
+  EXPECT_LE(h.stats.rms_rel, 5e-5);
 }
 
 }  // namespace
