@@ -1,22 +1,12 @@
 // The HLSL cloud includes (runtime/hlsl/clouds_noise.hlsl,
-// clouds_weather.hlsl) run, not only compiled: glslangValidator's HLSL front
-// end makes SPIR-V of a compute shader (--auto-sampled-textures folds each
-// Texture/SamplerState pair into one sampled texture, which GL requires),
-// and llvmpipe runs it through GL_ARB_gl_spirv. The functions are compared
+// clouds_weather.hlsl) run, not only compiled: compile_compute_hlsl
+// (gl_context.hpp) makes SPIR-V with glslang's HLSL front end and llvmpipe
+// runs it through GL_ARB_gl_spirv. The functions are compared
 // with the same C++ and bars as the GLSL tests (clouds_decode_test.cpp,
 // clouds_lookup_test.cpp), so the two languages cannot drift apart.
 #include <gtest/gtest.h>
 
-#include <EGL/egl.h>
-#define GL_GLEXT_PROTOTYPES
-#include <GL/glcorearb.h>
-
-#include <sys/wait.h>
-
 #include <cmath>
-#include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -28,9 +18,6 @@
 #include "noise/curl_texture.hpp"
 #include "noise/noise_volume.hpp"
 #include "noise/perlin_worley.hpp"
-#include "support/run.hpp"
-
-namespace fs = std::filesystem;
 
 namespace skybake::gltest {
 namespace {
@@ -51,54 +38,14 @@ std::vector<float> uniform_points(size_t count, float lo, float hi, uint32_t see
   return out;
 }
 
-// HLSL source -> SPIR-V -> a linked GL compute program. Throws GlError with
-// the compiler's output or GL's log.
-ComputeProgram compile_hlsl(const std::string& body) {
-  const fs::path dir = test::fresh_dir("gl_clouds_hlsl");
-  const fs::path src = dir / "program.hlsl", spv = dir / "program.spv";
-  std::ofstream(src) << runtime_source({"clouds_noise.hlsl", "clouds_weather.hlsl"}) << R"(
-StructuredBuffer<float> in_ : register(t8);
-RWStructuredBuffer<float> out_ : register(u9);
-)" << body;
-  const std::string command =
-      "glslangValidator -V -D -S comp -e main --auto-sampled-textures -o '" + spv.string() + "' '" +
-      src.string() + "' 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) throw GlError("cannot run glslangValidator");
-  std::string log;
-  char buf[512];
-  while (fgets(buf, sizeof buf, pipe)) log += buf;
-  const int status = pclose(pipe);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw GlError("HLSL does not compile:\n" + log);
-  std::ifstream in(spv, std::ios::binary);
-  const std::vector<char> binary((std::istreambuf_iterator<char>(in)),
-                                 std::istreambuf_iterator<char>());
-  // glSpecializeShader is GL 4.6; llvmpipe's 4.5 has it as GL_ARB_gl_spirv.
-  auto specialize =
-      reinterpret_cast<void (*)(GLuint, const GLchar*, GLuint, const GLuint*, const GLuint*)>(
-          eglGetProcAddress("glSpecializeShaderARB"));
-  if (!specialize) throw GlError("no glSpecializeShaderARB (GL_ARB_gl_spirv)");
-  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-  glShaderBinary(1, &shader, GL_SHADER_BINARY_FORMAT_SPIR_V_ARB, binary.data(),
-                 GLsizei(binary.size()));
-  specialize(shader, "main", 0, nullptr, nullptr);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) throw GlError("SPIR-V does not specialize");
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, shader);
-  glLinkProgram(program);
-  glDeleteShader(shader);
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) throw GlError("SPIR-V program does not link");
-  return ComputeProgram(program);
-}
-
 std::vector<float> run_hlsl(const std::string& body, const std::vector<float>& in, size_t count,
                             size_t out_floats, const std::vector<const GlTexture*>& textures = {}) {
   GlContext::shared();
-  const ComputeProgram program = compile_hlsl(body);
+  const ComputeProgram program = compile_compute_hlsl({"clouds_noise.hlsl", "clouds_weather.hlsl"},
+                                                      R"(
+StructuredBuffer<float> in_ : register(t8);
+RWStructuredBuffer<float> out_ : register(u9);
+)" + body);
   StorageBuffer input(in);
   StorageBuffer output(out_floats * sizeof(float));
   input.bind(8);
