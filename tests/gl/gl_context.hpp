@@ -166,7 +166,8 @@ GlTexture upload_dds(const std::string& path, const SamplerState& sampler, bool 
 // (the DdsFormat values of io/dds.hpp); false when there is no mapping.
 struct GlPixelFormat {
   unsigned internal_format = 0, format = 0, type = 0;
-  int bytes_per_texel = 0;
+  int bytes_per_texel = 0;  // 0 for a block format
+  int block_bytes = 0;      // bytes per 4x4 block of a block format, else 0
 };
 bool gl_format_from_dxgi(uint32_t dxgi_format, GlPixelFormat* out);
 

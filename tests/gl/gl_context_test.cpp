@@ -153,7 +153,8 @@ void expect_dds_round_trip(const Texture& level0, DdsFormat format, bool mips,
   const int slices = level0.is_volume() ? level0.depth : level0.layers;
   const std::vector<float> got = fetch_all(tex, sampler, level0.width, level0.height, slices);
   const int components = dds_component_count(format);
-  const bool unorm = format == DdsFormat::R8G8B8A8_UNORM || format == DdsFormat::R8_UNORM;
+  const bool unorm = format == DdsFormat::R8G8B8A8_UNORM || format == DdsFormat::R8G8_UNORM ||
+                     format == DdsFormat::R8_UNORM;
   for (int s = 0; s < slices; ++s)
     for (int y = 0; y < level0.height; ++y)
       for (int x = 0; x < level0.width; ++x)
@@ -175,6 +176,49 @@ TEST(GlContext, DdsBytesUploadAsTheyAre) {
   expect_dds_round_trip(ramp_texture(5, 3, 1, 2, 4), DdsFormat::R8G8B8A8_UNORM, true, "rgba8_array");
   expect_dds_round_trip(ramp_texture(7, 5, 1, 1, 1), DdsFormat::R16_FLOAT, true, "r16f");
   expect_dds_round_trip(ramp_texture(3, 3, 3, 1, 1), DdsFormat::R8_UNORM, false, "r8_volume");
+  expect_dds_round_trip(ramp_texture(5, 3, 1, 1, 2), DdsFormat::R8G8_UNORM, true, "rg8");
+}
+
+// Block-compressed DDS files uploaded as they are: Mesa's S3TC and RGTC
+// decoders against ours (io/block_compression.hpp, exact rationals from the
+// specifications). Mesa decodes to 8 bits (565 endpoints widened by bit
+// replication, palette entries rounded to 8 bits), which moves a texel by
+// up to 1.2 8-bit steps (measured); the bar is 1.5.
+TEST(GlContext, BlockCompressedDdsUploadsAsTheyAre) {
+  GlContext::shared();
+  const double kBar = 1.5 / 255.0;
+  for (const DdsFormat f : {DdsFormat::BC1_UNORM, DdsFormat::BC3_UNORM, DdsFormat::BC4_UNORM,
+                            DdsFormat::BC5_UNORM}) {
+    const int channels = dds_component_count(f) == 3 ? 3 : dds_component_count(f);
+    // 10 x 6: blocks cut by the edge; 2 layers; mips down to 1 x 1 padded blocks.
+    Texture level0 = ramp_texture(10, 6, 1, 2, channels);
+    for (size_t i = 0; i < level0.data.size(); ++i)
+      level0.data[i] = std::min(1.0f, std::max(0.0f, level0.data[i] * 0.9f));
+    std::vector<Texture> chain = {level0};
+    for (int w = 5, h = 3; w >= 1; w /= 2, h = std::max(1, h / 2)) {
+      Texture next(w, h, 1, 2, level0.channels);
+      std::fill(next.data.begin(), next.data.end(), 0.25f);
+      chain.push_back(next);
+      if (w == 1) break;
+    }
+    const std::string name = dxgi_format_name(f);
+    const std::string path = test::scratch_file("gl", "dds_upload", name + ".dds");
+    write_dds(path, chain, f);
+    const Texture decoded = read_dds(path).mips.at(0);
+    const GlTexture tex = upload_dds(path, {Filter::nearest});
+    const std::vector<float> got = fetch_all(tex, "sampler2DArray", 10, 6, 2);
+    double worst = 0.0;
+    for (int s = 0; s < 2; ++s)
+      for (int y = 0; y < 6; ++y)
+        for (int x = 0; x < 10; ++x)
+          for (int c = 0; c < decoded.channel_count(); ++c) {
+            const size_t i = ((size_t(s) * 6 + y) * 10 + x) * 4 + c;
+            worst = std::max(worst, std::abs(double(got[i]) - decoded.at(x, y, 0, s, c)));
+          }
+    std::printf("[ measured ] %s: Mesa against our decoder, max %.3g (%.2f 8-bit steps)\n",
+                name.c_str(), worst, worst * 255.0);
+    EXPECT_LE(worst, kBar) << name;
+  }
 }
 
 

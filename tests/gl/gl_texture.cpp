@@ -51,6 +51,17 @@ void upload_slice(const GlTexture& tex, int width, int height, int slice, GLenum
   check_gl("glTextureSubImage (slice " + std::to_string(slice) + ")");
 }
 
+void upload_compressed_slice(const GlTexture& tex, int width, int height, int slice,
+                             GLenum internal_format, size_t bytes, const void* blocks) {
+  if (tex.target() == GL_TEXTURE_2D)
+    glCompressedTextureSubImage2D(tex.id(), 0, 0, 0, width, height, internal_format,
+                                  GLsizei(bytes), blocks);
+  else
+    glCompressedTextureSubImage3D(tex.id(), 0, 0, 0, slice, width, height, 1, internal_format,
+                                  GLsizei(bytes), blocks);
+  check_gl("glCompressedTextureSubImage (slice " + std::to_string(slice) + ")");
+}
+
 GLenum target_of(bool volume, bool array) {
   return volume ? GL_TEXTURE_3D : array ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D;
 }
@@ -100,8 +111,14 @@ bool gl_format_from_dxgi(uint32_t dxgi_format, GlPixelFormat* out) {
     case DdsFormat::R16_FLOAT: *out = {GL_R16F, GL_RED, GL_HALF_FLOAT, 2}; return true;
     case DdsFormat::R8G8_UNORM: *out = {GL_RG8, GL_RG, GL_UNSIGNED_BYTE, 2}; return true;
     case DdsFormat::R8_UNORM: *out = {GL_R8, GL_RED, GL_UNSIGNED_BYTE, 1}; return true;
-    default: return false;  // block formats: not uploaded by these tests
+    // Block formats (EXT_texture_compression_s3tc, RGTC of GL 3.0): BC1 with
+    // its 1-bit alpha as DXGI decodes it, BC3 = DXT5, BC4 and BC5 unsigned.
+    case DdsFormat::BC1_UNORM: *out = {GL_COMPRESSED_RGBA_S3TC_DXT1_EXT, 0, 0, 0, 8}; return true;
+    case DdsFormat::BC3_UNORM: *out = {GL_COMPRESSED_RGBA_S3TC_DXT5_EXT, 0, 0, 0, 16}; return true;
+    case DdsFormat::BC4_UNORM: *out = {GL_COMPRESSED_RED_RGTC1, 0, 0, 0, 8}; return true;
+    case DdsFormat::BC5_UNORM: *out = {GL_COMPRESSED_RG_RGTC2, 0, 0, 0, 16}; return true;
   }
+  return false;
 }
 
 GlTexture upload_dds(const std::string& path, const SamplerState& sampler, bool array) {
@@ -120,8 +137,11 @@ GlTexture upload_dds(const std::string& path, const SamplerState& sampler, bool 
   // Bytes of one 2D image of level l (rows tightly packed), and of a layer's
   // whole mip chain: a 2D array stores each layer with all its levels; a
   // volume stores level 0's depth slices first (Programming Guide for DDS).
+  // A block format stores 4x4 blocks, a level below 4 texels padded to one.
   auto level_bytes = [&](int l) {
-    return size_t(std::max(width >> l, 1)) * size_t(std::max(height >> l, 1)) * px.bytes_per_texel;
+    const size_t w = size_t(std::max(width >> l, 1)), h = size_t(std::max(height >> l, 1));
+    return px.block_bytes > 0 ? ((w + 3) / 4) * ((h + 3) / 4) * size_t(px.block_bytes)
+                              : w * h * size_t(px.bytes_per_texel);
   };
   size_t chain_bytes = 0;
   for (int l = 0; l < levels; ++l)
@@ -134,7 +154,11 @@ GlTexture upload_dds(const std::string& path, const SamplerState& sampler, bool 
   GlTexture out = create_storage(target_of(volume, layers > 1 || array), px.internal_format, width, height, slices);
   for (int s = 0; s < slices; ++s) {
     const size_t offset = dds::kHeaderBytes + (volume ? size_t(s) * level_bytes(0) : size_t(s) * chain_bytes);
-    upload_slice(out, width, height, s, px.format, px.type, bytes.data() + offset);
+    if (px.block_bytes > 0)
+      upload_compressed_slice(out, width, height, s, px.internal_format, level_bytes(0),
+                              bytes.data() + offset);
+    else
+      upload_slice(out, width, height, s, px.format, px.type, bytes.data() + offset);
   }
   apply_sampler(out.id(), sampler);
   return out;
