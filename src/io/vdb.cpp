@@ -19,6 +19,7 @@
 #include <set>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Dense.h>
 
@@ -71,6 +72,25 @@ void init_openvdb() {
   std::call_once(once, [] { openvdb::initialize(); });
 }
 
+// The grid name of each channel: the options' names, else the channel names.
+std::vector<std::string> grid_names_of(const std::string& path, const Texture& tex,
+                                       const VdbWriteOptions& options) {
+  if (options.grid_names.empty()) return tex.channels;
+  const std::vector<std::string>& names = options.grid_names;
+  if (names.size() != tex.channels.size())
+    throw IoError(fmt::format("{}: expected one grid name per channel ({}), got {} ({})", path,
+                              tex.channels.size(), names.size(), fmt::join(names, ", ")));
+  for (const std::string& name : names)
+    if (!is_valid_vdb_grid_name(name))
+      throw IoError(fmt::format("{}: expected grid names of letters, digits and '_' (not starting "
+                                "with a digit, at most 64), got '{}'",
+                                path, name));
+  if (std::set<std::string>(names.begin(), names.end()).size() != names.size())
+    throw IoError(fmt::format("{}: expected distinct grid names, got {}", path,
+                              fmt::join(names, ", ")));
+  return names;
+}
+
 void check_writable(const std::string& path, const Texture& tex, double voxel_size) {
   if (tex.width < 1 || tex.height < 1 || tex.depth < 1 || tex.channels.empty())
     throw IoError(fmt::format("{}: expected a non-empty texture, got {} with {} channels", path,
@@ -91,7 +111,7 @@ void check_writable(const std::string& path, const Texture& tex, double voxel_si
     throw IoError(
         fmt::format("{}: expected distinct channel names without commas (VDB grid names), got {}",
                     path, names));
-  for (const char* key : {"shape", "channels"})
+  for (const char* key : {"shape", "channels", "texture_channel"})
     if (tex.metadata.count(key))
       throw Error(fmt::format("{}: expected a metadata key other than the reserved '{}{}'", path,
                               kPrefix, key));
@@ -99,7 +119,8 @@ void check_writable(const std::string& path, const Texture& tex, double voxel_si
 }
 
 // One channel as a grid whose every voxel in the texture's box is active.
-openvdb::FloatGrid::Ptr make_grid(const Texture& tex, int c,
+openvdb::FloatGrid::Ptr make_grid(const Texture& tex, int c, const std::string& name,
+                                  VdbGridClass grid_class,
                                   const openvdb::math::Transform& xform) {
   const size_t nc = tex.channels.size(), texels = tex.texel_count();
   std::vector<float> plane(texels);
@@ -115,8 +136,11 @@ openvdb::FloatGrid::Ptr make_grid(const Texture& tex, int c,
   openvdb::MaskTree box_mask;
   box_mask.fill(box, true, true);
   grid->tree().topologyUnion(box_mask);
-  grid->setName(tex.channels[c]);
+  grid->setName(name);
+  grid->setGridClass(grid_class == VdbGridClass::fog_volume ? openvdb::GRID_FOG_VOLUME
+                                                            : openvdb::GRID_UNKNOWN);
   grid->setTransform(xform.copy());
+  grid->insertMeta(kPrefix + "texture_channel", openvdb::StringMetadata(tex.channels[c]));
   for (const auto& [key, value] : tex.metadata)
     grid->insertMeta(kPrefix + key, openvdb::StringMetadata(value));
   grid->insertMeta(kPrefix + "shape",
@@ -161,13 +185,16 @@ std::string string_meta(const openvdb::GridBase& grid, const std::string& name) 
 
 }  // namespace
 
-void write_vdb_file(const std::string& path, const Texture& tex, double voxel_size) {
+void write_vdb_file(const std::string& path, const Texture& tex, const VdbWriteOptions& options) {
+  const double voxel_size = options.voxel_size;
   check_writable(path, tex, voxel_size);
+  const std::vector<std::string> names = grid_names_of(path, tex, options);
   init_openvdb();
   auto xform = openvdb::math::Transform::createLinearTransform(voxel_size);
   xform->postTranslate(openvdb::Vec3d(0.5 * voxel_size));  // voxel i covers [i s, (i + 1) s]
   openvdb::GridCPtrVec grids;
-  for (int c = 0; c < tex.channel_count(); ++c) grids.push_back(make_grid(tex, c, *xform));
+  for (int c = 0; c < tex.channel_count(); ++c)
+    grids.push_back(make_grid(tex, c, names[size_t(c)], options.grid_class, *xform));
   try {
     openvdb::io::File(path).write(grids);
     make_uuid_deterministic(path);
@@ -225,6 +252,12 @@ openvdb::CoordBBox texture_box(const std::string& path, const openvdb::FloatGrid
                             openvdb::Coord(s->width - 1, s->height - 1, s->depth - 1));
 }
 
+// The texture channel a grid holds: skybake:texture_channel, else its name.
+std::string channel_of(const openvdb::GridBase& grid) {
+  const std::string channel = string_meta(grid, kPrefix + "texture_channel");
+  return channel.empty() ? grid.getName() : channel;
+}
+
 // The grids in channel order when the file records it (skybake:channels).
 std::vector<openvdb::FloatGrid::Ptr> in_channel_order(
     const std::string& path, const std::vector<openvdb::FloatGrid::Ptr>& floats) {
@@ -235,10 +268,10 @@ std::vector<openvdb::FloatGrid::Ptr> in_channel_order(
     end = order.find(',', start);
     const std::string name = order.substr(start, end - start);
     const auto it = std::find_if(floats.begin(), floats.end(),
-                                 [&](const auto& g) { return g->getName() == name; });
+                                 [&](const auto& g) { return channel_of(*g) == name; });
     if (it == floats.end())
-      throw IoError(
-          fmt::format("{}: expected a grid '{}' (skybake:channels), got none", path, name));
+      throw IoError(fmt::format(
+          "{}: expected a grid holding channel '{}' (skybake:channels), got none", path, name));
     if (std::find(ordered.begin(), ordered.end(), *it) != ordered.end())
       throw IoError(fmt::format(
           "{}: expected distinct grids in skybake:channels, got '{}' twice", path, name));
@@ -266,12 +299,12 @@ void check_dense_size(const std::string& path, const openvdb::CoordBBox& box, si
 Texture dense_texture(const openvdb::CoordBBox& box,
                       const std::vector<openvdb::FloatGrid::Ptr>& floats) {
   std::vector<std::string> channels;
-  for (const auto& grid : floats) channels.push_back(grid->getName());
+  for (const auto& grid : floats) channels.push_back(channel_of(*grid));
   const openvdb::Coord dim = box.dim();
   Texture tex(dim.x(), dim.y(), dim.z(), 1, channels);
   for (auto it = floats[0]->beginMeta(); it != floats[0]->endMeta(); ++it)
     if (it->first.rfind(kPrefix, 0) == 0 && it->first != kPrefix + "shape" &&
-        it->first != kPrefix + "channels" &&
+        it->first != kPrefix + "channels" && it->first != kPrefix + "texture_channel" &&
         it->second->typeName() == openvdb::StringMetadata::staticTypeName())
       tex.metadata[it->first.substr(kPrefix.size())] = it->second->str();
   std::vector<float> plane(tex.texel_count());

@@ -3,8 +3,10 @@
 // OpenVDB (slow headers, docs/architecture.md "Build").
 //
 // File shape:
-//   One openvdb::FloatGrid per channel, named after the channel (OpenVDB
-//   lists grids by name, so the channel order is kept in metadata).
+//   One openvdb::FloatGrid per channel, named after the channel or by the
+//   caller's grid names (OpenVDB lists grids by name, so the channel order is
+//   kept in metadata). Grid class: unknown, or fog volume for density-like
+//   data (VdbWriteOptions; docs/formats.md "VDB").
 //   Texel (x, y, z) is voxel index coordinate (x, y, z); a 2D texture is the
 //   single slice z = 0. Every voxel of [0, W) x [0, H) x [0, D) is active
 //   (constant regions may be stored as active tiles), background 0.
@@ -15,8 +17,9 @@
 //   Grid metadata (on every grid): "skybake:<key>" string per
 //   Texture::metadata entry, "skybake:shape" string "WxHxDxL" and
 //   "skybake:channels", the channel names in texture order, comma separated;
-//   metadata keys may not be "shape" or "channels". OpenVDB adds its own
-//   file_* statistics.
+//   and on each grid "skybake:texture_channel", the channel it holds; metadata
+//   keys may not be "shape", "channels" or "texture_channel". OpenVDB adds its
+//   own file_* statistics and "class".
 //   Compression: OpenVDB's default (Blosc + active mask when available).
 // Determinism: OpenVDB writes a random UUID into the file header; we replace
 // it with one derived from a hash of the rest of the file, so the same
@@ -27,22 +30,53 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/texture.hpp"
 
 namespace skybake {
 
+enum class VdbGridClass { unknown, fog_volume };
+
+struct VdbWriteOptions {
+  // World-space edge length of one voxel (> 0; 1/N maps an N-texel axis onto [0, 1]).
+  double voxel_size = 1.0;
+  // One grid name per channel, in channel order; empty: the channel names.
+  // Each matches ^[A-Za-z_][A-Za-z0-9_]{0,63}$ (an identifier every DCC
+  // tool accepts as a volume name), and they are distinct.
+  std::vector<std::string> grid_names;
+  // openvdb::GRID_FOG_VOLUME for density-like data (values 0 = empty and up),
+  // so viewers shade it as a volume; GRID_UNKNOWN otherwise.
+  VdbGridClass grid_class = VdbGridClass::unknown;
+};
+
+// True when `name` is a grid name VdbWriteOptions accepts. Inline: both
+// skybake_io and the plugin check it.
+inline bool is_valid_vdb_grid_name(const std::string& name) {
+  const auto letter = [](char c) {
+    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_';
+  };
+  if (name.empty() || name.size() > 64 || !letter(name[0])) return false;
+  for (char c : name)
+    if (!letter(c) && !(c >= '0' && c <= '9')) return false;
+  return true;
+}
+
 // Writes `tex` to exactly `path` (no temporary file: the caller renames).
 // voxel_size: world-space edge length of one voxel (> 0; 1/N maps an N-texel
 // axis onto [0, 1]). Threaded (OpenVDB's dense copy uses TBB).
 // Throws IoError (before creating the file) when a value is NaN/Inf, the
-// texture is empty or a 2D array, or channel names repeat or hold commas; throws IoError when
+// texture is empty or a 2D array, channel names repeat or hold commas, or the grid names are not
+// one valid distinct name per channel; throws IoError when
 // OpenVDB fails (the partial file is removed); throws Error on a reserved
 // metadata key or a voxel size that is not positive and finite.
+void write_vdb(const std::string& path, const Texture& tex, const VdbWriteOptions& options);
+// As above with the channel names as grid names and class unknown.
 void write_vdb(const std::string& path, const Texture& tex, double voxel_size);
 
-// Reads a .vdb of float grids into a Texture: channels are the grid names in
-// skybake:channels order (for a foreign file, OpenVDB's name order); the shape comes from
+// Reads a .vdb of float grids into a Texture: channels are the grids'
+// skybake:texture_channel (else their names) in skybake:channels order (for a
+// foreign file, the grid names in OpenVDB's name order); the shape comes from
 // skybake:shape, or for a foreign file from the union of the grids' active bounding boxes (whose
 // minimum becomes texel 0). Metadata: the first grid's skybake:* strings, prefix stripped. Throws
 // IoError when the file cannot be read or holds a non-float grid.

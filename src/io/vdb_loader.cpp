@@ -87,10 +87,16 @@ void rethrow(int status, const std::string& message) {
 
 }  // namespace
 
-void write_vdb(const std::string& path, const Texture& tex, double voxel_size) {
+void write_vdb(const std::string& path, const Texture& tex, const VdbWriteOptions& options) {
   const VdbPlugin& plugin = plugin_for(path, "write");
   std::string message;
-  rethrow(plugin.write(path.c_str(), &tex, voxel_size, &message), message);
+  rethrow(plugin.write(path.c_str(), &tex, &options, &message), message);
+}
+
+void write_vdb(const std::string& path, const Texture& tex, double voxel_size) {
+  VdbWriteOptions options;
+  options.voxel_size = voxel_size;
+  write_vdb(path, tex, options);
 }
 
 Texture read_vdb(const std::string& path) {

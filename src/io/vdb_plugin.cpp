@@ -33,8 +33,9 @@ extern "C" __attribute__((visibility("default"))) int skybake_vdb_abi() {
 }
 
 extern "C" __attribute__((visibility("default"))) int skybake_vdb_write(
-    const char* path, const skybake::Texture* tex, double voxel_size, std::string* message) {
-  return guarded(message, [&] { skybake::write_vdb_file(path, *tex, voxel_size); });
+    const char* path, const skybake::Texture* tex, const skybake::VdbWriteOptions* options,
+    std::string* message) {
+  return guarded(message, [&] { skybake::write_vdb_file(path, *tex, *options); });
 }
 
 extern "C" __attribute__((visibility("default"))) int skybake_vdb_read(const char* path,

@@ -19,25 +19,26 @@
 #include <string>
 
 #include "core/texture.hpp"
+#include "io/vdb.hpp"
 
 namespace skybake {
 
 // The implementations inside the plugin (vdb.cpp); contracts as write_vdb and
 // read_vdb in vdb.hpp.
-void write_vdb_file(const std::string& path, const Texture& tex, double voxel_size);
+void write_vdb_file(const std::string& path, const Texture& tex, const VdbWriteOptions& options);
 Texture read_vdb_file(const std::string& path);
 
 enum VdbPluginStatus : int { vdb_plugin_ok = 0, vdb_plugin_io_error = 1, vdb_plugin_error = 2 };
 
 // Bumped whenever an entry point's signature or Texture's layout changes.
-constexpr int kVdbPluginAbi = 1;
+constexpr int kVdbPluginAbi = 2;
 constexpr const char* kVdbPluginName = "libskybake_vdb.so";
 
 }  // namespace skybake
 
 extern "C" {
 using SkybakeVdbAbiFn = int();
-using SkybakeVdbWriteFn = int(const char* path, const skybake::Texture* tex, double voxel_size,
-                              std::string* message);
+using SkybakeVdbWriteFn = int(const char* path, const skybake::Texture* tex,
+                              const skybake::VdbWriteOptions* options, std::string* message);
 using SkybakeVdbReadFn = int(const char* path, skybake::Texture* out, std::string* message);
 }

@@ -110,6 +110,7 @@ ProductInfo noise_product(std::string name, std::string summary, std::vector<std
   p.preview_tiled = true;
   p.preview_split = true;
   p.tileable = true;
+  p.density_volume = p.axes.size() == 3;  // the volumes; curl is a 2D vector field
   return p;
 }
 

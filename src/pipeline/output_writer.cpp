@@ -36,6 +36,22 @@ Ktx2Format choose_ktx2_format(const Texture& tex, const ProductInfo& info, const
   return nc == 1 ? Ktx2Format::R32_SFLOAT : Ktx2Format::R32G32B32A32_SFLOAT;
 }
 
+// The output's grid_names, else for a density volume "density" for the
+// first channel and the channel names for the others (docs/decisions.md
+// "VDB grid names"); fog-volume class for density volumes.
+VdbWriteOptions vdb_options(const Texture& tex, const ProductInfo& info, const OutputSpec& spec) {
+  VdbWriteOptions options;
+  options.voxel_size = 1.0 / tex.width;
+  if (spec.options.contains("grid_names")) {
+    options.grid_names = spec.options["grid_names"].get<std::vector<std::string>>();
+  } else if (info.density_volume) {
+    options.grid_names = tex.channels;
+    options.grid_names[0] = "density";
+  }
+  if (info.density_volume) options.grid_class = VdbGridClass::fog_volume;
+  return options;
+}
+
 // Writes `tex` to `tmp` in one format; returns the encoding it used.
 std::string write_format(const std::string& format, const std::string& tmp, const Texture& tex,
                          const ProductInfo& info, const OutputSpec& spec) {
@@ -59,7 +75,7 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
     return ktx2_format_name(ktx2);
   }
   if (format == "vdb") {
-    write_vdb(tmp, tex, 1.0 / tex.width);
+    write_vdb(tmp, tex, vdb_options(tex, info, spec));
     return "float";
   }
   if (format == "png") {

@@ -43,7 +43,8 @@ const std::vector<std::string> kCommonOutputKeys = {
 const std::vector<std::string> kNonSemanticKeys = {"$schema", "description"};
 
 // Output keys of the file writers, which every product takes too.
-const std::vector<std::string> kWriterOutputKeys = {"exr_compression", "dds_header"};
+const std::vector<std::string> kWriterOutputKeys = {"exr_compression", "dds_header",
+                                                    "grid_names"};
 
 // Where a JSON subtree came from: the file and the subtree's pointer in it.
 struct Source {
@@ -428,6 +429,18 @@ void check_scene_budget(const std::vector<OutputSpec>& outputs, const Source& sr
                                    kMaxBakeBytes >> 30));
 }
 
+// VDB grid names: one per channel of the product's texture (the schema
+// checks each name and that they are distinct).
+void check_grid_names(const OutputSpec& spec, const Source& src) {
+  if (!spec.options.contains("grid_names")) return;
+  const size_t names = spec.options["grid_names"].size();
+  const int channels = output_channels(spec);
+  if (names != size_t(channels))
+    src.fail("/grid_names", fmt::format("expected one grid name per channel: {} for {} with these "
+                                        "options, got {}",
+                                        channels, spec.product, names));
+}
+
 // A KTX2 format with fewer components than the product's texture has channels.
 void check_ktx2_format(const OutputSpec& spec, const Source& src) {
   if (!spec.options.contains("ktx2_format")) return;
@@ -564,6 +577,9 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
   if (out.contains("dds_format") &&
       std::find(spec.formats.begin(), spec.formats.end(), "dds") == spec.formats.end())
     problems.add(src, "/dds_format", "is only used with \"dds\" in formats");
+  if (out.contains("grid_names") &&
+      std::find(spec.formats.begin(), spec.formats.end(), "vdb") == spec.formats.end())
+    problems.add(src, "/grid_names", "is only used with \"vdb\" in formats");
   if (out.contains("ktx2_format") &&
       std::find(spec.formats.begin(), spec.formats.end(), "ktx2") == spec.formats.end())
     problems.add(src, "/ktx2_format", "is only used with \"ktx2\" in formats");
@@ -576,6 +592,7 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
   for (const ProductProblem& problem : dds_output_problems(spec, *info))
     problems.add(src, problem.pointer, problem.rule);
   problems.collect([&] { check_ktx2_format(spec, src); });
+  if (options_ok) problems.collect([&] { check_grid_names(spec, src); });
   if (size_ok) check_output_budget(spec, src);  // a size already refused is not budgeted
   // Product-specific rules the schema cannot say (e.g. a noise octave finer
   // than two voxels), checked before anything is allocated.

@@ -59,6 +59,10 @@ struct ProductInfo {
   bool preview_split = false;    // PNG preview shows each channel as its own grey panel
   MeasureFn measure_error;       // empty: exact, a picture, or tileable (below)
   bool tileable = false;  // records check-tiling's verdict (error_measures.hpp tiling_record)
+  // A density-like volume (the cloud noises): its VDB grids are fog volumes
+  // and, unless the output names them (grid_names), its first channel's grid
+  // is "density" (docs/formats.md "VDB").
+  bool density_volume = false;
 };
 
 // All products, in a stable order (dependencies before dependents).

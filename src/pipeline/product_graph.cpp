@@ -32,7 +32,7 @@ namespace {
 
 // Keys of an output object read only by the file writers.
 bool is_writer_key(const std::string& key) {
-  return key == "exr_compression" || key == "dds_header";
+  return key == "exr_compression" || key == "dds_header" || key == "grid_names";
 }
 
 // Keys of an output object that shape files or the manifest's record but not
