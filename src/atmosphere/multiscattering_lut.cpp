@@ -95,20 +95,79 @@ MultiscatteringSample compute_multiscattering(const Atmosphere& atm,
   return out;
 }
 
+namespace {
+
+// The terminator mapping's centre c(r) = mu_h(r) - offset and its atan span.
+struct TerminatorFrame {
+  double centre, a_lo, a_hi;
+};
+TerminatorFrame terminator_frame(const MultiscatteringMapping& m, const Atmosphere& atm,
+                                 double r) {
+  const double ratio = atm.bottom_radius_m / std::max(r, atm.bottom_radius_m);
+  const double centre = -safe_sqrt(1.0 - ratio * ratio) - m.offset;
+  return {centre, std::atan((-1.0 - centre) / m.width), std::atan((1.0 - centre) / m.width)};
+}
+
+// Scattering-weighted mean height of the medium (midpoint rule over the shell).
+double scattering_mean_height(const Atmosphere& atm) {
+  const double shell = atm.top_radius_m - atm.bottom_radius_m;
+  constexpr int kSteps = 4000;
+  double weight = 0.0, moment = 0.0;
+  for (int i = 0; i < kSteps; ++i) {
+    const double h = (i + 0.5) * shell / kSteps;
+    for (const MediumComponent& c : atm.components) {
+      const double w = (c.scattering_per_m.x + c.scattering_per_m.y + c.scattering_per_m.z) *
+                       density_at(c.density, h);
+      weight += w;
+      moment += w * h;
+    }
+  }
+  return weight > 0.0 ? moment / weight : 0.5 * shell;
+}
+
+}  // namespace
+
+MultiscatteringMapping terminator_mapping(const Atmosphere& atm) {
+  const double sigma =
+      std::sqrt(std::max(scattering_mean_height(atm), 1e-9) / atm.bottom_radius_m);
+  MultiscatteringMapping m;
+  m.sun = SunMapping::terminator;
+  m.width = kTerminatorWidth * sigma;
+  m.offset = kTerminatorOffset * sigma;
+  return m;
+}
+
+double unit_from_sun_cosine(const MultiscatteringMapping& m, const Atmosphere& atm, double r,
+                            double mu_s) {
+  mu_s = clamp_cosine(mu_s);
+  if (m.sun == SunMapping::linear) return 0.5 + 0.5 * mu_s;
+  const TerminatorFrame f = terminator_frame(m, atm, r);
+  const double x = (std::atan((mu_s - f.centre) / m.width) - f.a_lo) / (f.a_hi - f.a_lo);
+  return std::clamp(x, 0.0, 1.0);
+}
+
+double sun_cosine_from_unit(const MultiscatteringMapping& m, const Atmosphere& atm, double r,
+                            double x_mu_s) {
+  x_mu_s = std::clamp(x_mu_s, 0.0, 1.0);
+  if (m.sun == SunMapping::linear) return clamp_cosine(2.0 * x_mu_s - 1.0);
+  const TerminatorFrame f = terminator_frame(m, atm, r);
+  return clamp_cosine(f.centre + m.width * std::tan(f.a_lo + x_mu_s * (f.a_hi - f.a_lo)));
+}
+
 glm::dvec2 multiscattering_uv_from_r_mu_s(const Atmosphere& atm, double r, double mu_s, int width,
-                                          int height) {
-  const double x_mu_s = 0.5 + 0.5 * clamp_cosine(mu_s);
-  const double x_h =
-      std::clamp((r - atm.bottom_radius_m) / (atm.top_radius_m - atm.bottom_radius_m), 0.0, 1.0);
+                                          int height, const MultiscatteringMapping& mapping) {
+  r = std::clamp(r, atm.bottom_radius_m, atm.top_radius_m);
+  const double x_mu_s = unit_from_sun_cosine(mapping, atm, r, mu_s);
+  const double x_h = (r - atm.bottom_radius_m) / (atm.top_radius_m - atm.bottom_radius_m);
   return {texel_coord_from_unit(x_mu_s, width), texel_coord_from_unit(x_h, height)};
 }
 
 RadiusSunCosine r_mu_s_from_multiscattering_uv(const Atmosphere& atm, glm::dvec2 uv, int width,
-                                               int height) {
+                                               int height, const MultiscatteringMapping& mapping) {
   const double x_mu_s = unit_from_texel_coord(uv.x, width);
   const double x_h = unit_from_texel_coord(uv.y, height);
-  return {atm.bottom_radius_m + x_h * (atm.top_radius_m - atm.bottom_radius_m),
-          clamp_cosine(2.0 * x_mu_s - 1.0)};
+  const double r = atm.bottom_radius_m + x_h * (atm.top_radius_m - atm.bottom_radius_m);
+  return {r, sun_cosine_from_unit(mapping, atm, r, x_mu_s)};
 }
 
 Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmittance_lut,
@@ -119,6 +178,9 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
                     "direction and step, got {}x{}, {} directions, {} steps",
                     spec.width, spec.height, spec.directions, spec.steps));
   Texture tex(spec.width, spec.height, 1, 1, {"R", "G", "B"});
+  const MultiscatteringMapping mapping = spec.sun_mapping == SunMapping::terminator
+                                             ? terminator_mapping(atm)
+                                             : MultiscatteringMapping{};
   const std::vector<glm::dvec3> dirs = fibonacci_sphere_directions(spec.directions);
   // Per-row maxima, reduced in row order afterwards: no shared mutable state.
   std::vector<double> row_fms_max(spec.height, 0.0);
@@ -128,7 +190,7 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
     for (int x = 0; x < spec.width; ++x) {
       const RadiusSunCosine p = r_mu_s_from_multiscattering_uv(
           atm, {texel_center(x, spec.width), texel_center(y, spec.height)}, spec.width,
-          spec.height);
+          spec.height, mapping);
       const MultiscatteringSample s =
           compute_multiscattering(atm, transmittance_lut, p.r, p.mu_s, dirs, spec.steps);
       const double fms = std::max({s.f_ms.x, s.f_ms.y, s.f_ms.z});
@@ -147,7 +209,7 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
   }
   Metadata& m = tex.metadata;
   set_meta(m, "parameterization", std::string("hillaire2020_multiscattering"));
-  set_meta(m, "u", std::string("texel_coord_from_unit(0.5 + 0.5 * mu_s, width)"));
+  set_multiscattering_mapping_metadata(m, mapping);
   set_meta(m, "v",
            std::string("texel_coord_from_unit((r - bottom_radius_m) / "
                        "(top_radius_m - bottom_radius_m), height)"));
@@ -164,10 +226,44 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
   return tex;
 }
 
+void set_multiscattering_mapping_metadata(Metadata& m, const MultiscatteringMapping& mapping) {
+  if (mapping.sun == SunMapping::linear) {
+    set_meta(m, "mu_s_mapping", std::string("linear"));
+    set_meta(m, "u", std::string("texel_coord_from_unit(0.5 + 0.5 * mu_s, width)"));
+    return;
+  }
+  set_meta(m, "mu_s_mapping", std::string("terminator"));
+  set_meta(m, "mu_s_mapping_width", mapping.width);
+  set_meta(m, "mu_s_mapping_offset", mapping.offset);
+  set_meta(m, "u",
+           std::string("texel_coord_from_unit((atan((mu_s - c) / w) - atan((-1 - c) / w)) / "
+                       "(atan((1 - c) / w) - atan((-1 - c) / w)), width), "
+                       "c = -sqrt(1 - (bottom_radius_m / r)^2) - mu_s_mapping_offset, "
+                       "w = mu_s_mapping_width"));
+}
+
+MultiscatteringMapping multiscattering_mapping_of(const Texture& lut) {
+  MultiscatteringMapping m;
+  const auto name = lut.metadata.find("mu_s_mapping");
+  if (name == lut.metadata.end() || name->second == "linear") return m;
+  if (name->second != "terminator")
+    throw Error(fmt::format("multiscattering: unknown mu_s_mapping '{}'", name->second));
+  m.sun = SunMapping::terminator;
+  m.width = std::stod(lut.metadata.at("mu_s_mapping_width"));
+  m.offset = std::stod(lut.metadata.at("mu_s_mapping_offset"));
+  return m;
+}
+
+glm::dvec3 lookup_multiscattering(const Texture& lut, const MultiscatteringMapping& mapping,
+                                  const Atmosphere& atm, double r, double mu_s) {
+  const glm::dvec2 uv =
+      multiscattering_uv_from_r_mu_s(atm, r, mu_s, lut.width, lut.height, mapping);
+  return glm::dvec3(sample_bilinear(lut, uv.x, uv.y, 0, 0, false));
+}
+
 glm::dvec3 lookup_multiscattering(const Texture& lut, const Atmosphere& atm, double r,
                                   double mu_s) {
-  const glm::dvec2 uv = multiscattering_uv_from_r_mu_s(atm, r, mu_s, lut.width, lut.height);
-  return glm::dvec3(sample_bilinear(lut, uv.x, uv.y, 0, 0, false));
+  return lookup_multiscattering(lut, multiscattering_mapping_of(lut), atm, r, mu_s);
 }
 
 }  // namespace skybake

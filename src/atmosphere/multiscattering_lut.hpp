@@ -6,8 +6,16 @@
 // Shape: width x height (default 32 x 32), channels R, G, B, float32.
 // Axes (texel centres, docs/architecture.md "Texel centres"): the first and
 // last texel of each axis sit exactly on the ends of its range,
-//   u = texel_coord_from_unit(0.5 + 0.5 mu_s, width)       mu_s: sun zenith cosine
+//   u = texel_coord_from_unit(x_mu_s(r, mu_s), width)       mu_s: sun zenith cosine
 //   v = texel_coord_from_unit((r - Rb) / (Rt - Rb), height) r: radius
+// with one of two sun mappings (MultiscatteringMapping, recorded in the
+// metadata; docs/reference.md "Multiple scattering (Hillaire)"):
+//   linear      x_mu_s = 0.5 + 0.5 mu_s (Hillaire 2020 sec. 5.5.2, the default)
+//   terminator  x_mu_s = (atan((mu_s - c(r)) / w) - a_lo) / (a_hi - a_lo),
+//               c(r) = mu_h(r) - offset, mu_h(r) = -sqrt(1 - (Rb / r)^2) the
+//               horizon's cosine at r, a_lo / a_hi the same atan at mu_s = -1 / 1:
+//               texels crowd where the planet's shadow sweeps over the air
+//               around the point and Psi_ms falls by orders of magnitude.
 // Per texel, eq. 5-10: over `directions` unit vectors spread uniformly on the
 // sphere (spherical Fibonacci set, below), march `steps` uniform segments to
 // the ground or the top and accumulate
@@ -40,11 +48,40 @@
 
 namespace skybake {
 
+// The sun axis's mapping (see the opening comment).
+enum class SunMapping { linear, terminator };
+struct MultiscatteringMapping {
+  SunMapping sun = SunMapping::linear;
+  double width = 1.0;   // terminator: w, the crowded span in mu_s (> 0)
+  double offset = 0.0;  // terminator: how far below the horizon's cosine the centre sits
+};
+
+// The terminator mapping for an atmosphere: with H the scattering-weighted
+// mean height of the medium and sigma = sqrt(H / Rb) the width in mu_s over
+// which the planet's shadow rises through it (a sun depression delta puts
+// the shadow ~Rb delta^2 / 2 above a point, so the lit air thins as
+// exp(-delta^2 / (2 sigma^2))), w = kTerminatorWidth sigma and
+// offset = kTerminatorOffset sigma.
+constexpr double kTerminatorWidth = 4.0;
+constexpr double kTerminatorOffset = 0.0;
+MultiscatteringMapping terminator_mapping(const Atmosphere& atm);
+
+// The mapping a baked table was made with, from its metadata ("mu_s_mapping",
+// "mu_s_mapping_width", "mu_s_mapping_offset"; linear when absent).
+MultiscatteringMapping multiscattering_mapping_of(const Texture& lut);
+
+// x_mu_s in [0, 1] and back: the sun axis before texel centring.
+double unit_from_sun_cosine(const MultiscatteringMapping& m, const Atmosphere& atm, double r,
+                            double mu_s);
+double sun_cosine_from_unit(const MultiscatteringMapping& m, const Atmosphere& atm, double r,
+                            double x_mu_s);
+
 struct MultiscatteringLutSpec {
   int width = 32;       // texels along the sun zenith cosine axis (u)
   int height = 32;      // texels along the altitude axis (v)
   int directions = 64;  // ray directions per texel (Hillaire 2020: 64)
   int steps = 20;       // uniform segments per ray (Hillaire 2020 Table 2: 20)
+  SunMapping sun_mapping = SunMapping::linear;  // terminator: terminator_mapping(atm)
 };
 
 // Upper bound applied to f_ms per channel (eq. 9 needs f_ms < 1); F_ms = 1 / (1 - f_ms)
@@ -73,13 +110,14 @@ MultiscatteringSample compute_multiscattering(const Atmosphere& atm,
 
 // Texel-centre mapping pair (see the opening comment).
 glm::dvec2 multiscattering_uv_from_r_mu_s(const Atmosphere& atm, double r, double mu_s, int width,
-                                          int height);
+                                          int height, const MultiscatteringMapping& mapping = {});
 struct RadiusSunCosine {
   double r;     // radius, m
   double mu_s;  // sun zenith cosine
 };
 RadiusSunCosine r_mu_s_from_multiscattering_uv(const Atmosphere& atm, glm::dvec2 uv, int width,
-                                               int height);
+                                               int height,
+                                               const MultiscatteringMapping& mapping = {});
 
 // Bakes the LUT; rows in parallel with tbb::parallel_for, each texel
 // independent, so the data does not depend on the thread count. Throws Error
@@ -89,7 +127,13 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
                                  const MultiscatteringLutSpec& spec, const BakeContext& ctx);
 
 // Psi_ms at radius r (clamped to the shell) and sun zenith cosine mu_s,
-// bilinear (1/sr).
+// bilinear (1/sr), with the table's own mapping (multiscattering_mapping_of;
+// callers reading many points pass it, parsed once).
+glm::dvec3 lookup_multiscattering(const Texture& lut, const MultiscatteringMapping& mapping,
+                                  const Atmosphere& atm, double r, double mu_s);
 glm::dvec3 lookup_multiscattering(const Texture& lut, const Atmosphere& atm, double r, double mu_s);
+
+// Writes the mapping into a table's metadata (name, constants, formulas).
+void set_multiscattering_mapping_metadata(Metadata& m, const MultiscatteringMapping& mapping);
 
 }  // namespace skybake

@@ -35,6 +35,8 @@ class RayMarcher {
       : atm_(atm),
         tlut_(transmittance_lut),
         mslut_(multiscattering_lut),
+        msmap_(multiscattering_lut ? multiscattering_mapping_of(*multiscattering_lut)
+                                   : MultiscatteringMapping{}),
         origin_(origin),
         dir_(dir),
         sun_(sun_dir) {
@@ -69,7 +71,7 @@ class RayMarcher {
     if (sigma_t == glm::dvec3(0.0)) return;  // empty here: no source, no attenuation
     const double mu_s = clamp_cosine(glm::dot(p, sun_) / r);
     glm::dvec3 source = lookup_sun_transmittance(tlut_, atm_, r, mu_s) * sigma_s_phase;
-    if (mslut_) source += lookup_multiscattering(*mslut_, atm_, r, mu_s) * sigma_s;  // eq. 11
+    if (mslut_) source += lookup_multiscattering(*mslut_, msmap_, atm_, r, mu_s) * sigma_s;  // eq. 11
     const SegmentWeights w = segment_weights(sigma_t, dt);
     st.luminance += st.transmittance * atm_.sun_illuminance * source * w.weight;
     st.transmittance *= w.transmittance;
@@ -103,6 +105,7 @@ class RayMarcher {
   const Atmosphere& atm_;
   const Texture& tlut_;
   const Texture* mslut_;
+  const MultiscatteringMapping msmap_;  // parsed once: the march reads it per segment
   glm::dvec3 origin_, dir_, sun_;
   std::vector<RayComponent> components_;
 };

@@ -58,6 +58,8 @@ MultiscatteringLutSpec multiscattering_spec(const OutputSpec& spec) {
   lut.height = spec.size.at(1);
   lut.directions = option_int(spec, "directions", lut.directions);
   lut.steps = option_int(spec, "steps", lut.steps);
+  if (spec.options.value("sun_mapping", std::string("linear")) == "terminator")
+    lut.sun_mapping = SunMapping::terminator;
   return lut;
 }
 

@@ -56,14 +56,16 @@ int max_bounces_for(const Atmosphere& atm) {
 // assumptions (isotropic phase, the same light at every point) or from the
 // geometric series 1 / (1 - f_ms) that stands for orders >= 3.
 Texture second_order_table(const Atmosphere& atm, const Texture& transmittance,
-                           const MultiscatteringLutSpec& spec) {
+                           const MultiscatteringLutSpec& spec, const Texture& operating) {
   Texture tex(spec.width, spec.height, 1, 1, {"R", "G", "B"});
+  const MultiscatteringMapping mapping = multiscattering_mapping_of(operating);
+  set_multiscattering_mapping_metadata(tex.metadata, mapping);
   const std::vector<glm::dvec3> dirs = fibonacci_sphere_directions(spec.directions);
   tbb::parallel_for(0, spec.height, [&](int y) {
     for (int x = 0; x < spec.width; ++x) {
       const RadiusSunCosine p = r_mu_s_from_multiscattering_uv(
           atm, {texel_center(x, spec.width), texel_center(y, spec.height)}, spec.width,
-          spec.height);
+          spec.height, mapping);
       const glm::dvec3 l2 =
           compute_multiscattering(atm, transmittance, p.r, p.mu_s, dirs, spec.steps).l2;
       for (int c = 0; c < 3; ++c) tex.at(x, y, 0, 0, c) = float(l2[c]);
@@ -228,7 +230,8 @@ SkyRadianceScene sky_radiance_scene(const ReportInputs& in, const SkyRadianceSet
   s.no_multiscattering = in.multiscattering;
   std::fill(s.no_multiscattering.data.begin(), s.no_multiscattering.data.end(), 0.0f);
   s.second_order = second_order_table(
-      atm, in.transmittance, multiscattering_spec(operating_spec(in.scene, "multiscattering")));
+      atm, in.transmittance, multiscattering_spec(operating_spec(in.scene, "multiscattering")),
+      in.multiscattering);
   return s;
 }
 

@@ -66,6 +66,64 @@ TEST(MultiscatteringMapping, RoundTripAndTexelCentresOnTheBoundaries) {
   EXPECT_NEAR(last.r, atm.top_radius_m, 1e-6);
 }
 
+TEST(MultiscatteringMapping, TerminatorRoundTripEdgesAndMonotone) {
+  for (const Atmosphere& atm : {earth_atmosphere(), fixtures::tiny_planet_atmosphere()}) {
+    const MultiscatteringMapping m = terminator_mapping(atm);
+    ASSERT_EQ(m.sun, SunMapping::terminator);
+    ASSERT_GT(m.width, 0.0);
+    const int w = 32, h = 16;
+    for (int y = 0; y < h; ++y) {
+      double previous = -2.0;
+      for (int x = 0; x < w; ++x) {
+        const glm::dvec2 uv(texel_center(x, w), texel_center(y, h));
+        const RadiusSunCosine p = r_mu_s_from_multiscattering_uv(atm, uv, w, h, m);
+        const glm::dvec2 back = multiscattering_uv_from_r_mu_s(atm, p.r, p.mu_s, w, h, m);
+        EXPECT_NEAR(back.x, uv.x, 1e-9);
+        EXPECT_NEAR(back.y, uv.y, 1e-12);
+        EXPECT_GT(p.mu_s, previous);  // strictly increasing along u
+        previous = p.mu_s;
+      }
+      // The first and last texel of every row sit on mu_s = -1 and 1.
+      const double r = r_mu_s_from_multiscattering_uv(atm, {0.5, texel_center(y, h)}, w, h, m).r;
+      EXPECT_NEAR(sun_cosine_from_unit(m, atm, r, 0.0), -1.0, 1e-12);
+      EXPECT_NEAR(sun_cosine_from_unit(m, atm, r, 1.0), 1.0, 1e-12);
+    }
+    // Texels crowd around the horizon's cosine: the step in mu_s there is
+    // smaller than the linear mapping's 2 / (n - 1), and larger at the zenith.
+    const double r = atm.bottom_radius_m;
+    const double x0 = unit_from_sun_cosine(m, atm, r, 0.0);
+    const double step = sun_cosine_from_unit(m, atm, r, x0 + 1.0 / 31) - 0.0;
+    EXPECT_LT(step, 2.0 / 31);
+    EXPECT_GT(1.0 - sun_cosine_from_unit(m, atm, r, 1.0 - 1.0 / 31), 2.0 / 31);
+  }
+}
+
+TEST(MultiscatteringMapping, RecordedInTheMetadataAndReadBack) {
+  const Atmosphere atm = earth_atmosphere();
+  MultiscatteringLutSpec spec{8, 8, 16, 10};
+  spec.sun_mapping = SunMapping::terminator;
+  const Texture ms = bake_multiscattering_lut(atm, small_transmittance(atm), spec, {});
+  EXPECT_EQ(ms.metadata.at("mu_s_mapping"), "terminator");
+  const MultiscatteringMapping m = multiscattering_mapping_of(ms);
+  const MultiscatteringMapping expected = terminator_mapping(atm);
+  EXPECT_EQ(m.sun, SunMapping::terminator);
+  EXPECT_EQ(m.width, expected.width);  // 17 significant digits: exact
+  EXPECT_EQ(m.offset, expected.offset);
+  // The lookup follows the recorded mapping: texel centres read back exactly.
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) {
+      const RadiusSunCosine p = r_mu_s_from_multiscattering_uv(
+          atm, {texel_center(x, 8), texel_center(y, 8)}, 8, 8, m);
+      const glm::dvec3 v = lookup_multiscattering(ms, atm, p.r, p.mu_s);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(v[c], ms.at(x, y, 0, 0, c), 1e-6 * v[c] + 1e-12);
+    }
+  // A linear table says so, and a table without the key reads as linear.
+  const Texture linear = bake_multiscattering_lut(atm, small_transmittance(atm), {8, 8, 16, 10}, {});
+  EXPECT_EQ(linear.metadata.at("mu_s_mapping"), "linear");
+  EXPECT_EQ(multiscattering_mapping_of(Texture(2, 2, 1, 1, {"R", "G", "B"})).sun,
+            SunMapping::linear);
+}
+
 void expect_all_zero(const Texture& tex) {
   for (float v : tex.data) ASSERT_EQ(v, 0.0f);
 }
