@@ -51,8 +51,39 @@ nlohmann::json measure_transmittance_error(const Scene& scene, const OutputSpec&
                   kTransmittanceReferenceSteps));
 }
 
-nlohmann::json measure_multiscattering_error(const Scene& scene, const OutputSpec&,
+namespace {
+
+// The converged model: the table's reads against the same mean taken at the
+// query points themselves, over the same 4D iteration (recomputed: the bake
+// keeps none of it), so the record is the table's interpolation error.
+nlohmann::json measure_converged_multiscattering_error(const Scene& scene, const OutputSpec& spec,
+                                                       const ProductInputs& in,
+                                                       const Texture& lut) {
+  const Atmosphere& atm = scene.atmosphere;
+  const ConvergedMultiscatteringSpec c = converged_multiscattering_spec(spec);
+  const ConvergedField field =
+      compute_converged_field(atm, *in.at("transmittance"), c, BakeContext{});
+  const SphereGrid grid = sphere_grid(c.bands);
+  const MultiscatteringMapping mapping = multiscattering_mapping_of(lut);
+  QueryReads reads(kMultiscatteringQueries);
+  tbb::parallel_for(size_t(0), reads.size(), [&](size_t i) {
+    const RadiusCosine q = multiscattering_query(atm, i);
+    reads[i].first = lookup_multiscattering(lut, mapping, atm, q.r, q.mu);
+    reads[i].second =
+        compute_converged_multiscattering(atm, *in.at("transmittance"), field, q.r, q.mu, grid);
+  });
+  return error_record(
+      reads, "lookup_multiscattering (bilinear) at points uniform in altitude and sun zenith "
+             "cosine against the mean incident radiance at the points themselves over the same "
+             "4D order iteration (compute_converged_multiscattering)");
+}
+
+}  // namespace
+
+nlohmann::json measure_multiscattering_error(const Scene& scene, const OutputSpec& spec,
                                              const ProductInputs& in, const Texture& lut) {
+  if (multiscattering_is_converged(spec))
+    return measure_converged_multiscattering_error(scene, spec, in, lut);
   const Atmosphere& atm = scene.atmosphere;
   const std::vector<glm::dvec3> dirs =
       fibonacci_sphere_directions(kMultiscatteringReferenceDirections);
@@ -71,8 +102,45 @@ nlohmann::json measure_multiscattering_error(const Scene& scene, const OutputSpe
                          kMultiscatteringReferenceDirections, kMultiscatteringReferenceSteps));
 }
 
+namespace {
+
+// Sky-view with the 4D table's orders >= 2: the same single-scattering march
+// finer plus the same iteration's orders >= 2 at the query's own direction
+// (the iteration recomputed), so the record is the layer's interpolation
+// and march error.
+nlohmann::json measure_skyview_multiple4d_error(const Scene& scene, const OutputSpec& spec,
+                                                const ProductInputs& in, const Texture& lut) {
+  const Atmosphere& atm = scene.atmosphere;
+  const SkyviewLutSpec baked = skyview_spec(spec);
+  const ConvergedField field = compute_converged_field(
+      atm, *in.at("transmittance"), converged_multiscattering_spec(spec), BakeContext{});
+  IntegrationOptions options;
+  options.distribution = baked.distribution;
+  QueryReads reads(kSkyviewQueries);
+  tbb::parallel_for(size_t(0), reads.size(), [&](size_t i) {
+    const SkyviewQueryPoint q = skyview_query(atm, baked.views, i);
+    const double zenith = baked.views[size_t(q.layer)].sun_zenith_rad;
+    const glm::dvec3 sun(std::sin(zenith), 0.0, std::cos(zenith));
+    reads[i].first = lookup_skyview(lut, q.layer, atm, q.r, q.view);
+    reads[i].second =
+        integrate_scattered_luminance(atm, *in.at("transmittance"), nullptr, {0.0, 0.0, q.r},
+                                      skyview_vector_from_direction(q.view), sun, INFINITY,
+                                      kSkyviewReferenceSteps, options)
+            .luminance +
+        lookup_field_multiple_scattering(atm, field, q.r, q.view, zenith);
+  });
+  return error_record(
+      reads, fmt::format("lookup_skyview (bilinear, azimuth wraps) at a uniform layer and view "
+                         "direction against single scattering marched with {} steps plus the "
+                         "same 4D iteration's orders >= 2 toward that direction",
+                         kSkyviewReferenceSteps));
+}
+
+}  // namespace
+
 nlohmann::json measure_skyview_error(const Scene& scene, const OutputSpec& spec,
                                      const ProductInputs& in, const Texture& lut) {
+  if (skyview_uses_multiple4d(spec)) return measure_skyview_multiple4d_error(scene, spec, in, lut);
   const Atmosphere& atm = scene.atmosphere;
   const SkyviewLutSpec baked = skyview_spec(spec);
   IntegrationOptions options;

@@ -2,7 +2,11 @@
 // here, once.
 #include <cmath>
 
+#include <fmt/format.h>
+
+#include "atmosphere/order_progress.hpp"
 #include "atmosphere/sky_preview.hpp"
+#include "core/error.hpp"
 #include "core/math.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/error_measures.hpp"
@@ -29,6 +33,10 @@ Texture bake_transmittance(const Scene& scene, const OutputSpec& spec, const Pro
 
 Texture bake_multiscattering(const Scene& scene, const OutputSpec& spec, const ProductInputs& in,
                              const BakeContext& ctx) {
+  if (multiscattering_is_converged(spec))
+    return bake_converged_multiscattering_lut(scene.atmosphere, *in.at("transmittance"),
+                                              multiscattering_spec(spec),
+                                              converged_multiscattering_spec(spec), ctx);
   return bake_multiscattering_lut(scene.atmosphere, *in.at("transmittance"),
                                   multiscattering_spec(spec), ctx);
 }
@@ -61,6 +69,28 @@ MultiscatteringLutSpec multiscattering_spec(const OutputSpec& spec) {
   if (spec.options.value("sun_mapping", std::string("linear")) == "terminator")
     lut.sun_mapping = SunMapping::terminator;
   return lut;
+}
+
+bool multiscattering_is_converged(const OutputSpec& spec) {
+  return spec.options.value("model", std::string("hillaire2020")) == "converged";
+}
+
+ConvergedMultiscatteringSpec converged_multiscattering_spec(const OutputSpec& spec) {
+  ConvergedMultiscatteringSpec c;
+  if (auto it = spec.options.find("scattering_shape"); it != spec.options.end() && it->is_array() &&
+                                                       it->size() == 4) {
+    c.bruneton.r_size = (*it)[0].get<int>();
+    c.bruneton.mu_size = (*it)[1].get<int>();
+    c.bruneton.mu_s_size = (*it)[2].get<int>();
+    c.bruneton.nu_size = (*it)[3].get<int>();
+  }
+  c.bruneton.tolerance = option_double(spec, "tolerance", c.bruneton.tolerance);
+  c.bands = option_int(spec, "bands", c.bands);
+  return c;
+}
+
+bool skyview_uses_multiple4d(const OutputSpec& spec) {
+  return spec.options.value("multiple_scattering", std::string("hillaire2020")) == "scattering4d";
 }
 
 SkyviewLutSpec skyview_spec(const OutputSpec& spec) {
@@ -102,6 +132,13 @@ namespace {
 
 Texture bake_skyview(const Scene& scene, const OutputSpec& spec, const ProductInputs& in,
                      const BakeContext& ctx) {
+  if (skyview_uses_multiple4d(spec)) {
+    const ConvergedField field =
+        compute_converged_field(scene.atmosphere, *in.at("transmittance"),
+                                converged_multiscattering_spec(spec), stage_context(ctx, 0.0, 0.8));
+    return bake_skyview_lut_multiple4d(scene.atmosphere, *in.at("transmittance"), field,
+                                       skyview_spec(spec), stage_context(ctx, 0.8, 1.0));
+  }
   return bake_skyview_lut(scene.atmosphere, *in.at("transmittance"), *in.at("multiscattering"),
                           skyview_spec(spec), ctx);
 }
@@ -141,6 +178,28 @@ ProductInfo atmosphere_lut_product(std::string name, std::string summary,
 
 namespace {
 
+constexpr double kMaxConvergedTexels = 4.0 * 1024 * 1024;
+
+// The converged model's 4D iteration must be one bake_bruneton accepts.
+std::vector<ProductProblem> converged_multiscattering_problems(const OutputSpec& spec) {
+  if (!multiscattering_is_converged(spec) && !skyview_uses_multiple4d(spec)) return {};
+  BrunetonSpec b = converged_multiscattering_spec(spec).bruneton;
+  b.mu_s_min = -0.5;  // replaced at bake time by converged_mu_s_min, always in (-1, 0]
+  try {
+    check_bruneton_spec(b);
+  } catch (const Error& e) {
+    return {{"/scattering_shape", e.what()}};
+  }
+  // The iteration holds about ten tables of this shape (RGB float32).
+  const double texels = double(b.r_size) * b.mu_size * b.mu_s_size * b.nu_size;
+  if (texels > kMaxConvergedTexels)
+    return {{"/scattering_shape",
+             fmt::format("expected at most {} texels in the 4D table, got {}x{}x{}x{} = {:.0f}",
+                         kMaxConvergedTexels, b.r_size, b.mu_size, b.mu_s_size, b.nu_size,
+                         texels)}};
+  return {};
+}
+
 ProductInfo atmosphere_product(std::string name, std::string summary, std::vector<std::string> axes,
                                std::vector<int> size, std::vector<int> max_size,
                                std::vector<std::string> dependencies, BakeFn bake,
@@ -159,15 +218,19 @@ void add_atmosphere_products(std::vector<ProductInfo>& r) {
       "transmittance", "transmittance to the top of the atmosphere, (mu, r), Hillaire 2020 5.2",
       {"mu", "r"}, {256, 64}, {4096, 4096}, {}, bake_transmittance, 7000.0,
       measure_transmittance_error));
-  r.push_back(atmosphere_product(
+  ProductInfo ms = atmosphere_product(
       "multiscattering",
       "multiple-scattering transfer Psi_ms, (sun zenith, altitude), Hillaire 2020 5.5",
       {"mu_s", "h"}, {32, 32}, {1024, 1024}, {"transmittance"}, bake_multiscattering, 130000.0,
-      measure_multiscattering_error));
-  r.push_back(atmosphere_product(
+      measure_multiscattering_error);
+  ms.check = converged_multiscattering_problems;
+  r.push_back(std::move(ms));
+  ProductInfo skyview = atmosphere_product(
       "skyview", "sky-view lat/long LUT, one layer per (altitude, sun zenith), Hillaire 2020 5.3",
       {"azimuth", "latitude"}, {192, 108}, {4096, 4096}, {"transmittance", "multiscattering"},
-      bake_skyview, 1400.0 * 8, measure_skyview_error));
+      bake_skyview, 1400.0 * 8, measure_skyview_error);
+  skyview.check = converged_multiscattering_problems;
+  r.push_back(std::move(skyview));
   ProductInfo ap = atmosphere_product(
       "aerial_perspective",
       "camera froxels: RGB in-scattering, A mean transmittance, Hillaire 2020 5.4",

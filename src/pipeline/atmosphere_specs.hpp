@@ -3,10 +3,12 @@
 #pragma once
 
 #include "atmosphere/aerial_perspective_lut.hpp"
+#include "atmosphere/converged_multiscattering.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/scattering3d_lut.hpp"
 #include "atmosphere/scattering_orders.hpp"
 #include "atmosphere/skyview_lut.hpp"
+#include "atmosphere/skyview_multiple4d.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "pipeline/scene.hpp"
 
@@ -14,6 +16,12 @@ namespace skybake {
 
 TransmittanceLutSpec transmittance_spec(const OutputSpec& spec);
 MultiscatteringLutSpec multiscattering_spec(const OutputSpec& spec);
+// "model": "converged" (docs/reference.md "Converged Psi_ms"), and its 4D iteration.
+bool multiscattering_is_converged(const OutputSpec& spec);
+// The 4D iteration of either ("scattering_shape", "tolerance", "bands").
+ConvergedMultiscatteringSpec converged_multiscattering_spec(const OutputSpec& spec);
+// Sky-view: "multiple_scattering": "scattering4d" (skyview_multiple4d.hpp).
+bool skyview_uses_multiple4d(const OutputSpec& spec);
 SkyviewLutSpec skyview_spec(const OutputSpec& spec);
 AerialPerspectiveSpec aerial_perspective_spec(const OutputSpec& spec);
 // Defined in bruneton_products.cpp.

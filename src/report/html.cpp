@@ -152,6 +152,25 @@ std::string sky_section(const nlohmann::json& sky) {
   for (const auto& b : sky["multiple_by_sun"])
     s += radiance_table(fmt::format("... sun at {} deg", num(b["sun_elevation_deg"])),
                         b["multiple"]);
+  if (sky.contains("converged_vs_path_tracer")) {
+    const auto& m = sky["models"];
+    s += fmt::format(
+        "<p>Two Psi_ms models at the operating point: Hillaire 2020 baked in {} s; converged "
+        "(mean incident radiance of a {} order iteration to {}, {} orders, last residual {}) "
+        "in {} s.</p>\n",
+        num(m["hillaire2020"]["bake_seconds"]), text(m["converged"]["scattering_shape"]),
+        num(m["converged"]["tolerance"]), text(m["converged"]["orders_used"]),
+        num(m["converged"]["last_residual"]), num(m["converged"]["bake_seconds"]));
+    s += target_paragraph("the converged Psi_ms", sky["converged_target"]);
+    s += radiance_table("With multiple scattering (converged Psi_ms) vs path tracer, all orders",
+                        sky["converged_vs_path_tracer"]);
+    s += target_paragraph("the sky-view with the 4D orders >= 2",
+                          sky["skyview_multiple4d_target"]);
+    s += radiance_table(
+        "Sky-view: single scattering marched + the 4D iteration's orders &ge; 2 (the same "
+        "iteration) vs path tracer, all orders",
+        sky["skyview_multiple4d_vs_path_tracer"]);
+  }
   s += "<p>Share of the path-traced radiance carried by orders &ge; 2 (R, G, B): " +
        text(sky["multiple_scattering_share"]) + ".</p>\n";
   s += radiance_table(

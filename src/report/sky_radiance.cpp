@@ -1,13 +1,16 @@
 #include "report/sky_radiance.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include "atmosphere/converged_multiscattering.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/sky_render.hpp"
+#include "atmosphere/skyview_multiple4d.hpp"
 #include "atmosphere/skyview_lut.hpp"
 #include "core/math.hpp"
 #include "pipeline/atmosphere_specs.hpp"
@@ -78,6 +81,8 @@ Texture second_order_table(const Atmosphere& atm, const Texture& transmittance,
 struct ViewResult {
   double sun_elevation_deg = 0, view_elevation_deg = 0, view_azimuth_deg = 0;
   glm::dvec3 lut{0.0}, lut_second{0.0}, lut_single{0.0}, quadrature_single{0.0};
+  glm::dvec3 lut_converged{0.0};  // the same views with the converged Psi_ms
+  glm::dvec3 lut_multiple4d{0.0};  // sky-view: single marched + the 4D orders >= 2
   RadianceEstimate all, second, single;  // path tracer: every order, 2 vertices, 1 vertex
 };
 
@@ -86,6 +91,8 @@ nlohmann::json view_json(const ViewResult& v) {
           {"view_elevation_deg", v.view_elevation_deg},
           {"view_azimuth_deg", v.view_azimuth_deg},
           {"lut", vec_json(v.lut)},
+          {"lut_converged", vec_json(v.lut_converged)},
+          {"lut_skyview_multiple4d", vec_json(v.lut_multiple4d)},
           {"path_traced", vec_json(v.all.mean)},
           {"path_traced_ci95", vec_json(v.all.ci95)},
           {"lut_second_order", vec_json(v.lut_second)},
@@ -218,7 +225,34 @@ struct SkyRadianceScene {
   std::vector<glm::dvec3> dirs;
   SkyviewLutSpec sky;
   Texture no_multiscattering, second_order;
+  // Both Psi_ms models at the operating point's size and mapping, each
+  // baked once more and timed (docs/report.md "Two Psi_ms models").
+  Texture converged;
+  ConvergedField field;  // the iteration behind `converged`, shared with the 4D sky-view
+  double hillaire_seconds = 0.0, converged_seconds = 0.0;
+  int converged_orders = 0;
+  double converged_residual = 1.0;
 };
+
+// The operating point's table under both models, with their bake times.
+void bake_both_models(const ReportInputs& in, SkyRadianceScene& s) {
+  const Atmosphere& atm = in.scene.atmosphere;
+  const OutputSpec op = operating_spec(in.scene, "multiscattering");
+  const MultiscatteringLutSpec table = multiscattering_spec(op);
+  using clock = std::chrono::steady_clock;
+  auto t0 = clock::now();
+  const Texture hillaire = bake_multiscattering_lut(atm, in.transmittance, table, BakeContext{});
+  s.hillaire_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  in.stage("sky radiance: the converged Psi_ms model");
+  t0 = clock::now();
+  const ConvergedMultiscatteringSpec spec = converged_multiscattering_spec(op);
+  s.field = compute_converged_field(atm, in.transmittance, spec, BakeContext{});
+  s.converged = converged_multiscattering_table(atm, in.transmittance, table, spec, s.field,
+                                                BakeContext{});
+  s.converged_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  s.converged_orders = std::stoi(s.converged.metadata.at("orders_used"));
+  s.converged_residual = std::stod(s.converged.metadata.at("last_residual"));
+}
 
 SkyRadianceScene sky_radiance_scene(const ReportInputs& in, const SkyRadianceSetup& setup) {
   const Atmosphere& atm = in.scene.atmosphere;
@@ -232,6 +266,7 @@ SkyRadianceScene sky_radiance_scene(const ReportInputs& in, const SkyRadianceSet
   s.second_order = second_order_table(
       atm, in.transmittance, multiscattering_spec(operating_spec(in.scene, "multiscattering")),
       in.multiscattering);
+  bake_both_models(in, s);
   return s;
 }
 
@@ -247,7 +282,9 @@ void measure_sun(const ReportInputs& in, const SkyRadianceSetup& setup, SkyRadia
     return bake_skyview_lut(atm, in.transmittance, ms, s.sky, BakeContext{});
   };
   const Texture full = layer(in.multiscattering), second = layer(s.second_order),
-                single = layer(s.no_multiscattering);
+                single = layer(s.no_multiscattering), converged = layer(s.converged);
+  const Texture multiple4d =
+      bake_skyview_lut_multiple4d(atm, in.transmittance, s.field, s.sky, BakeContext{});
   SkyRenderOptions render;
   render.sun_disk = false;
   render.ground = false;
@@ -262,6 +299,8 @@ void measure_sun(const ReportInputs& in, const SkyRadianceSetup& setup, SkyRadia
     r.view_elevation_deg = std::asin(dir.z) / kDeg;
     r.view_azimuth_deg = 360.0 * double(v % size_t(setup.view_azimuths)) / setup.view_azimuths;
     r.lut = render_with(in.multiscattering, full, dir);
+    r.lut_converged = render_with(s.converged, converged, dir);
+    r.lut_multiple4d = render_with(s.no_multiscattering, multiple4d, dir);
     r.lut_second = render_with(s.second_order, second, dir);
     r.lut_single = render_with(s.no_multiscattering, single, dir);
     r.quadrature_single = reference_single_scattering(atm, s.position, dir, sun_dir,
@@ -287,6 +326,16 @@ nlohmann::json comparisons_json(const std::vector<ViewResult>& views) {
   return {
       {"multiple_scattering_share", multiple_scattering_share(views)},
       {"multiple", multiple},
+      {"converged_vs_path_tracer",
+       compare(views,
+               [](const ViewResult& v) {
+                 return RadiancePair{v.lut_converged, v.all.mean, v.all.ci95, v.all.mean};
+               })},
+      {"skyview_multiple4d_vs_path_tracer",
+       compare(views,
+               [](const ViewResult& v) {
+                 return RadiancePair{v.lut_multiple4d, v.all.mean, v.all.ci95, v.all.mean};
+               })},
       {"second_order_vs_path_tracer",
        compare(views,
                [](const ViewResult& v) {
@@ -338,12 +387,25 @@ nlohmann::json sky_radiance_report(const ReportInputs& in, const SkyRadianceSetu
     const size_t first = views.size();
     measure_sun(in, setup, scene, tracer, paths, sun_elevation, views);
     const std::vector<ViewResult> these(views.begin() + long(first), views.end());
-    by_sun.push_back(
-        {{"sun_elevation_deg", sun_elevation}, {"multiple", compare(these, multiple_pair)}});
+    by_sun.push_back({{"sun_elevation_deg", sun_elevation},
+                      {"multiple", compare(these, multiple_pair)},
+                      {"converged", compare(these, [](const ViewResult& v) {
+                         return RadiancePair{v.lut_converged, v.all.mean, v.all.ci95, v.all.mean};
+                       })}});
   }
   nlohmann::json rows = nlohmann::json::array();
   for (const ViewResult& v : views) rows.push_back(view_json(v));
   nlohmann::json out = comparisons_json(views);
+  out["converged_target"] = target_json(out["converged_vs_path_tracer"]);
+  out["skyview_multiple4d_target"] = target_json(out["skyview_multiple4d_vs_path_tracer"]);
+  out["models"] = {
+      {"hillaire2020", {{"bake_seconds", scene.hillaire_seconds}}},
+      {"converged",
+       {{"bake_seconds", scene.converged_seconds},
+        {"orders_used", scene.converged_orders},
+        {"last_residual", scene.converged_residual},
+        {"scattering_shape", scene.converged.metadata.at("scattering_shape")},
+        {"tolerance", std::stod(scene.converged.metadata.at("tolerance"))}}}};
   out.update(
       {{"camera_altitude_m", scene.altitude_m},
        {"sun_elevations_deg", setup.sun_elevations_deg},

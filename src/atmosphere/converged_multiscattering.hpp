@@ -1,0 +1,72 @@
+// Psi_ms from converged multiple scattering (docs/reference.md "Converged
+// Psi_ms"): the same table as multiscattering_lut.hpp (shape, axes, sun
+// mappings, units 1/sr per unit of sun illuminance, read with
+// lookup_multiscattering), holding the mean incident radiance of every order
+// at each point instead of Hillaire's L_2nd / (1 - f_ms):
+//   Psi_conv(x) = (1 / (4 pi E)) int_4pi L*(x, omega') d omega',
+// L* the sky of every order >= 1 plus the light the ground reflects (lit by
+// the sun and the sky), taken from Bruneton's order iteration
+// (scattering_orders.hpp) iterated to convergence in memory.
+// Reads: the transmittance LUT.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "atmosphere/incident_radiance.hpp"
+#include "atmosphere/medium.hpp"
+#include "atmosphere/multiscattering_lut.hpp"
+#include "atmosphere/scattering_orders.hpp"
+#include "core/bake_context.hpp"
+#include "core/texture.hpp"
+
+namespace skybake {
+
+struct ConvergedMultiscatteringSpec {
+  // The 4D iteration: shape (mu_s_min is replaced, below), tolerance, tail.
+  BrunetonSpec bruneton = default_converged_bruneton_spec();
+  int bands = 16;  // zenith bands of the sphere grid the mean is taken over (x 2 bands azimuths)
+
+  static BrunetonSpec default_converged_bruneton_spec();
+};
+
+// The lowest sun cosine the 4D table needs: 0.1 below the horizon's cosine
+// at the top of the atmosphere (a point anywhere in the shell is then deep
+// in the planet's shadow), at most -0.99 (the table's axis excludes -1).
+double converged_mu_s_min(const Atmosphere& atm);
+
+// All the light of the iteration, as the mean reads it.
+struct ConvergedField {
+  ScatteringShape shape;
+  SingleScatteringTables single;  // order 1, S_R and S_M
+  Texture multiple;               // sum of the orders >= 2 (tail included), radiance
+  Texture ground_irradiance;      // every order at the ground, direct sunlight included
+  ScatteringPhases phases;
+  int orders_used = 0;
+  double last_residual = 1.0;
+};
+ConvergedField compute_converged_field(const Atmosphere& atm, const Texture& transmittance_lut,
+                                       const ConvergedMultiscatteringSpec& spec,
+                                       const BakeContext& ctx);
+
+// Psi_conv at (r, mu_s): the mean of L* over the sphere grid, per unit of
+// sun illuminance (1/sr). 0 below the field's mu_s_min. Thread-safe.
+glm::dvec3 compute_converged_multiscattering(const Atmosphere& atm,
+                                             const Texture& transmittance_lut,
+                                             const ConvergedField& field, double r, double mu_s,
+                                             const SphereGrid& grid);
+
+// The table; rows in parallel, each texel independent (same data for any
+// thread count). Metadata as bake_multiscattering_lut's, model "converged",
+// with the iteration's orders and last residual.
+Texture bake_converged_multiscattering_lut(const Atmosphere& atm, const Texture& transmittance_lut,
+                                           const MultiscatteringLutSpec& table,
+                                           const ConvergedMultiscatteringSpec& spec,
+                                           const BakeContext& ctx);
+// The same from a field already computed with `spec` (the report shares one
+// field between this table and skyview_multiple4d.hpp).
+Texture converged_multiscattering_table(const Atmosphere& atm, const Texture& transmittance_lut,
+                                        const MultiscatteringLutSpec& table,
+                                        const ConvergedMultiscatteringSpec& spec,
+                                        const ConvergedField& field, const BakeContext& ctx);
+
+}  // namespace skybake

@@ -1,0 +1,122 @@
+// Tests of Psi_ms from converged multiple scattering
+// (atmosphere/converged_multiscattering.hpp) against the closed forms of
+// docs/reference.md "Converged Psi_ms": no medium over a black ground gives
+// 0; no medium over a lit ground gives a max(mu_s, 0) / (2 pi) on the
+// ground; an optically thin conservative slab gives the mean of single
+// scattering over the sphere, integrated without a table.
+#include "atmosphere/converged_multiscattering.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "support/test_atmospheres.hpp"
+#include "atmosphere/direct_single_scattering.hpp"
+#include "atmosphere/phase.hpp"
+#include "atmosphere/transmittance_lut.hpp"
+#include "core/math.hpp"
+
+namespace skybake {
+namespace {
+
+ConvergedMultiscatteringSpec small_spec() {
+  ConvergedMultiscatteringSpec s;
+  s.bruneton.r_size = 8;
+  s.bruneton.mu_size = 32;
+  s.bruneton.mu_s_size = 8;
+  s.bruneton.nu_size = 4;
+  s.bruneton.irradiance_width = 32;
+  s.bruneton.irradiance_height = 8;
+  s.bands = 16;
+  return s;
+}
+
+TEST(ConvergedMultiscattering, NoMediumOverABlackGroundIsZero) {
+  Atmosphere atm = fixtures::empty_atmosphere();
+  atm.ground_albedo = glm::dvec3(0.0);
+  const Texture t = bake_transmittance_lut(atm, {32, 16, 8}, {});
+  MultiscatteringLutSpec table{8, 8, 16, 10};
+  const Texture ms = bake_converged_multiscattering_lut(atm, t, table, small_spec(), {});
+  for (float v : ms.data) EXPECT_EQ(v, 0.0f);
+  EXPECT_EQ(ms.metadata.at("model"), "converged");
+}
+
+TEST(ConvergedMultiscattering, NoMediumOverALitGroundIsTheGroundsMeanRadiance) {
+  Atmosphere atm = fixtures::empty_atmosphere();
+  atm.ground_albedo = glm::dvec3(0.1, 0.3, 0.8);
+  atm.sun_illuminance = glm::dvec3(2.0, 1.0, 0.5);  // Psi is per unit of it
+  const Texture t = bake_transmittance_lut(atm, {32, 16, 8}, {});
+  const ConvergedMultiscatteringSpec spec = small_spec();
+  const ConvergedField field = compute_converged_field(atm, t, spec, {});
+  const SphereGrid grid = sphere_grid(spec.bands);
+  for (double mu_s : {0.3, 0.6, 0.95}) {
+    const glm::dvec3 psi =
+        compute_converged_multiscattering(atm, t, field, atm.bottom_radius_m, mu_s, grid);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(psi[c], atm.ground_albedo[c] * mu_s / (2.0 * kPi),
+                  2e-3 * atm.ground_albedo[c] * mu_s)
+          << mu_s << " " << c;
+  }
+  // The sun below the horizon lights no ground the point sees.
+  const glm::dvec3 night =
+      compute_converged_multiscattering(atm, t, field, atm.bottom_radius_m, -0.3, grid);
+  EXPECT_EQ(night, glm::dvec3(0.0));
+}
+
+// Mean over many directions of the single scattering arriving at (r, mu_s),
+// from compute_single_scattering_direct (no table).
+glm::dvec3 mean_single_scattering(const Atmosphere& atm, double r, double mu_s, int n) {
+  const std::vector<glm::dvec3> dirs = fibonacci_sphere_directions(n);
+  const glm::dvec3 sun(safe_sqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
+  glm::dvec3 sum(0.0);
+  for (const glm::dvec3& w : dirs) {
+    const double nu = glm::dot(w, sun);
+    const SingleScattering s = compute_single_scattering_direct(atm, r, w.z, mu_s, nu, {});
+    sum += s.rayleigh * phase_function(PhaseKind::rayleigh, 0.0, nu);
+  }
+  return sum / double(n);
+}
+
+TEST(ConvergedMultiscattering, ThinConservativeSlabIsTheMeanOfSingleScattering) {
+  // Vertical optical depth 1e-3 (blue): order 2 carries ~1e-3 of order 1.
+  Atmosphere atm = fixtures::uniform_slab_atmosphere({2.5e-9, 5e-9, 1e-8}, glm::dvec3(0.0));
+  atm.ground_albedo = glm::dvec3(0.0);
+  const Texture t = bake_transmittance_lut(atm, {64, 32, 20}, {});
+  const ConvergedMultiscatteringSpec spec = small_spec();
+  const ConvergedField field = compute_converged_field(atm, t, spec, {});
+  const SphereGrid grid = sphere_grid(spec.bands);
+  for (double h : {1e3, 50e3}) {
+    for (double mu_s : {0.2, 0.8}) {
+      const double r = atm.bottom_radius_m + h;
+      const glm::dvec3 psi = compute_converged_multiscattering(atm, t, field, r, mu_s, grid);
+      const glm::dvec3 expected = mean_single_scattering(atm, r, mu_s, 2048);
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(psi[c], expected[c], 0.03 * expected[c]) << h << " " << mu_s << " " << c;
+    }
+  }
+}
+
+TEST(ConvergedMultiscattering, TableReadsBackItsOwnMeanAtTexelCentres) {
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const Texture t = bake_transmittance_lut(atm, {64, 32, 20}, {});
+  MultiscatteringLutSpec table{8, 8, 16, 10};
+  table.sun_mapping = SunMapping::terminator;
+  const ConvergedMultiscatteringSpec spec = small_spec();
+  const Texture ms = bake_converged_multiscattering_lut(atm, t, table, spec, {});
+  const ConvergedField field = compute_converged_field(atm, t, spec, {});
+  const SphereGrid grid = sphere_grid(spec.bands);
+  const MultiscatteringMapping m = multiscattering_mapping_of(ms);
+  ASSERT_EQ(m.sun, SunMapping::terminator);
+  for (int y = 0; y < 8; y += 3)
+    for (int x = 0; x < 8; ++x) {
+      const RadiusSunCosine p =
+          r_mu_s_from_multiscattering_uv(atm, {texel_center(x, 8), texel_center(y, 8)}, 8, 8, m);
+      const glm::dvec3 direct =
+          compute_converged_multiscattering(atm, t, field, p.r, p.mu_s, grid);
+      const glm::dvec3 read = lookup_multiscattering(ms, atm, p.r, p.mu_s);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(read[c], direct[c], 1e-6 * direct[c] + 1e-12);
+    }
+}
+
+}  // namespace
+}  // namespace skybake

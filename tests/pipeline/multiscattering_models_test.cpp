@@ -1,0 +1,100 @@
+// The multiscattering and sky-view options end to end: the terminator
+// mapping, the converged Psi_ms model and the sky-view with the 4D table's
+// orders >= 2 bake through the command line, record what they are in the
+// manifest with an error measurement, and bad option values are refused at
+// load with the output's JSON pointer.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "support/run.hpp"
+
+namespace fs = std::filesystem;
+
+namespace skybake {
+namespace {
+
+fs::path write_scene(const fs::path& dir, const nlohmann::json& multiscattering,
+                     const nlohmann::json& skyview) {
+  nlohmann::json scene = {
+      {"name", "small"},
+      {"planet", {{"radius_km", 6360}, {"ground_albedo", {0.3, 0.3, 0.3}}}},
+      {"atmosphere", test::source_path("presets/atmospheres/earth.json").string()},
+      {"outputs",
+       {{{"product", "transmittance"}, {"size", {64, 16}}, {"formats", {"exr"}}},
+        multiscattering, skyview}}};
+  const fs::path file = dir / "small.json";
+  std::ofstream(file) << scene.dump(2);
+  return file;
+}
+
+nlohmann::json manifest_entry(const fs::path& out, const std::string& product) {
+  const auto m = nlohmann::json::parse(test::read_file(out / "small/manifest.json"));
+  for (const auto& o : m["outputs"])
+    if (o["product"] == product) return o;
+  return nullptr;
+}
+
+const nlohmann::json kSmallSkyview = {
+    {"product", "skyview"},
+    {"size", {16, 16}},
+    {"formats", {"exr"}},
+    {"views", {{{"altitude_km", 0.2}, {"sun_zenith_deg", 60}}}}};
+
+TEST(MultiscatteringModels, ConvergedTerminatorAndSkyview4dBakeAndRecordThemselves) {
+  const fs::path dir = test::fresh_dir("ms_models");
+  nlohmann::json skyview = kSmallSkyview;
+  skyview["multiple_scattering"] = "scattering4d";
+  skyview["scattering_shape"] = {4, 16, 4, 2};
+  skyview["tolerance"] = 0.01;
+  const fs::path preset = write_scene(
+      dir,
+      {{"product", "multiscattering"}, {"size", {8, 8}}, {"formats", {"exr"}},
+       {"model", "converged"}, {"sun_mapping", "terminator"}, {"scattering_shape", {4, 16, 4, 2}},
+       {"tolerance", 0.01}},
+      skyview);
+  const auto r = test::run_skybake({"bake", preset.string(), "-o", (dir / "out").string(), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto ms = manifest_entry(dir / "out", "multiscattering");
+  EXPECT_EQ(ms["metadata"]["model"], "converged");
+  EXPECT_EQ(ms["metadata"]["mu_s_mapping"], "terminator");
+  EXPECT_EQ(ms["metadata"]["scattering_shape"], "4x16x4x2");
+  EXPECT_TRUE(ms["error"].contains("max_rel")) << ms.dump();
+  const auto sv = manifest_entry(dir / "out", "skyview");
+  EXPECT_EQ(sv["metadata"]["multiple_scattering"], "scattering4d");
+  EXPECT_TRUE(sv["error"].contains("max_rel")) << sv.dump();
+}
+
+TEST(MultiscatteringModels, BadOptionsAreRefusedWithTheirPointer) {
+  const fs::path dir = test::fresh_dir("ms_models_bad");
+  const fs::path odd_mu = write_scene(dir,
+                                      {{"product", "multiscattering"},
+                                       {"size", {8, 8}},
+                                       {"model", "converged"},
+                                       {"scattering_shape", {8, 31, 8, 4}}},
+                                      kSmallSkyview);
+  auto r = test::run_skybake({"validate", odd_mu.string()});
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;  // validate: a check failed
+  EXPECT_NE((r.out + r.err).find("/outputs/1/scattering_shape"), std::string::npos)
+      << r.out << r.err;
+  EXPECT_NE((r.out + r.err).find("mu even"), std::string::npos) << r.out << r.err;
+  const fs::path bad_model = write_scene(
+      dir, {{"product", "multiscattering"}, {"size", {8, 8}}, {"model", "convergd"}},
+      kSmallSkyview);
+  r = test::run_skybake({"validate", bad_model.string()});
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;  // validate: a check failed
+  EXPECT_NE((r.out + r.err).find("/outputs/1/model"), std::string::npos) << r.out << r.err;
+  nlohmann::json skyview = kSmallSkyview;
+  skyview["multiple_scattering"] = "bruneton";
+  const fs::path bad_source =
+      write_scene(dir, {{"product", "multiscattering"}, {"size", {8, 8}}}, skyview);
+  r = test::run_skybake({"validate", bad_source.string()});
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;  // validate: a check failed
+  EXPECT_NE((r.out + r.err).find("/outputs/2/multiple_scattering"), std::string::npos)
+      << r.out << r.err;
+}
+
+}  // namespace
+}  // namespace skybake
