@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
   e.channels = {"R", "G", "B"};
   e.metadata = {{"parameterization", "bruneton"}, {"mu_min", -0.2}};
   e.input_hash = "d5358e9113d6403a";
-  e.estimated_error = {{"max", 0.001}, {"method", "halving"}};
+  e.error = {{"rms_rel", 0.0004}, {"max_rel", 0.001}, {"queries", 512}, {"reference", "quadrature"}};
   m.entries[e.name] = e;
   write_manifest(dir / "manifest" / "manifest.json", m);
   return 0;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -127,6 +128,30 @@ TEST(Ktx2Output, NoiseVolumesAre8BitWithTheirTileableMipChain) {
                   std::round(std::clamp(chain[p].data[i], 0.0f, 1.0f) * 255.0f) / 255.0f)
             << "level " << p << " value " << i;
   }
+}
+
+TEST(Ktx2Output, BakedFilesAreTheSameBytesForOneAndTwoThreads) {
+  const fs::path dir = test::fresh_dir("ktx2_output_threads");
+  std::ofstream(dir / "scene.json") << R"({"name": "n", "outputs": [
+      {"product": "noise_detail", "size": [32, 32, 32], "formats": ["ktx2"]},
+      {"product": "noise_shape", "size": [32, 32, 32], "formats": ["ktx2"],
+       "pack": "single_channel", "ktx2_format": "BC4_UNORM_BLOCK",
+       "perlin": {"period": 4, "octaves": 2}, "perlin_worley": {"period": 4, "octaves": 2},
+       "worley": [{"period": 4, "octaves": 2}, {"period": 8, "octaves": 2},
+                  {"period": 8, "octaves": 2}]}]})";
+  for (const char* threads : {"1", "2"}) {
+    const auto r = test::run_skybake(
+        {"bake", "scene.json", "-o", std::string("out") + threads, "--threads", threads, "--quiet"},
+        dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  for (const char* file : {"noise_detail.ktx2", "noise_shape.ktx2"}) {
+    const std::string one = test::read_file(dir / "out1" / "n" / file);
+    EXPECT_GT(one.size(), 32u * 32 * 32 / 2) << file;
+    EXPECT_EQ(one, test::read_file(dir / "out2" / "n" / file)) << file;
+  }
+  EXPECT_EQ(read_texture_file((dir / "out1" / "n" / "noise_shape.ktx2").string()).encoding,
+            "BC4_UNORM_BLOCK");
 }
 
 }  // namespace
