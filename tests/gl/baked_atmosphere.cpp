@@ -1,5 +1,7 @@
 #include "gl/baked_atmosphere.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +10,7 @@
 #include <stdexcept>
 
 #include "atmosphere/scattering_lut.hpp"
+#include "core/hash.hpp"
 #include "io/dds.hpp"
 #include "pipeline/preset_loader.hpp"
 #include "support/run.hpp"
@@ -58,22 +61,46 @@ std::string alpha_preset() {
 })";
 }
 
-BakedScene bake(const std::string& name, const std::string& preset) {
-  const std::filesystem::path dir = test::fresh_dir("gl_" + name);
+}  // namespace
+
+BakedScene bake_scene(const std::string& name, const std::string& preset) {
+  // One folder per skybake executable, atmosphere file and preset text, kept
+  // between test processes: the first process bakes, the next find every
+  // output up to date (skybake's own freshness check), so the GL tests, one
+  // process each under ctest, do not bake the same scene forty times. A
+  // rebuilt executable is a new folder. Bakes of one folder by two
+  // processes at once are safe (docs/architecture.md "Files on disk").
+  Hasher key;
+  key.add(test::read_file(SKYBAKE_EXE));
+  key.add(test::read_file(test::source_path("presets/atmospheres/earth.json")));
+  key.add(preset);
+  const std::filesystem::path dir =
+      std::filesystem::path(SKYBAKE_TEST_TMP) / "gl_scenes" / (name + "." + key.hex());
+  std::filesystem::create_directories(dir);
+  // Folders of earlier executables of this build folder are stale: drop them.
+  for (const auto& entry : std::filesystem::directory_iterator(dir.parent_path())) {
+    const std::string other = entry.path().filename().string();
+    if (other.rfind(name + ".", 0) == 0 && entry.path() != dir) {
+      std::error_code ignored;  // another process may be removing it too
+      std::filesystem::remove_all(entry.path(), ignored);
+    }
+  }
   const std::filesystem::path file = dir / (name + ".json");
-  std::ofstream(file) << preset;
+  {
+    const std::filesystem::path temporary = dir / (name + ".json." + std::to_string(getpid()));
+    std::ofstream(temporary) << preset;
+    std::filesystem::rename(temporary, file);
+  }
   const test::RunResult run = test::run_skybake({"bake", file.string(), "-o", (dir / "out").string()});
   if (run.exit_code != 0)
     throw std::runtime_error("skybake bake " + file.string() + " exited " +
                              std::to_string(run.exit_code) + ": " + run.err);
   BakedScene s;
   s.atmosphere = load_scene(file).atmosphere;
-  s.folder = (dir / "out" / ("gl_" + name)).string();
+  s.folder = (dir / "out" / name).string();
   s.manifest = nlohmann::json::parse(test::read_file(s.folder + "/manifest.json"));
   return s;
 }
-
-}  // namespace
 
 const nlohmann::json& BakedScene::entry(const std::string& output) const {
   for (const nlohmann::json& e : manifest.at("outputs"))
@@ -97,12 +124,12 @@ Texture BakedScene::texture(const std::string& output) const {
 }
 
 const BakedScene& separate_mie_scene() {
-  static const BakedScene scene = bake("separate", separate_preset());
+  static const BakedScene scene = bake_scene("gl_separate", separate_preset());
   return scene;
 }
 
 const BakedScene& alpha_mie_scene() {
-  static const BakedScene scene = bake("alpha", alpha_preset());
+  static const BakedScene scene = bake_scene("gl_alpha", alpha_preset());
   return scene;
 }
 

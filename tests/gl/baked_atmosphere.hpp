@@ -56,6 +56,11 @@ struct BakedScene {
   Texture texture(const std::string& output) const;
 };
 
+// Bakes `preset` (a scene named `name`) with the real skybake into
+// SKYBAKE_TEST_TMP/gl_scenes/, reused by later test processes while the
+// executable and the preset are the same.
+BakedScene bake_scene(const std::string& name, const std::string& preset);
+
 // mie "separate": transmittance, multiscattering, skyview (2 layers),
 // aerial_perspective, scattering + single_mie, irradiance, scattering3d,
 // gathering_sum. mie "alpha": transmittance, scattering, scattering3d.

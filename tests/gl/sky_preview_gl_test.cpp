@@ -44,9 +44,8 @@ struct PreviewScene {
 
 const PreviewScene& preview_scene() {
   static const PreviewScene scene = [] {
-    const std::filesystem::path dir = test::fresh_dir("gl_preview");
-    const std::filesystem::path file = dir / "preview.json";
-    std::ofstream(file) << R"({
+    PreviewScene s;
+    s.baked = bake_scene("gl_preview", R"({
   "$schema": "../schemas/scene.schema.json",
   "name": "gl_preview",
   "planet": { "radius_km": 6360, "ground_albedo": [0.3, 0.3, 0.3] },
@@ -56,14 +55,7 @@ const PreviewScene& preview_scene() {
     { "product": "multiscattering", "size": [32, 32], "formats": ["dds"], "precision": "float" },
     { "product": "sky_preview", "size": [320, 180], "formats": ["exr"] }
   ]
-})";
-    const test::RunResult run =
-        test::run_skybake({"bake", file.string(), "-o", (dir / "out").string()});
-    if (run.exit_code != 0) throw std::runtime_error("skybake bake preview.json: " + run.err);
-    PreviewScene s;
-    s.baked.atmosphere = load_scene(file).atmosphere;
-    s.baked.folder = (dir / "out" / "gl_preview").string();
-    s.baked.manifest = nlohmann::json::parse(test::read_file(s.baked.folder + "/manifest.json"));
+})");
     s.preview = read_texture_file(s.baked.folder + "/sky_preview.exr").texture;
     return s;
   }();
