@@ -6,46 +6,73 @@
 // docs/reference.md "Multiple scattering (Hillaire)".
 //
 // The texture: multiscattering.dds / .exr, RGB linear float, bilinear, clamp
-// to edge, no mips (docs/runtime.md "Multiple scattering").
+// to edge, no mips (docs/runtime.md "Multiple scattering"). Its sun axis is
+// linear in mu_s, or the terminator mapping the metadata names
+// (mu_s_mapping, mu_s_mapping_width, mu_s_mapping_offset).
 
-// Hillaire 2020 sec. 5.5.2 on texel centres:
-//   u = coord(0.5 + 0.5 mu_s, W), v = coord((r - Rb) / (Rt - Rb), H).
+const int MULTISCATTERING_SUN_LINEAR = 0;
+const int MULTISCATTERING_SUN_TERMINATOR = 1;
+
+struct MultiscatteringMapping {
+  int sun;       // MULTISCATTERING_SUN_LINEAR or MULTISCATTERING_SUN_TERMINATOR
+  float width;   // terminator: w, the crowded span in mu_s
+  float offset;  // terminator: how far below the horizon's cosine the centre sits
+};
+
+// x_mu_s in [0, 1] (before texel centring): 0.5 + 0.5 mu_s, or around the
+// terminator (docs/reference.md "Multiple scattering"):
+//   c(r) = mu_h(r) - offset, a(mu_s) = atan((mu_s - c) / w),
+//   x = (a(mu_s) - a(-1)) / (a(1) - a(-1)).
+// mu_h = -sqrt(r^2 - Rb^2) / r, written without the cancellation of
+// 1 - (Rb / r)^2 near the ground.
+float unit_from_sun_cosine(MultiscatteringMapping m, AtmosphereParameters atm, float r, float mu_s) {
+  mu_s = clamp_cosine(mu_s);
+  if (m.sun != MULTISCATTERING_SUN_TERMINATOR) return 0.5 + 0.5 * mu_s;
+  float rb = atm.bottom_radius;
+  r = max(r, rb);
+  float centre = -safe_sqrt((r - rb) * (r + rb)) / r - m.offset;
+  float a_lo = accurate_atan((-1.0 - centre) / m.width);
+  float a_hi = accurate_atan((1.0 - centre) / m.width);
+  float x = (accurate_atan((mu_s - centre) / m.width) - a_lo) / (a_hi - a_lo);
+  return clamp(x, 0.0, 1.0);
+}
+
+// u = coord(x_mu_s, W), v = coord((r - Rb) / (Rt - Rb), H) (Hillaire 2020
+// sec. 5.5.2 on texel centres), r clamped to the shell.
 vec2 multiscattering_uv_from_r_mu_s(AtmosphereParameters atm, float r, float mu_s, int width,
-                                    int height) {
-  float x_mu_s = 0.5 + 0.5 * clamp_cosine(mu_s);
-  float x_h = clamp((r - atm.bottom_radius) / (atm.top_radius - atm.bottom_radius), 0.0, 1.0);
-  return vec2(texel_coord_from_unit(x_mu_s, width), texel_coord_from_unit(x_h, height));
-}
-
-// Psi_ms at radius r (clamped to the shell) for a sun of zenith cosine mu_s, bilinear.
-vec3 lookup_multiscattering(sampler2D lut, AtmosphereParameters atm, float r, float mu_s) {
-  ivec2 size = textureSize(lut, 0);
-  return textureLod(lut, multiscattering_uv_from_r_mu_s(atm, r, mu_s, size.x, size.y), 0.0).rgb;
-}
-
-// The terminator sun mapping, for a table whose metadata says
-// mu_s_mapping = "terminator" (option sun_mapping; docs/reference.md
-// "Terminator mapping"): w = mu_s_mapping_width, offset = mu_s_mapping_offset.
-//   c = -sqrt(1 - (Rb / r)^2) - offset,  a(m) = atan((m - c) / w),
-//   x_mu_s = (a(mu_s) - a(-1)) / (a(1) - a(-1)).
-vec2 multiscattering_uv_from_r_mu_s_terminator(AtmosphereParameters atm, float r, float mu_s,
-                                               float w, float offset, int width, int height) {
+                                    int height, MultiscatteringMapping mapping) {
   r = clamp(r, atm.bottom_radius, atm.top_radius);
-  float ratio = atm.bottom_radius / r;
-  float c = -safe_sqrt(1.0 - ratio * ratio) - offset;
-  float a_lo = accurate_atan((-1.0 - c) / w);
-  float a_hi = accurate_atan((1.0 - c) / w);
-  float x_mu_s = clamp((accurate_atan((clamp_cosine(mu_s) - c) / w) - a_lo) / (a_hi - a_lo), 0.0,
-                       1.0);
+  float x_mu_s = unit_from_sun_cosine(mapping, atm, r, mu_s);
   float x_h = (r - atm.bottom_radius) / (atm.top_radius - atm.bottom_radius);
   return vec2(texel_coord_from_unit(x_mu_s, width), texel_coord_from_unit(x_h, height));
 }
 
+// Psi_ms at radius r (clamped to the shell) for a sun of zenith cosine
+// mu_s, bilinear, with the table's mapping.
+vec3 lookup_multiscattering(sampler2D lut, MultiscatteringMapping mapping, AtmosphereParameters atm,
+                            float r, float mu_s) {
+  ivec2 size = textureSize(lut, 0);
+  return textureLod(lut, multiscattering_uv_from_r_mu_s(atm, r, mu_s, size.x, size.y, mapping), 0.0)
+      .rgb;
+}
+
+// The same for a table with the linear sun axis (the default).
+vec3 lookup_multiscattering(sampler2D lut, AtmosphereParameters atm, float r, float mu_s) {
+  return lookup_multiscattering(lut, MultiscatteringMapping(MULTISCATTERING_SUN_LINEAR, 1.0, 0.0),
+                                atm, r, mu_s);
+}
+
+// The terminator mapping with its two constants given directly
+// (mu_s_mapping_width, mu_s_mapping_offset of the metadata).
+vec2 multiscattering_uv_from_r_mu_s_terminator(AtmosphereParameters atm, float r, float mu_s,
+                                               float w, float offset, int width, int height) {
+  return multiscattering_uv_from_r_mu_s(
+      atm, r, mu_s, width, height,
+      MultiscatteringMapping(MULTISCATTERING_SUN_TERMINATOR, w, offset));
+}
+
 vec3 lookup_multiscattering_terminator(sampler2D lut, AtmosphereParameters atm, float r,
                                        float mu_s, float w, float offset) {
-  ivec2 size = textureSize(lut, 0);
-  return textureLod(lut,
-                    multiscattering_uv_from_r_mu_s_terminator(atm, r, mu_s, w, offset, size.x,
-                                                              size.y),
-                    0.0).rgb;
+  return lookup_multiscattering(lut, MultiscatteringMapping(MULTISCATTERING_SUN_TERMINATOR, w, offset),
+                                atm, r, mu_s);
 }

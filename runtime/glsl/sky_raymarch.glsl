@@ -79,12 +79,13 @@ vec3 segment_weight(vec3 sigma_t, float d) {
 // (clipped to the atmosphere and the ground), `steps` segments (uniform, or
 // quadratic t_i = t (i / n)^2), the medium sampled at each segment's middle;
 // with lit_ground, the ground where the ray ends adds albedo / pi E T_sun
-// max(mu_s, 0). `transmittance` receives the path's transmittance.
+// max(mu_s, 0). `transmittance` receives the path's transmittance;
+// multiscattering_mapping is the multiple-scattering table's sun axis.
 vec3 integrate_scattered_luminance(AtmosphereParameters atm, AtmosphereMedium medium,
                                    sampler2D transmittance_lut, sampler2D multiscattering_lut,
-                                   vec3 position, vec3 view_dir, vec3 sun_dir, float max_distance_m,
-                                   int steps, bool quadratic, bool lit_ground,
-                                   out vec3 transmittance) {
+                                   MultiscatteringMapping multiscattering_mapping, vec3 position,
+                                   vec3 view_dir, vec3 sun_dir, float max_distance_m, int steps,
+                                   bool quadratic, bool lit_ground, out vec3 transmittance) {
   transmittance = vec3(1.0);
   vec3 luminance = vec3(0.0);
   AtmosphereSpan span = clip_ray_to_atmosphere(atm, position, view_dir);
@@ -114,7 +115,8 @@ vec3 integrate_scattered_luminance(AtmosphereParameters atm, AtmosphereMedium me
     if (sigma_t == vec3(0.0)) continue;
     float mu_s = clamp_cosine(dot(p, sun_dir) / r);
     vec3 source = lookup_sun_transmittance(transmittance_lut, atm, r, mu_s) * sigma_s_phase +
-                  lookup_multiscattering(multiscattering_lut, atm, r, mu_s) * sigma_s;  // eq. 11
+                  lookup_multiscattering(multiscattering_lut, multiscattering_mapping, atm, r, mu_s) *
+                      sigma_s;  // eq. 11
     vec3 w = segment_weight(sigma_t, dt);
     luminance += transmittance * atm.sun_illuminance * source * w;
     transmittance *= exp(-sigma_t * dt);

@@ -2,47 +2,83 @@
 // skybake runtime: the multiple-scattering LUT Psi_ms, HLSL twin of
 // runtime/glsl/multiscattering.glsl (Hillaire 2020 sec. 5.5; C++
 // src/atmosphere/multiscattering_lut.hpp). RGB linear float, bilinear,
-// clamp to edge, no mips (docs/runtime.md "Multiple scattering").
+// clamp to edge, no mips (docs/runtime.md "Multiple scattering"); the sun
+// axis linear or the terminator mapping of the metadata.
+
+static const int MULTISCATTERING_SUN_LINEAR = 0;
+static const int MULTISCATTERING_SUN_TERMINATOR = 1;
+
+struct MultiscatteringMapping {
+  int sun;       // MULTISCATTERING_SUN_LINEAR or MULTISCATTERING_SUN_TERMINATOR
+  float width;   // terminator: w
+  float offset;  // terminator: centre below the horizon's cosine
+};
+
+MultiscatteringMapping linear_multiscattering_mapping() {
+  MultiscatteringMapping m;
+  m.sun = MULTISCATTERING_SUN_LINEAR;
+  m.width = 1.0;
+  m.offset = 0.0;
+  return m;
+}
+
+// x_mu_s: 0.5 + 0.5 mu_s, or atan around the terminator (see the GLSL).
+float unit_from_sun_cosine(MultiscatteringMapping m, AtmosphereParameters atm, float r, float mu_s) {
+  mu_s = clamp_cosine(mu_s);
+  if (m.sun != MULTISCATTERING_SUN_TERMINATOR) return 0.5 + 0.5 * mu_s;
+  float rb = atm.bottom_radius;
+  r = max(r, rb);
+  float centre = -safe_sqrt((r - rb) * (r + rb)) / r - m.offset;
+  float a_lo = accurate_atan((-1.0 - centre) / m.width);
+  float a_hi = accurate_atan((1.0 - centre) / m.width);
+  float x = (accurate_atan((mu_s - centre) / m.width) - a_lo) / (a_hi - a_lo);
+  return clamp(x, 0.0, 1.0);
+}
 
 float2 multiscattering_uv_from_r_mu_s(AtmosphereParameters atm, float r, float mu_s, int width,
-                                      int height) {
-  float x_mu_s = 0.5 + 0.5 * clamp_cosine(mu_s);
-  float x_h = clamp((r - atm.bottom_radius) / (atm.top_radius - atm.bottom_radius), 0.0, 1.0);
+                                      int height, MultiscatteringMapping mapping) {
+  r = clamp(r, atm.bottom_radius, atm.top_radius);
+  float x_mu_s = unit_from_sun_cosine(mapping, atm, r, mu_s);
+  float x_h = (r - atm.bottom_radius) / (atm.top_radius - atm.bottom_radius);
   return float2(texel_coord_from_unit(x_mu_s, width), texel_coord_from_unit(x_h, height));
 }
 
 float3 lookup_multiscattering(Texture2D<float4> lut, SamplerState lut_sampler,
-                              AtmosphereParameters atm, float r, float mu_s) {
+                              MultiscatteringMapping mapping, AtmosphereParameters atm, float r,
+                              float mu_s) {
   uint width, height;
   lut.GetDimensions(width, height);
   return lut.SampleLevel(lut_sampler,
-                         multiscattering_uv_from_r_mu_s(atm, r, mu_s, int(width), int(height)), 0.0)
+                         multiscattering_uv_from_r_mu_s(atm, r, mu_s, int(width), int(height),
+                                                        mapping), 0.0)
       .rgb;
 }
 
-// The terminator sun mapping (metadata mu_s_mapping = "terminator"; twin of
-// the GLSL function): w = mu_s_mapping_width, offset = mu_s_mapping_offset.
+// A table with the linear sun axis (the default).
+float3 lookup_multiscattering(Texture2D<float4> lut, SamplerState lut_sampler,
+                              AtmosphereParameters atm, float r, float mu_s) {
+  return lookup_multiscattering(lut, lut_sampler, linear_multiscattering_mapping(), atm, r, mu_s);
+}
+
+// The terminator mapping with its two constants given directly
+// (mu_s_mapping_width, mu_s_mapping_offset of the metadata).
+MultiscatteringMapping terminator_multiscattering_mapping(float w, float offset) {
+  MultiscatteringMapping m;
+  m.sun = MULTISCATTERING_SUN_TERMINATOR;
+  m.width = w;
+  m.offset = offset;
+  return m;
+}
+
 float2 multiscattering_uv_from_r_mu_s_terminator(AtmosphereParameters atm, float r, float mu_s,
                                                  float w, float offset, int width, int height) {
-  r = clamp(r, atm.bottom_radius, atm.top_radius);
-  float ratio = atm.bottom_radius / r;
-  float c = -safe_sqrt(1.0 - ratio * ratio) - offset;
-  float a_lo = accurate_atan((-1.0 - c) / w);
-  float a_hi = accurate_atan((1.0 - c) / w);
-  float x_mu_s = clamp((accurate_atan((clamp_cosine(mu_s) - c) / w) - a_lo) / (a_hi - a_lo), 0.0,
-                       1.0);
-  float x_h = (r - atm.bottom_radius) / (atm.top_radius - atm.bottom_radius);
-  return float2(texel_coord_from_unit(x_mu_s, width), texel_coord_from_unit(x_h, height));
+  return multiscattering_uv_from_r_mu_s(atm, r, mu_s, width, height,
+                                        terminator_multiscattering_mapping(w, offset));
 }
 
 float3 lookup_multiscattering_terminator(Texture2D<float4> lut, SamplerState lut_sampler,
                                          AtmosphereParameters atm, float r, float mu_s, float w,
                                          float offset) {
-  uint width, height;
-  lut.GetDimensions(width, height);
-  return lut.SampleLevel(lut_sampler,
-                         multiscattering_uv_from_r_mu_s_terminator(atm, r, mu_s, w, offset,
-                                                                   int(width), int(height)),
-                         0.0)
-      .rgb;
+  return lookup_multiscattering(lut, lut_sampler, terminator_multiscattering_mapping(w, offset),
+                                atm, r, mu_s);
 }

@@ -69,7 +69,8 @@ float3 integrate_scattered_luminance(AtmosphereParameters atm, AtmosphereMedium 
                                      Texture2D<float4> transmittance_lut,
                                      SamplerState transmittance_sampler,
                                      Texture2D<float4> multiscattering_lut,
-                                     SamplerState multiscattering_sampler, float3 position,
+                                     SamplerState multiscattering_sampler,
+                                     MultiscatteringMapping multiscattering_mapping, float3 position,
                                      float3 view_dir, float3 sun_dir, float max_distance_m,
                                      int steps, bool quadratic, bool lit_ground,
                                      out float3 transmittance) {
@@ -105,7 +106,8 @@ float3 integrate_scattered_luminance(AtmosphereParameters atm, AtmosphereMedium 
     float3 source =
         lookup_sun_transmittance(transmittance_lut, transmittance_sampler, atm, r, mu_s) *
             sigma_s_phase +
-        lookup_multiscattering(multiscattering_lut, multiscattering_sampler, atm, r, mu_s) *
+        lookup_multiscattering(multiscattering_lut, multiscattering_sampler,
+                               multiscattering_mapping, atm, r, mu_s) *
             sigma_s;  // eq. 11
     float3 w = segment_weight(sigma_t, dt);
     luminance += transmittance * atm.sun_illuminance * source * w;

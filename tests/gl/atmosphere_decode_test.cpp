@@ -230,21 +230,38 @@ TEST(AtmosphereDecode, LookupSunTransmittance) {
 
 // ---- Multiple scattering ----------------------------------------------------------
 
-TEST(AtmosphereDecode, LookupMultiscattering) {
-  const BakedScene& s = separate_mie_scene();
+void multiscattering_case(const BakedScene& s, const std::string& what) {
   const Atmosphere& atm = s.atmosphere;
   const Texture lut = s.texture("multiscattering");
+  const MultiscatteringMapping mapping = s.multiscattering_mapping("multiscattering");
   const GlTexture tex = upload_dds(s.dds_path("multiscattering"), s.sampler("multiscattering", kClamp));
   const Comparison c = run_case(
-      {"lookup_multiscattering", {"multiscattering.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
-       "vec4(lookup_multiscattering(lut, atm, q0.x, q0.y), 0.0)", {&tex}, 3, "Texture2D<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);",
-       "float4(lookup_multiscattering(lut, lut_sampler, atm, q0.x, q0.y), 0.0)", {}},
-      s.parameters("multiscattering"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
+      {what, {"multiscattering.glsl"},
+       "layout(binding = 0) uniform sampler2D lut;\nuniform MultiscatteringMapping mapping;",
+       "vec4(lookup_multiscattering(lut, mapping, atm, q0.x, q0.y), 0.0)", {&tex}, 3,
+       "Texture2D<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);\n"
+       "MultiscatteringMapping load_mapping() {\n  MultiscatteringMapping m;\n"
+       "  m.sun = int(extra(0).x);\n  m.width = extra(0).y;\n  m.offset = extra(0).z;\n  return m;\n}\n",
+       "float4(lookup_multiscattering(lut, lut_sampler, load_mapping(), atm, q0.x, q0.y), 0.0)",
+       {mapping_extra(mapping)}},
+      s.parameters("multiscattering"),
+      [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const RadiusCosine p = multiscattering_query(atm, i);
         q0 = glm::vec4(float(p.r), float(p.mu), 0.0f, 0.0f);
-        return rgb(lookup_multiscattering(lut, atm, q0.x, q0.y));
-      });
+        return rgb(lookup_multiscattering(lut, mapping, atm, q0.x, q0.y));
+      },
+      [&](const ComputeProgram& p) { set_mapping_uniform(p, "mapping", mapping); });
   expect_within(c, kCoordinateBar);
+}
+
+TEST(AtmosphereDecode, LookupMultiscattering) {
+  ASSERT_EQ(separate_mie_scene().multiscattering_mapping("multiscattering").sun, SunMapping::linear);
+  multiscattering_case(separate_mie_scene(), "lookup_multiscattering (linear sun axis)");
+}
+
+TEST(AtmosphereDecode, LookupMultiscatteringTerminatorMapping) {
+  ASSERT_EQ(alpha_mie_scene().multiscattering_mapping("multiscattering").sun, SunMapping::terminator);
+  multiscattering_case(alpha_mie_scene(), "lookup_multiscattering (terminator sun axis)");
 }
 
 // ---- Sky-view and aerial perspective -----------------------------------------------

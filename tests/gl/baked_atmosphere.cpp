@@ -55,6 +55,7 @@ std::string alpha_preset() {
   "atmosphere": ")" + earth_atmosphere_path() + R"(",
   "outputs": [
     { "product": "transmittance", "size": [64, 16], "formats": ["dds"] },
+    { "product": "multiscattering", "size": [16, 16], "formats": ["dds"], "sun_mapping": "terminator" },
     { "product": "scattering", "size": [8, 32, 8, 4], "formats": ["dds"], "orders": 2, "mie": "alpha", "precision": "half" },
     { "product": "scattering3d", "size": [8, 32, 8], "formats": ["dds"], "orders": 2, "mie": "alpha" }
   ]
@@ -192,6 +193,30 @@ GlAtmosphere BakedScene::parameters(const std::string& output) const {
   if (meta.contains("sun_angular_radius_rad"))
     g.sun_angular_radius = meta_float(meta.at("sun_angular_radius_rad"));
   return g;
+}
+
+MultiscatteringMapping BakedScene::multiscattering_mapping(const std::string& output) const {
+  const nlohmann::json& meta = entry(output).at("metadata");
+  MultiscatteringMapping m;
+  if (!meta.contains("mu_s_mapping") || meta.at("mu_s_mapping") == "linear") return m;
+  if (meta.at("mu_s_mapping") != "terminator")
+    throw std::runtime_error(output + ": unknown mu_s_mapping " + meta.at("mu_s_mapping").dump());
+  m.sun = SunMapping::terminator;
+  m.width = meta_float(meta.at("mu_s_mapping_width"));
+  m.offset = meta_float(meta.at("mu_s_mapping_offset"));
+  return m;
+}
+
+void set_mapping_uniform(const ComputeProgram& program, const std::string& name,
+                         const MultiscatteringMapping& m) {
+  const glm::vec4 v = mapping_extra(m);
+  program.set(name + ".sun", int(v.x));
+  if (program.has_uniform(name + ".width")) program.set(name + ".width", v.y);
+  if (program.has_uniform(name + ".offset")) program.set(name + ".offset", v.z);
+}
+
+glm::vec4 mapping_extra(const MultiscatteringMapping& m) {
+  return {m.sun == SunMapping::terminator ? 1.0f : 0.0f, float(m.width), float(m.offset), 0.0f};
 }
 
 SamplerState BakedScene::sampler(const std::string& output, const SamplerState& fallback) const {

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "atmosphere/medium.hpp"
+#include "atmosphere/multiscattering_lut.hpp"
 #include "core/error_stats.hpp"
 #include "core/texture.hpp"
 #include "gl/gl_context.hpp"
@@ -49,6 +50,9 @@ struct BakedScene {
   // precomputed tables), the sun's angular radius (irradiance); what the
   // output does not record comes from the preset (gl_atmosphere).
   GlAtmosphere parameters(const std::string& output) const;
+  // The multiple-scattering table's sun axis from its metadata
+  // (mu_s_mapping; linear when absent).
+  MultiscatteringMapping multiscattering_mapping(const std::string& output) const;
   // The sampler state the output's metadata asks for (filter, wrap_u,
   // wrap_v, wrap_w), or `fallback` when it records none.
   SamplerState sampler(const std::string& output, const SamplerState& fallback) const;
@@ -61,9 +65,10 @@ struct BakedScene {
 // executable and the preset are the same.
 BakedScene bake_scene(const std::string& name, const std::string& preset);
 
-// mie "separate": transmittance, multiscattering, skyview (2 layers),
-// aerial_perspective, scattering + single_mie, irradiance, scattering3d,
-// gathering_sum. mie "alpha": transmittance, scattering, scattering3d.
+// mie "separate": transmittance, multiscattering (linear sun axis), skyview
+// (2 layers), aerial_perspective, scattering + single_mie, irradiance,
+// scattering3d, gathering_sum. mie "alpha": transmittance, multiscattering
+// (terminator sun axis), scattering, scattering3d.
 const BakedScene& separate_mie_scene();
 const BakedScene& alpha_mie_scene();
 
@@ -83,6 +88,13 @@ void set_medium_uniform(const ComputeProgram& program, const std::string& name,
 // and the HLSL function `AtmosphereMedium load_medium()` that unpacks it.
 std::vector<glm::vec4> medium_extra(const Atmosphere& atm);
 std::string hlsl_load_medium(int first);
+
+// Sets the uniform struct `name` (MultiscatteringMapping of
+// runtime/glsl/multiscattering.glsl), and the same as one extra(k) value
+// (sun, width, offset, 0) for the HLSL twin.
+void set_mapping_uniform(const ComputeProgram& program, const std::string& name,
+                         const MultiscatteringMapping& m);
+glm::vec4 mapping_extra(const MultiscatteringMapping& m);
 
 // Runs `program` once per query: binding 0 holds the queries (two vec4 each,
 // query i at 2i and 2i + 1), binding 1 receives one vec4 per query; the

@@ -68,6 +68,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = 1) writeonly buffer Pixels { vec4 pixels[]; };
 uniform AtmosphereParameters atm;
 uniform AtmosphereMedium medium;
+uniform MultiscatteringMapping ms_mapping;
 layout(binding = 0) uniform sampler2D transmittance_lut;
 layout(binding = 1) uniform sampler2D multiscattering_lut;
 layout(binding = 2) uniform sampler2DArray skyview_lut;
@@ -116,7 +117,8 @@ vec3 luminance_toward(vec3 dir) {
   }
   vec3 T;
   return L + integrate_scattered_luminance(atm, medium, transmittance_lut, multiscattering_lut,
-                                           position, dir, sun_dir, 3.0e38, 32, false, true, T);
+                                           ms_mapping, position, dir, sun_dir, 3.0e38, 32, false,
+                                           true, T);
 }
 
 // sky_preview.hpp: x (1 + x / 16) / (1 + x), clamped to [0, 1].
@@ -181,6 +183,7 @@ double panel_rms(const PreviewScene& scene, const SkyPreviewSpec& spec, int p,
   const ComputeProgram program = compile_compute(kIncludes, render_shader());
   set_atmosphere_uniform(program, "atm", scene.baked.parameters("transmittance"));
   set_medium_uniform(program, "medium", atm);
+  set_mapping_uniform(program, "ms_mapping", scene.baked.multiscattering_mapping("multiscattering"));
   program.set("has_luts", panel.from_space ? 0 : 1);
   if (program.has_uniform("aerial_range_m")) program.set("aerial_range_m", float(range));
   program.set("position", glm::vec3(0.0f, 0.0f, float(atm.bottom_radius_m + camera.altitude_m)));
@@ -246,18 +249,22 @@ TEST(SkyPreviewGl, RayMarchMatchesTheCpuMarch) {
   const ComputeProgram program = compile_compute(
       {"sky_raymarch.glsl"},
       query_shader("uniform AtmosphereMedium medium;\n"
+                   "uniform MultiscatteringMapping ms_mapping;\n"
                    "layout(binding = 0) uniform sampler2D transmittance_lut;\n"
                    "layout(binding = 1) uniform sampler2D multiscattering_lut;\n"
                    "vec3 march(vec4 q0, vec4 q1) {\n"
                    "  vec3 T;\n"
                    "  vec3 L = integrate_scattered_luminance(atm, medium, transmittance_lut,\n"
-                   "      multiscattering_lut, vec3(0.0, 0.0, q0.x), q0.yzw, q1.xyz, 3.0e38, 32,\n"
+                   "      multiscattering_lut, ms_mapping, vec3(0.0, 0.0, q0.x), q0.yzw, q1.xyz,\n"
+                   "      3.0e38, 32,\n"
                    "      q1.w > 0.5, true, T);\n"
                    "  return L;\n"
                    "}\n",
                    "vec4(march(q0, q1), 0.0)"));
   set_atmosphere_uniform(program, "atm", scene.baked.parameters("transmittance"));
   set_medium_uniform(program, "medium", atm);
+  const MultiscatteringMapping mapping = scene.baked.multiscattering_mapping("multiscattering");
+  set_mapping_uniform(program, "ms_mapping", mapping);
   transmittance.bind(0);
   multiscattering.bind(1);
   const size_t n = 1024;
@@ -290,18 +297,24 @@ TEST(SkyPreviewGl, RayMarchMatchesTheCpuMarch) {
       hlsl_query_shader("Texture2D<float4> transmittance_lut : register(t0);\n"
                         "Texture2D<float4> multiscattering_lut : register(t1);\n"
                         "SamplerState s : register(s0);\n" +
-                            hlsl_load_medium(0) +
+                            hlsl_load_medium(1) +
+                            "MultiscatteringMapping load_mapping() {\n  MultiscatteringMapping m;\n"
+                            "  m.sun = int(extra(0).x);\n  m.width = extra(0).y;\n"
+                            "  m.offset = extra(0).z;\n  return m;\n}\n" +
                             "float3 march(float4 q0, float4 q1, AtmosphereParameters atm) {\n"
                             "  float3 T;\n"
                             "  return integrate_scattered_luminance(atm, load_medium(),\n"
-                            "      transmittance_lut, s, multiscattering_lut, s, float3(0.0, 0.0, q0.x),\n"
+                            "      transmittance_lut, s, multiscattering_lut, s, load_mapping(),\n"
+                            "      float3(0.0, 0.0, q0.x),\n"
                             "      q0.yzw, q1.xyz, 3.0e38, 32, q1.w > 0.5, true, T);\n"
                             "}\n",
                         "float4(march(q0, q1, atm), 0.0)"));
+  std::vector<glm::vec4> hlsl_extra = {mapping_extra(mapping)};
+  for (const glm::vec4& v : medium_extra(atm)) hlsl_extra.push_back(v);
   transmittance.bind(0);
   multiscattering.bind(1);
   const Comparison h = compare(run_hlsl_queries(hlsl, scene.baked.parameters("transmittance"),
-                                                medium_extra(atm), queries),
+                                                hlsl_extra, queries),
                                cpu, 3);
   print_comparison("integrate_scattered_luminance [HLSL]", h);
   EXPECT_LE(h.stats.max_rel, 5e-4);
