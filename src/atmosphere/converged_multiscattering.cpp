@@ -21,7 +21,7 @@ BrunetonSpec ConvergedMultiscatteringSpec::default_converged_bruneton_spec() {
   b.r_size = 16;
   b.mu_size = 64;
   b.mu_s_size = 16;
-  b.nu_size = 4;
+  b.nu_size = 8;
   b.tolerance = 1e-3;
   b.max_orders = 100;
   return b;
