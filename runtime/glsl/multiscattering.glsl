@@ -37,6 +37,19 @@ float unit_from_sun_cosine(MultiscatteringMapping m, AtmosphereParameters atm, f
   return clamp(x, 0.0, 1.0);
 }
 
+// The inverse of the sun axis: mu_s of x_mu_s in [0, 1].
+float sun_cosine_from_unit(MultiscatteringMapping m, AtmosphereParameters atm, float r,
+                           float x_mu_s) {
+  x_mu_s = clamp(x_mu_s, 0.0, 1.0);
+  if (m.sun != MULTISCATTERING_SUN_TERMINATOR) return clamp_cosine(2.0 * x_mu_s - 1.0);
+  float rb = atm.bottom_radius;
+  r = max(r, rb);
+  float centre = -safe_sqrt((r - rb) * (r + rb)) / r - m.offset;
+  float a_lo = accurate_atan((-1.0 - centre) / m.width);
+  float a_hi = accurate_atan((1.0 - centre) / m.width);
+  return clamp_cosine(centre + m.width * tan(a_lo + x_mu_s * (a_hi - a_lo)));
+}
+
 // u = coord(x_mu_s, W), v = coord((r - Rb) / (Rt - Rb), H) (Hillaire 2020
 // sec. 5.5.2 on texel centres), r clamped to the shell.
 vec2 multiscattering_uv_from_r_mu_s(AtmosphereParameters atm, float r, float mu_s, int width,
@@ -45,6 +58,14 @@ vec2 multiscattering_uv_from_r_mu_s(AtmosphereParameters atm, float r, float mu_
   float x_mu_s = unit_from_sun_cosine(mapping, atm, r, mu_s);
   float x_h = (r - atm.bottom_radius) / (atm.top_radius - atm.bottom_radius);
   return vec2(texel_coord_from_unit(x_mu_s, width), texel_coord_from_unit(x_h, height));
+}
+
+// The exact inverse: (r, mu_s) of texture coordinates uv.
+vec2 r_mu_s_from_multiscattering_uv(AtmosphereParameters atm, vec2 uv, int width, int height,
+                                      MultiscatteringMapping mapping) {
+  float x_h = unit_from_texel_coord(uv.y, height);
+  float r = atm.bottom_radius + x_h * (atm.top_radius - atm.bottom_radius);
+  return vec2(r, sun_cosine_from_unit(mapping, atm, r, unit_from_texel_coord(uv.x, width)));
 }
 
 // Psi_ms at radius r (clamped to the shell) for a sun of zenith cosine

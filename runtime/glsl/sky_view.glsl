@@ -56,6 +56,24 @@ vec2 skyview_uv_from_view(AtmosphereParameters atm, float r, SkyviewDirection vi
               texel_coord_from_unit(clamp(x, 0.0, 1.0), height));
 }
 
+// The exact inverse at viewer radius r: theta = Z (1 - (1 - 2x)^2) above the
+// horizon, Z + beta (2x - 1)^2 below it; azimuth 2 pi u.
+SkyviewDirection view_from_skyview_uv(AtmosphereParameters atm, float r, vec2 uv, int width,
+                                      int height) {
+  float beta = skyview_beta(atm, r);
+  float zenith_horizon = kPi - beta;
+  float x = clamp(unit_from_texel_coord(uv.y, height), 0.0, 1.0);
+  float theta = x < 0.5 ? zenith_horizon * (1.0 - (1.0 - 2.0 * x) * (1.0 - 2.0 * x))
+                        : zenith_horizon + beta * (2.0 * x - 1.0) * (2.0 * x - 1.0);
+  return SkyviewDirection(cos(theta), wrap_azimuth(2.0 * kPi * uv.x));
+}
+
+// The unit view vector of a layer-frame direction (z up, the sun at azimuth 0).
+vec3 skyview_vector_from_direction(SkyviewDirection view) {
+  float sin_theta = safe_sqrt(1.0 - view.mu * view.mu);
+  return vec3(sin_theta * cos(view.azimuth), sin_theta * sin(view.azimuth), clamp_cosine(view.mu));
+}
+
 // The layer-frame direction of a world view direction: mu against `up` (the
 // viewer's zenith, normalised position), azimuth from the sun's vertical plane.
 SkyviewDirection skyview_direction_from_vectors(vec3 up, vec3 view_dir, vec3 sun_dir) {

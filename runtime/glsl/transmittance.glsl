@@ -31,6 +31,20 @@ vec2 transmittance_uv_from_rho_r_mu(AtmosphereParameters atm, float rho, float r
   return vec2(texel_coord_from_unit(x_mu, width), texel_coord_from_unit(rho / H, height));
 }
 
+// The exact inverse (for engines that bake the table themselves): r in
+// [Rb, Rt] and mu, 1 where d = 0. Law of cosines, Rt^2 - r^2 = H^2 - rho^2.
+void r_mu_from_transmittance_uv(AtmosphereParameters atm, vec2 uv, int width, int height,
+                                out float r, out float mu) {
+  float rb = atm.bottom_radius, rt = atm.top_radius, H = horizon_distance(atm);
+  float x_mu = clamp(unit_from_texel_coord(uv.x, width), 0.0, 1.0);
+  float rho = H * clamp(unit_from_texel_coord(uv.y, height), 0.0, 1.0);
+  r = clamp(sqrt(rho * rho + rb * rb), rb, rt);
+  float c = (H - rho) * (H + rho);
+  float d_min = c / (rt + r), d_max = rho + H;
+  float d = d_min + x_mu * (d_max - d_min);
+  mu = d == 0.0 ? 1.0 : clamp_cosine((c - d * d) / (2.0 * r * d));
+}
+
 vec3 lookup_transmittance_to_top_rho(sampler2D lut, AtmosphereParameters atm, float rho,
                                      float r_mu) {
   ivec2 size = textureSize(lut, 0);

@@ -236,6 +236,15 @@ float2 irradiance_uv_from_r_mu_s(AtmosphereParameters atm, float r, float mu_s, 
   return float2(texel_coord_from_unit(x_mu_s, width), texel_coord_from_unit(x_r, height));
 }
 
+// The exact inverse: r = Rb + x_r (Rt - Rb), mu_s = 2 x_mu_s - 1.
+void r_mu_s_from_irradiance_uv(AtmosphereParameters atm, float2 uv, int width, int height,
+                               out float r, out float mu_s) {
+  float x_mu_s = clamp(unit_from_texel_coord(uv.x, width), 0.0, 1.0);
+  float x_r = clamp(unit_from_texel_coord(uv.y, height), 0.0, 1.0);
+  r = atm.bottom_radius + x_r * (atm.top_radius - atm.bottom_radius);
+  mu_s = clamp_cosine(2.0 * x_mu_s - 1.0);
+}
+
 float3 lookup_irradiance(Texture2D<float4> table, SamplerState table_sampler,
                          AtmosphereParameters atm, float r, float mu_s) {
   uint width, height;

@@ -35,12 +35,33 @@ float unit_from_sun_cosine(MultiscatteringMapping m, AtmosphereParameters atm, f
   return clamp(x, 0.0, 1.0);
 }
 
+// The inverse of the sun axis: mu_s of x_mu_s in [0, 1].
+float sun_cosine_from_unit(MultiscatteringMapping m, AtmosphereParameters atm, float r,
+                           float x_mu_s) {
+  x_mu_s = clamp(x_mu_s, 0.0, 1.0);
+  if (m.sun != MULTISCATTERING_SUN_TERMINATOR) return clamp_cosine(2.0 * x_mu_s - 1.0);
+  float rb = atm.bottom_radius;
+  r = max(r, rb);
+  float centre = -safe_sqrt((r - rb) * (r + rb)) / r - m.offset;
+  float a_lo = accurate_atan((-1.0 - centre) / m.width);
+  float a_hi = accurate_atan((1.0 - centre) / m.width);
+  return clamp_cosine(centre + m.width * tan(a_lo + x_mu_s * (a_hi - a_lo)));
+}
+
 float2 multiscattering_uv_from_r_mu_s(AtmosphereParameters atm, float r, float mu_s, int width,
                                       int height, MultiscatteringMapping mapping) {
   r = clamp(r, atm.bottom_radius, atm.top_radius);
   float x_mu_s = unit_from_sun_cosine(mapping, atm, r, mu_s);
   float x_h = (r - atm.bottom_radius) / (atm.top_radius - atm.bottom_radius);
   return float2(texel_coord_from_unit(x_mu_s, width), texel_coord_from_unit(x_h, height));
+}
+
+// The exact inverse: (r, mu_s) of texture coordinates uv.
+float2 r_mu_s_from_multiscattering_uv(AtmosphereParameters atm, float2 uv, int width, int height,
+                                      MultiscatteringMapping mapping) {
+  float x_h = unit_from_texel_coord(uv.y, height);
+  float r = atm.bottom_radius + x_h * (atm.top_radius - atm.bottom_radius);
+  return float2(r, sun_cosine_from_unit(mapping, atm, r, unit_from_texel_coord(uv.x, width)));
 }
 
 float3 lookup_multiscattering(Texture2D<float4> lut, SamplerState lut_sampler,

@@ -44,6 +44,24 @@ float2 skyview_uv_from_view(AtmosphereParameters atm, float r, SkyviewDirection 
                 texel_coord_from_unit(clamp(x, 0.0, 1.0), height));
 }
 
+// The exact inverse at viewer radius r: theta = Z (1 - (1 - 2x)^2) above the
+// horizon, Z + beta (2x - 1)^2 below it; azimuth 2 pi u.
+SkyviewDirection view_from_skyview_uv(AtmosphereParameters atm, float r, float2 uv, int width,
+                                      int height) {
+  float beta = skyview_beta(atm, r);
+  float zenith_horizon = kPi - beta;
+  float x = clamp(unit_from_texel_coord(uv.y, height), 0.0, 1.0);
+  float theta = x < 0.5 ? zenith_horizon * (1.0 - (1.0 - 2.0 * x) * (1.0 - 2.0 * x))
+                        : zenith_horizon + beta * (2.0 * x - 1.0) * (2.0 * x - 1.0);
+  return make_skyview_direction(cos(theta), wrap_azimuth(2.0 * kPi * uv.x));
+}
+
+// The unit view vector of a layer-frame direction (z up, the sun at azimuth 0).
+float3 skyview_vector_from_direction(SkyviewDirection view) {
+  float sin_theta = safe_sqrt(1.0 - view.mu * view.mu);
+  return float3(sin_theta * cos(view.azimuth), sin_theta * sin(view.azimuth), clamp_cosine(view.mu));
+}
+
 SkyviewDirection skyview_direction_from_vectors(float3 up, float3 view_dir, float3 sun_dir) {
   float mu = clamp_cosine(dot(view_dir, up));
   float3 view_h = view_dir - mu * up;
