@@ -14,27 +14,12 @@
 #include "io/png_preview.hpp"
 #include "io/vdb.hpp"
 #include "pipeline/dds_output.hpp"
+#include "pipeline/ktx2_output.hpp"
 #include "pipeline/product_options.hpp"
 
 namespace skybake {
 
 namespace {
-
-// KTX2 format when the output does not name one: the DDS defaults' choice
-// (unorm8 for the products that default to it, else float32 or half by
-// precision), with one-channel formats for one channel and R8G8 for two.
-Ktx2Format choose_ktx2_format(const Texture& tex, const ProductInfo& info, const OutputSpec& spec) {
-  const std::string name = option_string(spec, "ktx2_format", "");
-  if (!name.empty()) return ktx2_format_from_name(name);
-  const int nc = tex.channel_count();
-  if (info.default_dds_format == "unorm8")
-    return nc == 1   ? Ktx2Format::R8_UNORM
-           : nc == 2 ? Ktx2Format::R8G8_UNORM
-                     : Ktx2Format::R8G8B8A8_UNORM;
-  if (spec.precision == "half")
-    return nc == 1 ? Ktx2Format::R16_SFLOAT : Ktx2Format::R16G16B16A16_SFLOAT;
-  return nc == 1 ? Ktx2Format::R32_SFLOAT : Ktx2Format::R32G32B32A32_SFLOAT;
-}
 
 // The output's grid_names, else for a density volume "density" for the
 // first channel and the channel names for the others (docs/decisions.md
@@ -69,7 +54,7 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
     return dxgi_format_name(dds);
   }
   if (format == "ktx2") {
-    const Ktx2Format ktx2 = choose_ktx2_format(tex, info, spec);
+    const Ktx2Format ktx2 = output_ktx2_format(spec, info, tex.channel_count());
     const bool mips = spec.options.value("mips", info.default_mips);
     write_ktx2(tmp, mips ? build_mip_chain(tex, MipEdge::wrap) : std::vector<Texture>{tex}, ktx2);
     return ktx2_format_name(ktx2);

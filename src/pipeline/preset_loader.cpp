@@ -21,9 +21,9 @@
 #include "core/safe_input.hpp"
 #include "core/suggest.hpp"
 #include "io/dds.hpp"
-#include "io/ktx2_format.hpp"
 #include "pipeline/cloud_products.hpp"
 #include "pipeline/dds_output.hpp"
+#include "pipeline/ktx2_output.hpp"
 #include "pipeline/output_budget.hpp"
 #include "pipeline/product_tables.hpp"
 #include "pipeline/schema_validator.hpp"
@@ -441,19 +441,6 @@ void check_grid_names(const OutputSpec& spec, const Source& src) {
                                         channels, spec.product, names));
 }
 
-// A KTX2 format with fewer components than the product's texture has channels.
-void check_ktx2_format(const OutputSpec& spec, const Source& src) {
-  if (!spec.options.contains("ktx2_format")) return;
-  const std::string name = spec.options["ktx2_format"].get<std::string>();
-  const int components = ktx2_format_info(ktx2_format_from_name(name)).components;
-  const int channels = output_channels(spec);
-  if (channels > components)
-    src.fail("/ktx2_format", fmt::format("expected a format with at least {} channels ({} has "
-                                         "{}), got {} ({} channel{})",
-                                         channels, spec.product, channels, name, components,
-                                         components == 1 ? "" : "s"));
-}
-
 std::string to_lower_ascii(std::string s) {
   for (char& ch : s)
     if (ch >= 'A' && ch <= 'Z') ch = char(ch - 'A' + 'a');
@@ -580,9 +567,6 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
   if (out.contains("grid_names") &&
       std::find(spec.formats.begin(), spec.formats.end(), "vdb") == spec.formats.end())
     problems.add(src, "/grid_names", "is only used with \"vdb\" in formats");
-  if (out.contains("ktx2_format") &&
-      std::find(spec.formats.begin(), spec.formats.end(), "ktx2") == spec.formats.end())
-    problems.add(src, "/ktx2_format", "is only used with \"ktx2\" in formats");
   if (out.contains("max_error") && !info->measure_error)
     problems.add(src, "/max_error",
                  fmt::format("the bake measures no error of {} (only of atmosphere "
@@ -591,7 +575,8 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
   spec.options = out;
   for (const ProductProblem& problem : dds_output_problems(spec, *info))
     problems.add(src, problem.pointer, problem.rule);
-  problems.collect([&] { check_ktx2_format(spec, src); });
+  for (const ProductProblem& problem : ktx2_output_problems(spec, *info))
+    problems.add(src, problem.pointer, problem.rule);
   if (options_ok) problems.collect([&] { check_grid_names(spec, src); });
   if (size_ok) check_output_budget(spec, src);  // a size already refused is not budgeted
   // Product-specific rules the schema cannot say (e.g. a noise octave finer
