@@ -60,6 +60,40 @@ float4 scattering_uvwz_from_r_mu_mu_s_nu(AtmosphereParameters atm, ScatteringSha
                                        r * clamp_cosine(mu), mu_s, nu, ray_hits_ground);
 }
 
+// The exact inverse (Bruneton 2017 GetRMuMuSNuFromScatteringTextureUvwz):
+// the half of u_mu gives ray_hits_ground; d = 0 gives mu = -1 (ground half)
+// or 1 (sky half). nu is not clamped to what mu and mu_s allow.
+void r_mu_mu_s_nu_from_scattering_uvwz(AtmosphereParameters atm, ScatteringShape shape, float4 uvwz,
+                                       out float r, out float mu, out float mu_s, out float nu,
+                                       out bool ray_hits_ground) {
+  float rb = atm.bottom_radius, rt = atm.top_radius, H = horizon_distance(atm);
+  float rho = H * clamp(unit_from_texel_coord(uvwz.w, shape.r_size), 0.0, 1.0);
+  r = clamp(sqrt(rho * rho + rb * rb), rb, rt);
+  int half_size = shape.mu_size / 2;
+  ray_hits_ground = uvwz.z < 0.5;
+  if (ray_hits_ground) {
+    // Rb^2 = r^2 + d^2 + 2 r d mu, d from r - Rb (down) to rho (the horizon).
+    float d_min = rho * rho / (r + rb), d_max = rho;
+    float x = clamp(unit_from_texel_coord(1.0 - 2.0 * uvwz.z, half_size), 0.0, 1.0);
+    float d = d_min + x * (d_max - d_min);
+    mu = d == 0.0 ? -1.0 : clamp_cosine(-(rho * rho + d * d) / (2.0 * r * d));
+  } else {
+    // Rt^2 = r^2 + d^2 + 2 r d mu, Rt^2 - r^2 = H^2 - rho^2.
+    float c = (H - rho) * (H + rho);
+    float d_min = c / (rt + r), d_max = rho + H;
+    float x = clamp(unit_from_texel_coord(2.0 * uvwz.z - 1.0, half_size), 0.0, 1.0);
+    float d = d_min + x * (d_max - d_min);
+    mu = d == 0.0 ? 1.0 : clamp_cosine((c - d * d) / (2.0 * r * d));
+  }
+  float x_mu_s = clamp(unit_from_texel_coord(uvwz.y, shape.mu_s_size), 0.0, 1.0);
+  float d_min = rt - rb, d_max = H;
+  float A = (distance_to_top_boundary(rt, rb, shape.mu_s_min) - d_min) / (d_max - d_min);
+  float a = (A - x_mu_s * A) / (1.0 + x_mu_s * A);
+  float d = d_min + min(a, A) * (d_max - d_min);
+  mu_s = d == 0.0 ? 1.0 : clamp_cosine((H - d) * (H + d) / (2.0 * rb * d));
+  nu = clamp_cosine(2.0 * uvwz.x - 1.0);
+}
+
 // Bruneton 2017 GetScattering: the two nu slices blended.
 float4 read_scattering(Texture3D<float4> table, SamplerState table_sampler, ScatteringShape shape,
                        float4 uvwz) {

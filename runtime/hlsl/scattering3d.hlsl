@@ -49,6 +49,40 @@ float3 scattering3d_uvw_from_h_mu_mu_s(AtmosphereParameters atm, Scattering3dSha
                 scattering3d_u_from_mu_s(mu_s, shape.sun_size));
 }
 
+// The exact inverses of the three axes (h = x^2 H_atm; mu_s = tan((2x - 1
+// + 0.26) 0.75) / tan(1.26 * 0.75); mu from the fifth power on each side of
+// the horizon, the half giving ray_hits_ground).
+float h_from_scattering3d_u(AtmosphereParameters atm, float u, int n) {
+  float x = clamp(unit_from_texel_coord(u, n), 0.0, 1.0);
+  return x * x * (atm.top_radius - atm.bottom_radius);
+}
+
+float mu_s_from_scattering3d_u(float u, int n) {
+  float x = clamp(unit_from_texel_coord(u, n), 0.0, 1.0);
+  return clamp_cosine(tan((2.0 * x - 1.0 + 0.26) * 0.75) / kScattering3dSunScale);
+}
+
+float mu_from_scattering3d_u(AtmosphereParameters atm, float h, float u, int n,
+                             out bool ray_hits_ground) {
+  float mu_h = horizon_cosine(atm, h);
+  int half_n = n / 2;
+  ray_hits_ground = u < 0.5;
+  if (!ray_hits_ground) {
+    float x = clamp(unit_from_texel_coord(2.0 * u - 1.0, half_n), 0.0, 1.0);
+    return clamp_cosine(mu_h + pow(x, 5.0) * (1.0 - mu_h));
+  }
+  float x = clamp(unit_from_texel_coord(2.0 * u, half_n), 0.0, 1.0);
+  return clamp_cosine(mu_h - pow(x, 5.0) * (mu_h + 1.0));
+}
+
+void h_mu_mu_s_from_scattering3d_uvw(AtmosphereParameters atm, Scattering3dShape shape, float3 uvw,
+                                     out float h, out float mu, out float mu_s,
+                                     out bool ray_hits_ground) {
+  h = h_from_scattering3d_u(atm, uvw.x, shape.height_size);
+  mu = mu_from_scattering3d_u(atm, h, uvw.y, shape.view_size, ray_hits_ground);
+  mu_s = mu_s_from_scattering3d_u(uvw.z, shape.sun_size);
+}
+
 float4 lookup_scattering3d_rgba(Texture3D<float4> table, SamplerState table_sampler,
                                 Scattering3dShape shape, AtmosphereParameters atm, float h,
                                 float mu, float mu_s, bool ray_hits_ground) {
