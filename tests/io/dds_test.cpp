@@ -534,6 +534,29 @@ TEST(DdsExternal, NvddsinfoReadsOurHeaders) {
   const std::string array = nvddsinfo(dir + "/arr.dds");
   for (const char* line : {"DXGI Format: 26 (R11G11B10_FLOAT)", "Array size: 3"})
     EXPECT_THAT(array, HasSubstr(line));
+  // A block-compressed volume: linear size of one top slice (2 x 2 blocks).
+  write_dds(dir + "/bc3.dds", chain(8, 8, 4, 1, 4, 4, 0, 1), DdsFormat::BC3_UNORM);
+  const std::string bc3 = nvddsinfo(dir + "/bc3.dds");
+  for (const char* line : {"DDSD_LINEARSIZE", "Linear size: 64", "Depth: 4", "Mipmap count: 4",
+                           "DXGI Format: 77 (BC3_UNORM)", "Resource dimension: 4 (TEXTURE3D)"})
+    EXPECT_THAT(bc3, HasSubstr(line));
+  // Legacy headers: a FourCC, luminance (DDPF_LUMINANCE 0x20000, which
+  // nvddsinfo prints as a number) and RGBA masks, and no DX10 header.
+  write_dds(dir + "/ati2.dds", chain(8, 4, 1, 1, 4, 2, 0, 1), DdsFormat::BC5_UNORM,
+            DdsHeader::legacy);
+  const std::string ati2 = nvddsinfo(dir + "/ati2.dds");
+  for (const char* line : {"FourCC: 'ATI2'", "Linear size: 32", "Mipmap count: 4"})
+    EXPECT_THAT(ati2, HasSubstr(line));
+  EXPECT_THAT(ati2, ::testing::Not(HasSubstr("DX10 Header")));
+  write_dds(dir + "/l8.dds", {filled(4, 4, 1, 1, 1, 1, 0, 1)}, DdsFormat::R8_UNORM,
+            DdsHeader::legacy);
+  for (const char* line : {"Flags: 0x00020000", "Bit count: 8", "Red mask: 0x000000FF"})
+    EXPECT_THAT(nvddsinfo(dir + "/l8.dds"), HasSubstr(line));
+  write_dds(dir + "/rgba.dds", {filled(4, 4, 1, 1, 4, 1, 0, 1)}, DdsFormat::R8G8B8A8_UNORM,
+            DdsHeader::legacy);
+  for (const char* line : {"DDPF_RGB", "DDPF_ALPHAPIXELS", "Bit count: 32", "Red mask: 0x000000FF",
+                           "Alpha mask: 0xFF000000", "Pitch: 16"})
+    EXPECT_THAT(nvddsinfo(dir + "/rgba.dds"), HasSubstr(line));
 }
 
 }  // namespace
