@@ -235,6 +235,29 @@ TEST(DdsLegacy, BcFourCcAliasesRead) {
   EXPECT_EQ(bc4u.mips[0].data, ati1.mips[0].data);
 }
 
+TEST(DdsLegacy, TruncatedAndOversizedLegacyFilesAreRefused) {
+  const std::string dir = scratch_dir();
+  const std::string path = dir + "/ati1.dds";
+  write_dds(path, build_mip_chain(smooth(8, 8, 4, 1), MipEdge::wrap), DdsFormat::BC4_UNORM,
+            DdsHeader::legacy);
+  const uintmax_t size = fs::file_size(path);
+  fs::resize_file(path, size - 1);
+  EXPECT_THAT([&] { read_dds(path); },
+              ::testing::ThrowsMessage<IoError>(HasSubstr(
+                  "expected 160 bytes of pixel data after the 128-byte header, got 159 (truncated "
+                  "file)")));
+  // A legacy volume announcing a depth past the 3D limit.
+  fs::resize_file(path, size);
+  std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
+  f.seekp(24);
+  const char depth[4] = {0, 0x10, 0, 0};  // 4096
+  f.write(depth, 4);
+  f.close();
+  EXPECT_THAT([&] { read_dds(path); },
+              ::testing::ThrowsMessage<IoError>(
+                  HasSubstr("expected depth from 1 to 2048 for a volume, got 4096")));
+}
+
 TEST(DdsLegacy, FormatsWithoutALegacyFormAndArraysAreRefused) {
   const std::string dir = scratch_dir();
   EXPECT_THAT(
