@@ -1,26 +1,39 @@
 #!/usr/bin/env bash
-# Installs every Debian package skybake needs to build, test and bake.
-# Safe to run twice: it asks apt only for what is missing.
+# Installs the Debian packages skybake needs. Safe to run twice: it asks apt
+# only for what is missing.
+#   scripts/install-deps.sh          to build, test and bake (scripts/test.sh)
+#   scripts/install-deps.sh bake     to build the tool and bake (scripts/bake.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+mode="${1:-all}"
+case "$mode" in all|bake) ;; *) echo "install-deps: unknown mode '$mode' (all or bake)" >&2; exit 2 ;; esac
 
+# What building `skybake` (and its VDB and BC plugins) needs.
 packages=(
-  build-essential cmake ninja-build pkg-config clang-format
-  libopenvdb-dev libopenvdb-tools libboost-iostreams-dev
-  libopenimageio-dev openimageio-tools
-  libopenexr-dev openexr libimath-dev
+  build-essential cmake ninja-build pkg-config
+  libopenvdb-dev libboost-iostreams-dev
+  libopenexr-dev libimath-dev
   libglm-dev nlohmann-json3-dev rapidjson-dev libcli11-dev libtbb-dev zlib1g-dev
   libfmt-dev libspdlog-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
-  libnvtt-bin
   libsquish-dev
-  glslang-tools libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev
-  python3-pil
 )
-# Node.js runs independent readers in some tests; a machine may already have
-# it from another source (whose npm conflicts with Debian's), so ask apt only
-# when there is no node at all.
-if ! command -v node >/dev/null 2>&1; then packages+=(nodejs npm); fi
+# What the tests, benchmarks and sanitizer checks add: test frameworks, the
+# independent readers (OpenImageIO, OpenEXR's and OpenVDB's tools, nvtt,
+# Pillow), the shader compiler and a software GL, clang with its sanitizer
+# and fuzzer runtime.
+if [ "$mode" = all ]; then
+  packages+=(
+    clang-format libopenvdb-tools libopenimageio-dev openimageio-tools openexr
+    libgtest-dev libgmock-dev libbenchmark-dev
+    libnvtt-bin python3-pil
+    glslang-tools libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev
+    clang libclang-rt-14-dev
+  )
+  # Node.js runs independent readers in some tests; a machine may already have
+  # it from another source (whose npm conflicts with Debian's), so ask apt only
+  # when there is no node at all.
+  if ! command -v node >/dev/null 2>&1; then packages+=(nodejs npm); fi
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -41,7 +54,7 @@ else
 fi
 
 # The npm packages the tests read files with, pinned by tests/js/package-lock.json.
-if [ ! -d tests/js/node_modules ] || [ tests/js/package-lock.json -nt tests/js/node_modules ]; then
+if [ "$mode" = all ] && { [ ! -d tests/js/node_modules ] || [ tests/js/package-lock.json -nt tests/js/node_modules ]; }; then
   echo "install-deps: npm packages for tests/js"
   (cd tests/js && npm ci --no-audit --no-fund --loglevel=error)
 fi

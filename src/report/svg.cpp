@@ -1,6 +1,7 @@
 // The log-log chart of the report page (html.hpp).
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -61,8 +62,11 @@ std::string loglog_svg(const std::vector<PlotPoint>& points, const std::string& 
     y_lo = std::min(y_lo, p.y), y_hi = std::max(y_hi, p.y);
   }
   if (pts.empty()) x_lo = y_lo = 0.1, x_hi = y_hi = 1.0;
-  const auto [xa, xb] = decades(x_lo, x_hi);
-  const auto [ya, yb] = decades(y_lo, y_hi);
+  // Plain variables, not structured bindings: lambdas below capture them
+  // (C++17 does not allow capturing a binding; clang refuses it).
+  double xa, xb, ya, yb;
+  std::tie(xa, xb) = decades(x_lo, x_hi);
+  std::tie(ya, yb) = decades(y_lo, y_hi);
   const double pw = kWidth - kLeft - kRight, ph = kHeight - kTop - kBottom;
   auto sx = [&](double x) { return kLeft + (std::log10(x) - xa) / (xb - xa) * pw; };
   auto sy = [&](double y) { return kTop + (yb - std::log10(y)) / (yb - ya) * ph; };

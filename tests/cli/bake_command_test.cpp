@@ -351,7 +351,7 @@ TEST(BakeCommand, ProgressLineOnATerminalShowsElapsedAndEta) {
   text.replace(text.find("[192, 108]"), 10, "[384, 216]");
   std::ofstream(dir / "earth.json", std::ios::binary) << text;
   const fs::path typescript = dir / "typescript";
-  const std::string cmd = std::string(SKYBAKE_EXE) + " bake " + (dir / "earth.json").string() +
+  const std::string cmd = skybake::test::skybake_exe() + " bake " + (dir / "earth.json").string() +
                           " -o " + (dir / "out").string() + " --only skyview --threads 1";
   const std::string shell = "script -qec '" + cmd + "' /dev/null >" + typescript.string() + " 2>&1";
   ASSERT_EQ(std::system(shell.c_str()), 0) << read_file(typescript);

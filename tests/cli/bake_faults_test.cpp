@@ -75,7 +75,7 @@ int wait_status(const Child& c) {
 
 std::vector<std::string> bake_args(const fs::path& preset, const fs::path& out,
                                    std::vector<std::string> more = {}) {
-  std::vector<std::string> a = {SKYBAKE_EXE, "bake", preset.string(), "-o", out.string(), "-q"};
+  std::vector<std::string> a = {skybake::test::skybake_exe(), "bake", preset.string(), "-o", out.string(), "-q"};
   a.insert(a.end(), more.begin(), more.end());
   return a;
 }

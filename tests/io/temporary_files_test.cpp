@@ -257,7 +257,7 @@ TEST(TemporaryFiles, EveryWriteIsFlushedBeforeTheRenameAndTheFolderAfter) {
   const fs::path dir = test::fresh_dir("temp_fsync");
   const fs::path trace = dir / "trace.txt";
   const std::string cmd = "strace -f -e trace=openat,fsync,rename,renameat,renameat2 -o '" +
-                          trace.string() + "' '" + SKYBAKE_EXE + "' bake '" +
+                          trace.string() + "' '" + test::skybake_exe() + "' bake '" +
                           test::source_path("presets/earth.json").string() + "' --only transmittance -q -o '" +
                           (dir / "out").string() + "' -j 1 >/dev/null 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << "strace must be installed: " << cmd;

@@ -47,6 +47,11 @@ fs::path source_path(const std::string& relative) {
   return fs::path(SKYBAKE_SOURCE_DIR) / relative;
 }
 
+std::string skybake_exe() {
+  const char* other = std::getenv("SKYBAKE_TEST_EXE");
+  return other && *other ? std::string(other) : std::string(SKYBAKE_EXE);
+}
+
 RunResult run_skybake(const std::vector<std::string>& args, const fs::path& cwd) {
   static int counter = 0;
   const fs::path capture = fs::path(SKYBAKE_TEST_TMP) / "capture";
@@ -55,7 +60,7 @@ RunResult run_skybake(const std::vector<std::string>& args, const fs::path& cwd)
   const fs::path out = capture / (tag + ".out"), err = capture / (tag + ".err");
   std::string cmd;
   if (!cwd.empty()) cmd += "cd " + quote(cwd.string()) + " && ";
-  cmd += quote(SKYBAKE_EXE);
+  cmd += quote(skybake_exe());
   for (const std::string& a : args) cmd += " " + quote(a);
   cmd += " >" + quote(out.string()) + " 2>" + quote(err.string());
   const int status = std::system(cmd.c_str());

@@ -14,7 +14,11 @@ struct RunResult {
   std::string err;
 };
 
-// Runs SKYBAKE_EXE with the arguments (shell-quoted here), in `cwd` if given.
+// The skybake executable under test: $SKYBAKE_TEST_EXE when set (a sanitizer
+// build, scripts/sanitize.sh), else the one this build made (SKYBAKE_EXE).
+std::string skybake_exe();
+
+// Runs skybake_exe() with the arguments (shell-quoted here), in `cwd` if given.
 RunResult run_skybake(const std::vector<std::string>& args, const std::filesystem::path& cwd = {});
 
 // An empty folder under SKYBAKE_TEST_TMP named after the test (and this
