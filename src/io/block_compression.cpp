@@ -3,17 +3,15 @@
 #include "io/block_compression.hpp"
 
 #include <dlfcn.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <climits>
 #include <cmath>
-#include <cstdlib>
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
 #include "core/error.hpp"
+#include "io/plugin_library.hpp"
 #include "io/squish_plugin.hpp"
 
 namespace skybake {
@@ -42,50 +40,21 @@ struct BcPlugin {
   std::string problem;  // why it could not be loaded, with every path tried
 };
 
-std::string executable_dir() {
-  char buffer[PATH_MAX];
-  const ssize_t n = ::readlink("/proc/self/exe", buffer, sizeof buffer - 1);
-  if (n <= 0) return "";
-  const std::string exe(buffer, size_t(n));
-  const size_t slash = exe.rfind('/');
-  return slash == std::string::npos ? "" : exe.substr(0, slash);
-}
-
-std::vector<std::string> candidates() {
-  if (const char* env = std::getenv("SKYBAKE_BC_PLUGIN"); env && *env) return {env};
-  std::vector<std::string> paths;
-  if (const std::string dir = executable_dir(); !dir.empty())
-    paths.push_back(dir + "/" + kBcPluginName);
-#ifdef SKYBAKE_PLUGIN_BUILD_DIR
-  const std::string built = std::string(SKYBAKE_PLUGIN_BUILD_DIR) + "/" + kBcPluginName;
-  if (paths.empty() || paths.front() != built) paths.push_back(built);
-#endif
-  return paths;
-}
-
 BcPlugin load() {
   BcPlugin plugin;
-  std::vector<std::string> tried;
-  for (const std::string& path : candidates()) {
-    void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!handle) {
-      const char* why = ::dlerror();
-      tried.push_back(fmt::format("{} ({})", path, why ? why : "cannot open"));
-      continue;
-    }
-    auto* abi = reinterpret_cast<SkybakeBcAbiFn*>(::dlsym(handle, "skybake_bc_abi"));
-    plugin.compress = reinterpret_cast<SkybakeBcCompressFn*>(::dlsym(handle, "skybake_bc_compress"));
-    if (abi && abi() == kBcPluginAbi && plugin.compress) return plugin;
-    tried.push_back(fmt::format("{} (not a skybake block-compression plugin of interface {})",
-                                path, kBcPluginAbi));
-    plugin.compress = nullptr;
-    ::dlclose(handle);
-  }
-  std::string list;
-  for (const std::string& t : tried) list += (list.empty() ? "" : "; ") + t;
-  plugin.problem = fmt::format(
-      "cannot block-compress: the plugin {} (libsquish) could not be loaded; tried {}",
-      kBcPluginName, list.empty() ? std::string("no path") : list);
+  const PluginLibrary lib = open_plugin_library(
+      "SKYBAKE_BC_PLUGIN", kBcPluginName,
+      [&](void* handle) {
+        auto* abi = reinterpret_cast<SkybakeBcAbiFn*>(::dlsym(handle, "skybake_bc_abi"));
+        plugin.compress =
+            reinterpret_cast<SkybakeBcCompressFn*>(::dlsym(handle, "skybake_bc_compress"));
+        return abi && abi() == kBcPluginAbi && plugin.compress;
+      },
+      fmt::format("not a skybake block-compression plugin of interface {}", kBcPluginAbi));
+  if (!lib.handle)
+    plugin.problem = fmt::format(
+        "cannot block-compress: the plugin {} (libsquish) could not be loaded; {}",
+        kBcPluginName, lib.problem);
   return plugin;
 }
 

@@ -1,18 +1,14 @@
 // write_vdb and read_vdb (vdb.hpp): forwarded to the VDB plugin, opened with
 // dlopen on first use (vdb_plugin.hpp says why and where it is looked for).
 #include <dlfcn.h>
-#include <unistd.h>
 
-#include <climits>
-#include <cstdlib>
-#include <mutex>
 #include <string>
-#include <vector>
 
 #include <fmt/format.h>
 
 #include "core/error.hpp"
 #include "io/vdb.hpp"
+#include "io/plugin_library.hpp"
 #include "io/vdb_plugin.hpp"
 
 namespace skybake {
@@ -25,51 +21,20 @@ struct VdbPlugin {
   std::string problem;  // why it could not be loaded, with every path tried
 };
 
-std::string executable_dir() {
-  char buffer[PATH_MAX];
-  const ssize_t n = ::readlink("/proc/self/exe", buffer, sizeof buffer - 1);
-  if (n <= 0) return "";
-  const std::string exe(buffer, size_t(n));
-  const size_t slash = exe.rfind('/');
-  return slash == std::string::npos ? "" : exe.substr(0, slash);
-}
-
-std::vector<std::string> candidates() {
-  if (const char* env = std::getenv("SKYBAKE_VDB_PLUGIN"); env && *env) return {env};
-  std::vector<std::string> paths;
-  if (const std::string dir = executable_dir(); !dir.empty())
-    paths.push_back(dir + "/" + kVdbPluginName);
-#ifdef SKYBAKE_PLUGIN_BUILD_DIR
-  const std::string built = std::string(SKYBAKE_PLUGIN_BUILD_DIR) + "/" + kVdbPluginName;
-  if (paths.empty() || paths.front() != built) paths.push_back(built);
-#endif
-  return paths;
-}
-
 VdbPlugin load() {
   VdbPlugin plugin;
-  std::vector<std::string> tried;
-  for (const std::string& path : candidates()) {
-    void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!handle) {
-      const char* why = ::dlerror();
-      tried.push_back(fmt::format("{} ({})", path, why ? why : "cannot open"));
-      continue;
-    }
-    auto* abi = reinterpret_cast<SkybakeVdbAbiFn*>(::dlsym(handle, "skybake_vdb_abi"));
-    plugin.write = reinterpret_cast<SkybakeVdbWriteFn*>(::dlsym(handle, "skybake_vdb_write"));
-    plugin.read = reinterpret_cast<SkybakeVdbReadFn*>(::dlsym(handle, "skybake_vdb_read"));
-    if (abi && abi() == kVdbPluginAbi && plugin.write && plugin.read) return plugin;
-    tried.push_back(fmt::format("{} (not a skybake {} VDB plugin of interface {})", path,
-                                SKYBAKE_VERSION, kVdbPluginAbi));
-    plugin.write = nullptr;
-    plugin.read = nullptr;
-    ::dlclose(handle);
-  }
-  std::string list;
-  for (const std::string& t : tried) list += (list.empty() ? "" : "; ") + t;
-  plugin.problem = fmt::format("the VDB plugin {} could not be loaded; tried {}", kVdbPluginName,
-                               list.empty() ? std::string("no path") : list);
+  const PluginLibrary lib = open_plugin_library(
+      "SKYBAKE_VDB_PLUGIN", kVdbPluginName,
+      [&](void* handle) {
+        auto* abi = reinterpret_cast<SkybakeVdbAbiFn*>(::dlsym(handle, "skybake_vdb_abi"));
+        plugin.write = reinterpret_cast<SkybakeVdbWriteFn*>(::dlsym(handle, "skybake_vdb_write"));
+        plugin.read = reinterpret_cast<SkybakeVdbReadFn*>(::dlsym(handle, "skybake_vdb_read"));
+        return abi && abi() == kVdbPluginAbi && plugin.write && plugin.read;
+      },
+      fmt::format("not a skybake {} VDB plugin of interface {}", SKYBAKE_VERSION, kVdbPluginAbi));
+  if (!lib.handle)
+    plugin.problem =
+        fmt::format("the VDB plugin {} could not be loaded; {}", kVdbPluginName, lib.problem);
   return plugin;
 }
 
