@@ -78,39 +78,107 @@ std::vector<double> kink_altitudes(const Atmosphere& atm) {
   return kinks;
 }
 
+// sigma_t(h) of every component with extinction, laid out for the
+// quadrature's inner loop: each component's sigma_t = sigma_s + sigma_a summed
+// once and its layer tops accumulated once. The arithmetic per sample is
+// extinction_at's, term for term, so the sums are bit-identical to it.
+class ExtinctionProfile {
+ public:
+  explicit ExtinctionProfile(const Atmosphere& atm) {
+    for (const MediumComponent& c : atm.components) {
+      const glm::dvec3 sigma_t = c.scattering_per_m + c.absorption_per_m;
+      // A component without extinction adds d * 0 = +0 to a sum that starts
+      // at +0, so leaving it out changes no bit.
+      if (sigma_t == glm::dvec3(0.0) || c.density.layers.empty()) continue;
+      Component out{sigma_t, layers_.size(), c.density.layers.size()};
+      double layer_bottom = 0.0;
+      for (size_t i = 0; i < c.density.layers.size(); ++i) {
+        const DensityLayer& l = c.density.layers[i];
+        const bool last = i + 1 == c.density.layers.size();
+        const double inf = std::numeric_limits<double>::infinity();
+        layers_.push_back({last ? inf : layer_bottom + l.width_m, l});
+        layer_bottom += l.width_m;
+      }
+      components_.push_back(out);
+    }
+  }
+
+  // extinction_at(atm, h): the first layer whose top lies above h (the last
+  // has none), its formula clamped to [0, 1] (medium.cpp density_at).
+  glm::dvec3 operator()(double h) const {
+    glm::dvec3 sum(0.0);
+    for (const Component& c : components_) {
+      const Layer* layer = &layers_[c.first_layer];
+      const Layer* last = layer + (c.layer_count - 1);
+      while (layer != last && !(h < layer->top)) ++layer;
+      const DensityLayer& l = layer->layer;
+      const double e = l.exp_term == 0.0 ? 0.0 : l.exp_term * std::exp(l.exp_scale_per_m * h);
+      const double d = std::clamp(e + l.linear_term_per_m * h + l.constant_term, 0.0, 1.0);
+      if (d != 0.0) sum += d * c.sigma_t;
+    }
+    return sum;
+  }
+
+ private:
+  struct Layer {
+    double top;  // the altitude where the next layer starts; +inf for the last
+    DensityLayer layer;
+  };
+  struct Component {
+    glm::dvec3 sigma_t;
+    size_t first_layer, layer_count;
+  };
+  std::vector<Layer> layers_;
+  std::vector<Component> components_;
+};
+
+// What one ray's quadrature needs besides the ray: the kinks, the profile,
+// and scratch arrays reused from ray to ray (a bake row allocates once).
+struct RayQuadrature {
+  explicit RayQuadrature(const Atmosphere& atm) : kinks(kink_altitudes(atm)), extinction(atm) {}
+  std::vector<double> kinks;
+  ExtinctionProfile extinction;
+  std::vector<double> scratch, breakpoints;
+  std::vector<int> segments;
+};
+
 // Distances in [0, d] cutting the segment (r, mu, d) into smooth pieces of
 // monotone altitude: its ends, the perigee s = -r mu and where it crosses the
 // sphere of each kink altitude, s = -r mu +- sqrt(r^2 mu^2 + (R - r)(R + r)).
-std::vector<double> segment_breakpoints(const Atmosphere& atm, const std::vector<double>& kinks,
-                                        double r, double mu, double d) {
-  std::vector<double> s = {0.0, d};
+// Written to q.breakpoints.
+void segment_breakpoints(const Atmosphere& atm, RayQuadrature& q, double r, double mu, double d) {
+  std::vector<double>& s = q.scratch;
+  s.assign({0.0, d});
   const double perigee = -r * mu;
   if (perigee > 0.0 && perigee < d) s.push_back(perigee);
-  for (double h : kinks) {
+  for (double h : q.kinks) {
     const double radius = atm.bottom_radius_m + h;
     const double disc = r * r * mu * mu + (radius - r) * (radius + r);
     if (disc <= 0.0) continue;
-    const double q = std::sqrt(disc);
-    for (double crossing : {perigee - q, perigee + q})
+    const double root = std::sqrt(disc);
+    for (double crossing : {perigee - root, perigee + root})
       if (crossing > 0.0 && crossing < d) s.push_back(crossing);
   }
   std::sort(s.begin(), s.end());
   // Drop pieces too short to matter (a kink grazed at the perigee, rounding).
   const double min_length = 1e-12 * d;
-  std::vector<double> out = {s.front()};
+  std::vector<double>& out = q.breakpoints;
+  out.assign(1, s.front());
   for (size_t i = 1; i + 1 < s.size(); ++i)
     if (s[i] - out.back() > min_length) out.push_back(s[i]);
   if (out.size() > 1 && d - out.back() <= min_length) out.pop_back();
   out.push_back(d);
-  return out;
 }
 
-// Segments per piece: proportional to the piece's length, at least one each,
-// the remainder to the pieces with the longest segments.
-std::vector<int> segments_per_piece(const std::vector<double>& s, int steps) {
+// Segments per piece of q.breakpoints, written to q.segments: proportional to
+// the piece's length, at least one each, the remainder to the pieces with the
+// longest segments.
+void segments_per_piece(RayQuadrature& q, int steps) {
+  const std::vector<double>& s = q.breakpoints;
   const size_t pieces = s.size() - 1;
   const double d = s.back() - s.front();
-  std::vector<int> n(pieces);
+  std::vector<int>& n = q.segments;
+  n.assign(pieces, 0);
   int used = 0;
   for (size_t i = 0; i < pieces; ++i) {
     n[i] = std::max(1, int(steps * ((s[i + 1] - s[i]) / d)));
@@ -122,11 +190,11 @@ std::vector<int> segments_per_piece(const std::vector<double>& s, int steps) {
       if ((s[i + 1] - s[i]) / n[i] > (s[longest + 1] - s[longest]) / n[longest]) longest = i;
     ++n[longest];
   }
-  return n;
 }
 
 // 3-point Gauss-Legendre on [a, b] (exact for quintics) of sigma_t along the ray.
-glm::dvec3 gauss3_extinction(const Atmosphere& atm, double r, double mu, double a, double b) {
+glm::dvec3 gauss3_extinction(const Atmosphere& atm, const ExtinctionProfile& extinction, double r,
+                             double mu, double a, double b) {
   constexpr double kNodes[3] = {-0.77459666924148338, 0.0, 0.77459666924148338};  // -+sqrt(3/5)
   constexpr double kWeights[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
   const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
@@ -134,17 +202,19 @@ glm::dvec3 gauss3_extinction(const Atmosphere& atm, double r, double mu, double 
   for (int k = 0; k < 3; ++k) {
     const double s = mid + half * kNodes[k];
     const double h = std::max(0.0, radius_after(r, mu, s) - atm.bottom_radius_m);
-    sum += kWeights[k] * extinction_at(atm, h);
+    sum += kWeights[k] * extinction(h);
   }
   return half * sum;
 }
 
-// The quadrature of compute_optical_depth with the kinks already known.
-glm::dvec3 integrate_optical_depth(const Atmosphere& atm, const std::vector<double>& kinks,
-                                   double r, double mu, double d, int steps) {
+// The quadrature of compute_optical_depth with the kinks and profile already known.
+glm::dvec3 integrate_optical_depth(const Atmosphere& atm, RayQuadrature& q, double r, double mu,
+                                   double d, int steps) {
   if (!(d > 0.0) || atm.components.empty()) return glm::dvec3(0.0);
-  const std::vector<double> s = segment_breakpoints(atm, kinks, r, mu, d);
-  const std::vector<int> n = segments_per_piece(s, steps);
+  segment_breakpoints(atm, q, r, mu, d);
+  segments_per_piece(q, steps);
+  const std::vector<double>& s = q.breakpoints;
+  const std::vector<int>& n = q.segments;
   const double perigee = -r * mu;
   glm::dvec3 tau(0.0);
   for (size_t i = 0; i + 1 < s.size(); ++i) {
@@ -159,7 +229,8 @@ glm::dvec3 integrate_optical_depth(const Atmosphere& atm, const std::vector<doub
       const double t = double(k) / n[i];
       const double next =
           k == n[i] ? (descending ? s[i] : s[i + 1]) : low_end + sign * length * t * t;
-      tau += gauss3_extinction(atm, r, mu, std::min(prev, next), std::max(prev, next));
+      tau += gauss3_extinction(atm, q.extinction, r, mu, std::min(prev, next),
+                               std::max(prev, next));
       prev = next;
     }
   }
@@ -236,7 +307,8 @@ void r_mu_from_transmittance_uv(const Atmosphere& atm, glm::dvec2 uv, int width,
 // ---- Integration ----
 
 glm::dvec3 compute_optical_depth(const Atmosphere& atm, double r, double mu, double d, int steps) {
-  return integrate_optical_depth(atm, kink_altitudes(atm), r, mu, d, steps);
+  RayQuadrature q(atm);
+  return integrate_optical_depth(atm, q, r, mu, d, steps);
 }
 
 glm::dvec3 compute_optical_depth_to_top(const Atmosphere& atm, double r, double mu, int steps) {
@@ -259,10 +331,11 @@ Texture bake_transmittance_lut(const Atmosphere& atm, const TransmittanceLutSpec
         spec.width, spec.height, spec.steps));
   Texture tex(spec.width, spec.height, 1, 1, {"R", "G", "B"});
   set_transmittance_metadata(tex.metadata, atm, spec);
-  const std::vector<double> kinks = kink_altitudes(atm);
+  const RayQuadrature shared(atm);
   ProgressCounter progress(ctx, size_t(spec.height));
   tbb::parallel_for(
       tbb::blocked_range<int>(0, spec.height), [&](const tbb::blocked_range<int>& rows) {
+        RayQuadrature q = shared;  // scratch arrays of this task
         for (int y = rows.begin(); y != rows.end(); ++y) {
           for (int x = 0; x < spec.width; ++x) {
             const glm::dvec2 uv(texel_center(x, spec.width), texel_center(y, spec.height));
@@ -270,7 +343,7 @@ Texture bake_transmittance_lut(const Atmosphere& atm, const TransmittanceLutSpec
             r_mu_from_transmittance_uv(atm, uv, spec.width, spec.height, r, mu);
             const double d = distance_to_top_boundary(atm.top_radius_m, r, mu);
             const glm::dvec3 T = transmittance_from_optical_depth(
-                integrate_optical_depth(atm, kinks, r, mu, d, spec.steps));
+                integrate_optical_depth(atm, q, r, mu, d, spec.steps));
             float* texel = tex.texel(x, y);
             for (int c = 0; c < 3; ++c) texel[c] = float(T[c]);
           }
