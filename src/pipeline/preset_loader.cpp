@@ -21,10 +21,11 @@
 #include "core/safe_input.hpp"
 #include "core/suggest.hpp"
 #include "io/dds.hpp"
+#include "pipeline/atmosphere_preset.hpp"
 #include "pipeline/cloud_products.hpp"
-#include "pipeline/dds_output.hpp"
-#include "pipeline/ktx2_output.hpp"
 #include "pipeline/output_budget.hpp"
+#include "pipeline/output_preset.hpp"
+#include "pipeline/preset_source.hpp"
 #include "pipeline/product_tables.hpp"
 #include "pipeline/schema_validator.hpp"
 
@@ -32,66 +33,22 @@ namespace skybake {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using preset::Problems;
+using preset::Source;
+using preset::kMaxSchemaViolations;
+using preset::token;
+using preset::atmosphere_from;
+using preset::check_name_bytes;
+using preset::add_components;
+using preset::check_scene_budget;
+using preset::number;
+using preset::output_from;
+using preset::rgb;
 
 namespace {
 
-// Output keys every product takes; the rest belong to the product's schema.
-const std::vector<std::string> kCommonOutputKeys = {
-    "product", "name", "size", "formats", "precision", "dds_format", "ktx2_format", "max_error"};
-
 // Keys that never change an output: left out of Scene.resolved (the hash input).
 const std::vector<std::string> kNonSemanticKeys = {"$schema", "description"};
-
-// Output keys of the file writers, which every product takes too.
-const std::vector<std::string> kWriterOutputKeys = {"exr_compression", "dds_header",
-                                                    "grid_names"};
-
-// Where a JSON subtree came from: the file and the subtree's pointer in it.
-struct Source {
-  std::string file;
-  std::string prefix;
-
-  [[noreturn]] void fail(const std::string& pointer, const std::string& rule) const {
-    throw PresetError(file, prefix + pointer, rule);
-  }
-};
-
-// The problems of one preset and of the files it references, collected so
-// that one run reports all of them (PresetError lists the first
-// kMaxListedProblems and counts the rest).
-class Problems {
- public:
-  void add(const Source& src, const std::string& pointer, const std::string& rule) {
-    list_.push_back({src.file, src.prefix + pointer, rule});
-  }
-  // Runs `check`; the problems of a PresetError it throws are kept instead,
-  // and false is returned.
-  template <typename Check>
-  bool collect(Check&& check) {
-    try {
-      check();
-      return true;
-    } catch (const PresetError& e) {
-      list_.insert(list_.end(), e.problems().begin(), e.problems().end());
-      return false;
-    }
-  }
-  bool empty() const { return list_.empty(); }
-  size_t size() const { return list_.size(); }
-  void throw_if_any() const {
-    if (!list_.empty()) throw PresetError(list_);
-  }
-
- private:
-  std::vector<PresetProblem> list_;
-};
-
-std::string token(const std::string& key) {
-  return (json::json_pointer() / key).to_string();
-}
-std::string token(size_t index) {
-  return "/" + std::to_string(index);
-}
 
 // The whole file, or nullopt with the reason in `why`: only a regular file
 // within the JSON size limit (core/safe_input.hpp) is read.
@@ -142,9 +99,6 @@ json parse_preset(const std::string& text, const std::string& display, const std
   check_kind(doc, display, kind);
   return doc;
 }
-
-// Schema violations looked for in one document before giving up.
-constexpr size_t kMaxSchemaViolations = 100;
 
 // Throws a PresetError listing every violation of `schema` in `doc` (named in
 // `src`). `patched`, if given, first receives the document with each
@@ -209,382 +163,6 @@ void inline_section(json& scene, const std::string& key, const fs::path& scene_f
                              key, describe_json(v)));
   }
   strip_non_semantic(v);
-}
-
-double number(const json& obj, const std::string& key, const Source& src, const std::string& at) {
-  const double x = obj.at(key).get<double>();
-  if (!std::isfinite(x)) src.fail(at + token(key), "must be a finite number");
-  return x;
-}
-
-glm::dvec3 rgb(const json& obj, const std::string& key, const Source& src, const std::string& at) {
-  if (!obj.contains(key)) return glm::dvec3(0.0);
-  glm::dvec3 c;
-  for (int i = 0; i < 3; ++i) {
-    c[i] = obj.at(key).at(i).get<double>();
-    if (!std::isfinite(c[i]) || c[i] < 0.0)
-      src.fail(at + token(key) + token(i), "must be a finite number >= 0");
-  }
-  return c;
-}
-
-DensityProfile density_from(const json& d, const Source& src, const std::string& at) {
-  if (d.contains("exponential")) {
-    const std::string p = at + "/exponential";
-    const double h_km = number(d["exponential"], "scale_height_km", src, p);
-    if (!(h_km > 0.0)) src.fail(p + "/scale_height_km", fmt::format("must be > 0, got {}", h_km));
-    return exponential_profile(h_km * 1e3);
-  }
-  if (d.contains("tent")) {
-    const std::string p = at + "/tent";
-    const double b = number(d["tent"], "bottom_km", src, p);
-    const double c = number(d["tent"], "center_km", src, p);
-    const double t = number(d["tent"], "top_km", src, p);
-    if (!(b < c))
-      src.fail(p + "/center_km",
-               fmt::format("must be greater than bottom_km ({} <= {})",
-                           d["tent"]["center_km"].dump(), d["tent"]["bottom_km"].dump()));
-    if (!(c < t))
-      src.fail(p + "/top_km",
-               fmt::format("must be greater than center_km ({} <= {})", d["tent"]["top_km"].dump(),
-                           d["tent"]["center_km"].dump()));
-    return tent_profile(b * 1e3, c * 1e3, t * 1e3);
-  }
-  if (d.contains("uniform")) {
-    const std::string p = at + "/uniform";
-    const double b = number(d["uniform"], "bottom_km", src, p);
-    const double t = number(d["uniform"], "top_km", src, p);
-    if (!(b < t))
-      src.fail(p + "/top_km",
-               fmt::format("must be greater than bottom_km ({} <= {})",
-                           d["uniform"]["top_km"].dump(), d["uniform"]["bottom_km"].dump()));
-    return uniform_profile(b * 1e3, t * 1e3);
-  }
-  // "layers": the schema guarantees exactly one form.
-  DensityProfile profile;
-  const json& layers = d.at("layers");
-  for (size_t i = 0; i < layers.size(); ++i) {
-    const std::string p = at + "/layers" + token(i);
-    DensityLayer l;
-    l.width_m = number(layers[i], "width_km", src, p) * 1e3;
-    l.exp_term = number(layers[i], "exp_term", src, p);
-    l.exp_scale_per_m = number(layers[i], "exp_scale_per_km", src, p) * 1e-3;
-    l.linear_term_per_m = number(layers[i], "linear_term_per_km", src, p) * 1e-3;
-    l.constant_term = number(layers[i], "constant_term", src, p);
-    profile.layers.push_back(l);
-  }
-  return profile;
-}
-
-PhaseKind phase_from(const std::string& name) {
-  if (name == "rayleigh") return PhaseKind::rayleigh;
-  if (name == "cornette_shanks") return PhaseKind::cornette_shanks;
-  if (name == "henyey_greenstein") return PhaseKind::henyey_greenstein;
-  return PhaseKind::none;
-}
-
-// Adds a component unless its coefficients are all zero (it would cost time
-// and change nothing).
-void add_component(Atmosphere& atm, MediumComponent c) {
-  if (c.scattering_per_m == glm::dvec3(0.0) && c.absorption_per_m == glm::dvec3(0.0)) return;
-  atm.components.push_back(std::move(c));
-}
-
-MediumComponent component_from(const std::string& name, const json& j, PhaseKind default_phase,
-                               const Source& src, const std::string& at) {
-  MediumComponent c;
-  c.name = name;
-  c.scattering_per_m = rgb(j, "scattering_per_m", src, at);
-  c.absorption_per_m = rgb(j, "absorption_per_m", src, at);
-  c.phase = j.contains("phase") ? phase_from(j["phase"].get<std::string>()) : default_phase;
-  c.g = j.contains("g") ? number(j, "g", src, at) : 0.0;
-  if (!(c.g > -1.0 && c.g < 1.0))
-    src.fail(at + "/g", fmt::format("must be in (-1, 1), got {}", c.g));
-  c.density = density_from(j.at("density"), src, at + "/density");
-  return c;
-}
-
-void check_top_radius(const json& planet, const Source& psrc, const json& atm, const Source& asrc) {
-  const double rb = number(planet, "radius_km", psrc, "");
-  const double rt = number(atm, "top_radius_km", asrc, "");
-  if (rt > rb) return;
-  const std::string values = atm["top_radius_km"].dump() + " <= " + planet["radius_km"].dump();
-  if (psrc.file == asrc.file)
-    asrc.fail("/top_radius_km",
-              fmt::format("must be greater than {}/radius_km ({})", psrc.prefix, values));
-  asrc.fail("/top_radius_km", fmt::format("must be greater than the planet's radius_km in {} ({})",
-                                          psrc.file, values));
-}
-
-// The components of `atm` into `a`, each checked on its own.
-void add_components(Atmosphere& a, const json& atm, const Source& asrc, Problems& problems) {
-  if (atm.contains("rayleigh"))
-    problems.collect([&] {
-      add_component(
-          a, component_from("rayleigh", atm["rayleigh"], PhaseKind::rayleigh, asrc, "/rayleigh"));
-    });
-  if (atm.contains("mie"))
-    problems.collect([&] {
-      add_component(a,
-                    component_from("mie", atm["mie"], PhaseKind::cornette_shanks, asrc, "/mie"));
-    });
-  if (atm.contains("ozone"))
-    problems.collect([&] {
-      add_component(a, component_from("ozone", atm["ozone"], PhaseKind::none, asrc, "/ozone"));
-    });
-  std::set<std::string> names = {"rayleigh", "mie", "ozone"};
-  const json extra = atm.value("extra", json::array());
-  for (size_t i = 0; i < extra.size(); ++i)
-    problems.collect([&] {
-      const std::string at = "/extra" + token(i);
-      const std::string name = extra[i]["name"].get<std::string>();
-      if (!names.insert(name).second)
-        asrc.fail(at + "/name", fmt::format("component name '{}' is already used", name));
-      MediumComponent c = component_from(name, extra[i], PhaseKind::none, asrc, at);
-      if (c.phase == PhaseKind::none && c.scattering_per_m != glm::dvec3(0.0))
-        asrc.fail(at + "/phase",
-                  "a component that scatters needs a phase function (scattering_per_m is not "
-                  "zero)");
-      add_component(a, std::move(c));
-    });
-}
-
-Atmosphere atmosphere_from(const json& planet, const Source& psrc, const json& atm,
-                           const Source& asrc, Problems& problems) {
-  problems.collect([&] { check_top_radius(planet, psrc, atm, asrc); });
-  Atmosphere a;
-  problems.collect([&] {
-    a.bottom_radius_m = number(planet, "radius_km", psrc, "") * 1e3;
-    a.top_radius_m = number(atm, "top_radius_km", asrc, "") * 1e3;
-    a.ground_albedo = rgb(planet, "ground_albedo", psrc, "");
-    a.sun_illuminance = rgb(atm["sun"], "illuminance", asrc, "/sun");
-    a.sun_angular_radius_rad = number(atm["sun"], "angular_radius_rad", asrc, "/sun");
-  });
-  add_components(a, atm, asrc, problems);
-  return a;
-}
-
-// The longest a file or folder name can be on the file systems skybake writes
-// to (NAME_MAX); a preset is refused here, not by the first write.
-constexpr size_t kMaxFileNameBytes = 255;
-
-// A name becomes a folder or file name: refuses control characters (a NUL
-// would cut it short: "ea\0rth" is the folder "ea") and names too long for
-// a file system.
-void check_name_bytes(const std::string& name, const std::string& longest_suffix,
-                      const Source& src, const std::string& pointer) {
-  for (size_t i = 0; i < name.size(); ++i) {
-    const unsigned char c = static_cast<unsigned char>(name[i]);
-    if (c < 0x20 || c == 0x7F)
-      src.fail(pointer, fmt::format("must not contain control characters, got U+{:04X} at byte {}",
-                                    unsigned(c), i));
-  }
-  if (name.size() + longest_suffix.size() > kMaxFileNameBytes)
-    src.fail(pointer, fmt::format("expected at most {} bytes per file name, got {} for the "
-                                  "name{}",
-                                  kMaxFileNameBytes, name.size() + longest_suffix.size(),
-                                  longest_suffix.empty() ? "" : " and '" + longest_suffix + "'"));
-}
-
-std::string gib(std::uint64_t bytes) { return fmt::format("{:.1f} GiB", double(bytes) / double(1ull << 30)); }
-
-// The texture with its layers against the output budget, then the memory its
-// bake peaks at against the bake budget (output_budget.hpp).
-void check_output_budget(const OutputSpec& spec, const Source& src) {
-  const int layers = output_layers(spec);
-  const std::uint64_t bytes = output_texture_bytes(spec);
-  if (layers > 1 && bytes > kMaxOutputBytes)
-    src.fail("/size", fmt::format("{} texels x {} layers ({}) need {} at 4 float32 channels, "
-                                  "over the {} GiB budget of one output",
-                                  fmt::join(spec.size, "x"), layers,
-                                  spec.product == "skyview" ? "one per view" : "one per panel",
-                                  gib(bytes), kMaxOutputBytes >> 30));
-  const std::uint64_t peak = output_peak_bytes(spec);
-  if (peak > kMaxBakeBytes)
-    src.fail("/size", fmt::format("baking {} {} ({} at 4 float32 channels) and writing {} takes "
-                                  "about {} of memory ({}x its texture), over the {} GiB budget "
-                                  "of a bake",
-                                  fmt::join(spec.size, "x"), spec.product, gib(bytes),
-                                  fmt::join(spec.formats, ", "), gib(peak), working_factor(spec),
-                                  kMaxBakeBytes >> 30));
-}
-
-// Every texture of a scene stays in memory until the scene is baked; the
-// largest bake's working memory comes on top.
-void check_scene_budget(const std::vector<OutputSpec>& outputs, const Source& src) {
-  std::uint64_t held = 0, extra = 0;
-  size_t largest = 0;
-  for (size_t i = 0; i < outputs.size(); ++i) {
-    // Each output is within the bake budget already, so no sum overflows.
-    const std::uint64_t bytes = output_texture_bytes(outputs[i]);
-    const std::uint64_t more = output_peak_bytes(outputs[i]) - bytes;
-    held += bytes;
-    if (more > extra) extra = more, largest = i;
-  }
-  if (held + extra <= kMaxBakeBytes) return;
-  src.fail("/outputs", fmt::format("the textures of the outputs take {} together and stay in "
-                                   "memory until the scene is baked; with the {} more that "
-                                   "baking {} takes, that is over the {} GiB budget of a bake",
-                                   gib(held), gib(extra), outputs[largest].pointer,
-                                   kMaxBakeBytes >> 30));
-}
-
-// VDB grid names: one per channel of the product's texture (the schema
-// checks each name and that they are distinct).
-void check_grid_names(const OutputSpec& spec, const Source& src) {
-  if (!spec.options.contains("grid_names")) return;
-  const size_t names = spec.options["grid_names"].size();
-  const int channels = output_channels(spec);
-  if (names != size_t(channels))
-    src.fail("/grid_names", fmt::format("expected one grid name per channel: {} for {} with these "
-                                        "options, got {}",
-                                        channels, spec.product, names));
-}
-
-std::string to_lower_ascii(std::string s) {
-  for (char& ch : s)
-    if (ch >= 'A' && ch <= 'Z') ch = char(ch - 'A' + 'a');
-  return s;
-}
-
-// Checks the product-specific keys of output `out` against the product's
-// schema and fills their defaults; false, with the problems in `problems`,
-// when they break it.
-bool product_options(json& out, const ProductInfo& info, const Source& src, Problems& problems) {
-  json options = json::object();
-  for (auto& [key, v] : out.items())
-    if (std::find(kCommonOutputKeys.begin(), kCommonOutputKeys.end(), key) ==
-            kCommonOutputKeys.end() &&
-        std::find(kWriterOutputKeys.begin(), kWriterOutputKeys.end(), key) ==
-            kWriterOutputKeys.end())
-      options[key] = v;
-  const std::string schema = "products/" + info.name + ".schema.json";
-  const bool has_schema = schema_exists(schema);
-  std::vector<std::string> known = kCommonOutputKeys;
-  known.insert(known.end(), kWriterOutputKeys.begin(), kWriterOutputKeys.end());
-  if (has_schema) {
-    for (const std::string& k : schema_property_names(schema)) known.push_back(k);
-    const std::vector<SchemaViolation> all =
-        validate_against_schema_all(options, schema, kMaxSchemaViolations);
-    for (const SchemaViolation& bad : all) {
-      if (bad.keyword != "additionalProperties") {
-        problems.add(src, bad.pointer, bad.rule);
-        continue;
-      }
-      const std::string key = json::json_pointer(bad.pointer).back();
-      problems.add(src, bad.pointer,
-                   fmt::format("unknown key '{}'{}", key, did_you_mean(key, known)));
-    }
-    if (!all.empty()) return false;
-    apply_schema_defaults(options, schema);
-  } else if (!options.empty()) {
-    for (auto& [key, v] : options.items())
-      problems.add(src, token(key), fmt::format("unknown key '{}'{} ({} takes no options)", key,
-                                                did_you_mean(key, known), info.name));
-    return false;
-  }
-  for (auto& [key, v] : options.items()) out[key] = v;
-  return true;
-}
-
-OutputSpec output_from(json& out, size_t index, const std::string& file,
-                       std::map<std::string, size_t>& products,
-                       std::map<std::string, size_t>& names, bool has_atmosphere,
-                       bool has_clouds, Problems& problems) {
-  OutputSpec spec;
-  spec.pointer = "/outputs" + token(index);
-  const Source src{file, spec.pointer};
-  spec.product = out["product"].get<std::string>();
-  const ProductInfo* info = find_product(spec.product);
-  if (!info)
-    src.fail("/product", fmt::format("unknown product '{}'{}; products: {}", spec.product,
-                                     did_you_mean(spec.product, product_names()),
-                                     product_names().empty()
-                                         ? "none registered"
-                                         : fmt::format("{}", fmt::join(product_names(), ", "))));
-  const bool options_ok = product_options(out, *info, src, problems);
-  const auto& sections = info->scene_sections;
-  if (!has_clouds && std::find(sections.begin(), sections.end(), "clouds") != sections.end())
-    problems.add(src, "/product",
-                 fmt::format("'{}' needs the scene's clouds section (inline or a file of "
-                             "presets/clouds/), and this scene has none",
-                             info->name));
-  if (!has_atmosphere && std::find(sections.begin(), sections.end(), "atmosphere") != sections.end())
-    problems.add(src, "/product",
-                 fmt::format("'{}' needs the scene's planet and atmosphere, and this scene "
-                             "has neither",
-                             info->name));
-
-  if (!out.contains("name")) out["name"] = info->name;
-  spec.name = out["name"].get<std::string>();
-  std::string longest_suffix;
-  for (const std::string& format : out.value("formats", info->default_formats)) {
-    const std::string suffix = format == "png" ? ".preview.png" : "." + format;
-    if (suffix.size() > longest_suffix.size()) longest_suffix = suffix;
-  }
-  check_name_bytes(spec.name, longest_suffix, src, "/name");
-  // Case-insensitive: out/<scene>/Sky.exr and sky.exr are one file on some
-  // systems. Checked before the product so that both rules are reachable with
-  // one product; a clash of default names hints at the product rule too.
-  const auto [clash, fresh] = names.emplace(to_lower_ascii(spec.name), index);
-  if (!fresh) {
-    const auto earlier = products.find(spec.product);
-    const bool same_product = earlier != products.end() && earlier->second == clash->second;
-    problems.add(src, "/name",
-                 fmt::format("output name '{}' is already used by /outputs/{}{}", spec.name,
-                             clash->second,
-                             same_product ? " (for the same product: a scene bakes each "
-                                            "product at most once)"
-                                          : ""));
-  }
-  if (!products.emplace(spec.product, index).second)
-    problems.add(src, "/product",
-                 fmt::format("product '{}' is already baked by /outputs/{}; a scene bakes "
-                             "each product at most once",
-                             spec.product, products[spec.product]));
-
-  if (!out.contains("size")) out["size"] = info->default_size;
-  spec.size = out["size"].get<std::vector<int>>();
-  const bool size_ok =
-      problems.collect([&] { check_output_size(*info, spec.size, file, spec.pointer + "/size"); });
-
-  if (!out.contains("formats")) out["formats"] = info->default_formats;
-  spec.formats = out["formats"].get<std::vector<std::string>>();
-  for (size_t k = 0; k < spec.formats.size(); ++k) {
-    const auto& allowed = info->allowed_formats;
-    if (std::find(allowed.begin(), allowed.end(), spec.formats[k]) == allowed.end())
-      problems.add(src, "/formats" + token(k),
-                   fmt::format("format '{}' is not available for {} (allowed: {})",
-                               spec.formats[k], info->name, fmt::join(allowed, ", ")));
-  }
-  spec.precision = out.value("precision", std::string("float"));
-  if (out.contains("exr_compression") &&
-      std::find(spec.formats.begin(), spec.formats.end(), "exr") == spec.formats.end())
-    problems.add(src, "/exr_compression", "is only used with \"exr\" in formats");
-  if (out.contains("dds_format") &&
-      std::find(spec.formats.begin(), spec.formats.end(), "dds") == spec.formats.end())
-    problems.add(src, "/dds_format", "is only used with \"dds\" in formats");
-  if (out.contains("grid_names") &&
-      std::find(spec.formats.begin(), spec.formats.end(), "vdb") == spec.formats.end())
-    problems.add(src, "/grid_names", "is only used with \"vdb\" in formats");
-  if (out.contains("max_error") && !info->measure_error)
-    problems.add(src, "/max_error",
-                 fmt::format("the bake measures no error of {} (only of atmosphere "
-                             "tables), so max_error has nothing to limit",
-                             info->name));
-  spec.options = out;
-  for (const ProductProblem& problem : dds_output_problems(spec, *info))
-    problems.add(src, problem.pointer, problem.rule);
-  for (const ProductProblem& problem : ktx2_output_problems(spec, *info))
-    problems.add(src, problem.pointer, problem.rule);
-  if (options_ok) problems.collect([&] { check_grid_names(spec, src); });
-  if (size_ok) check_output_budget(spec, src);  // a size already refused is not budgeted
-  // Product-specific rules the schema cannot say (e.g. a noise octave finer
-  // than two voxels), checked before anything is allocated.
-  if (info->check && options_ok && size_ok)
-    for (const ProductProblem& problem : info->check(spec))
-      problems.add(src, problem.pointer, problem.rule);
-  return spec;
 }
 
 bool contains(const std::vector<std::string>& list, const std::string& item) {
