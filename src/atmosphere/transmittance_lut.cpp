@@ -103,20 +103,31 @@ class ExtinctionProfile {
     }
   }
 
-  // extinction_at(atm, h): the first layer whose top lies above h (the last
-  // has none), its formula clamped to [0, 1] (medium.cpp density_at).
-  glm::dvec3 operator()(double h) const {
-    glm::dvec3 sum(0.0);
+  // out[j] = extinction_at(atm, h[j]): per component, the first layer whose
+  // top lies above h (the last has none), its formula clamped to [0, 1]
+  // (medium.cpp density_at). Component by component over all heights, so
+  // the exponentials of one component run back to back; each out[j] still
+  // sums the components in extinction_at's order.
+  void evaluate(const std::vector<double>& h, std::vector<glm::dvec3>& out) const {
+    out.assign(h.size(), glm::dvec3(0.0));
     for (const Component& c : components_) {
-      const Layer* layer = &layers_[c.first_layer];
-      const Layer* last = layer + (c.layer_count - 1);
-      while (layer != last && !(h < layer->top)) ++layer;
-      const DensityLayer& l = layer->layer;
-      const double e = l.exp_term == 0.0 ? 0.0 : l.exp_term * std::exp(l.exp_scale_per_m * h);
-      const double d = std::clamp(e + l.linear_term_per_m * h + l.constant_term, 0.0, 1.0);
-      if (d != 0.0) sum += d * c.sigma_t;
+      const Layer* first = &layers_[c.first_layer];
+      const Layer* last = first + (c.layer_count - 1);
+      for (size_t j = 0; j < h.size(); ++j) {
+        const Layer* layer = first;
+        while (layer != last && !(h[j] < layer->top)) ++layer;
+        const DensityLayer& l = layer->layer;
+        const double e =
+            l.exp_term == 0.0 ? 0.0 : l.exp_term * std::exp(l.exp_scale_per_m * h[j]);
+        // std::clamp's result for every input, NaN and -0 included, without
+        // its branches; adding d * sigma_t = +-0 to a sum that is never -0
+        // (it starts at +0) changes no bit, so extinction_at's skip of d = 0
+        // is not needed (sigma_t is finite).
+        const double d =
+            std::min(std::max(e + l.linear_term_per_m * h[j] + l.constant_term, 0.0), 1.0);
+        out[j] += d * c.sigma_t;
+      }
     }
-    return sum;
   }
 
  private:
@@ -140,6 +151,8 @@ struct RayQuadrature {
   ExtinctionProfile extinction;
   std::vector<double> scratch, breakpoints;
   std::vector<int> segments;
+  std::vector<double> halves, heights;  // per segment; per node (3 per segment)
+  std::vector<glm::dvec3> extinctions;  // per node
 };
 
 // Distances in [0, d] cutting the segment (r, mu, d) into smooth pieces of
@@ -192,19 +205,19 @@ void segments_per_piece(RayQuadrature& q, int steps) {
   }
 }
 
-// 3-point Gauss-Legendre on [a, b] (exact for quintics) of sigma_t along the ray.
-glm::dvec3 gauss3_extinction(const Atmosphere& atm, const ExtinctionProfile& extinction, double r,
-                             double mu, double a, double b) {
-  constexpr double kNodes[3] = {-0.77459666924148338, 0.0, 0.77459666924148338};  // -+sqrt(3/5)
-  constexpr double kWeights[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+// 3-point Gauss-Legendre (exact for quintics) nodes and weights on [-1, 1].
+constexpr double kGaussNodes[3] = {-0.77459666924148338, 0.0, 0.77459666924148338};  // -+sqrt(3/5)
+constexpr double kGaussWeights[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+
+// Appends the half length of [a, b] and the altitudes of its Gauss nodes on the ray.
+void add_gauss3_nodes(const Atmosphere& atm, RayQuadrature& q, double r, double mu, double a,
+                      double b) {
   const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
-  glm::dvec3 sum(0.0);
+  q.halves.push_back(half);
   for (int k = 0; k < 3; ++k) {
-    const double s = mid + half * kNodes[k];
-    const double h = std::max(0.0, radius_after(r, mu, s) - atm.bottom_radius_m);
-    sum += kWeights[k] * extinction(h);
+    const double s = mid + half * kGaussNodes[k];
+    q.heights.push_back(std::max(0.0, radius_after(r, mu, s) - atm.bottom_radius_m));
   }
-  return half * sum;
 }
 
 // The quadrature of compute_optical_depth with the kinks and profile already known.
@@ -216,7 +229,8 @@ glm::dvec3 integrate_optical_depth(const Atmosphere& atm, RayQuadrature& q, doub
   const std::vector<double>& s = q.breakpoints;
   const std::vector<int>& n = q.segments;
   const double perigee = -r * mu;
-  glm::dvec3 tau(0.0);
+  q.halves.clear();
+  q.heights.clear();
   for (size_t i = 0; i + 1 < s.size(); ++i) {
     // Grade s = low_end +- L t^2 toward the lowest altitude of the piece: its
     // end when the ray still descends to the perigee, else its start.
@@ -229,10 +243,17 @@ glm::dvec3 integrate_optical_depth(const Atmosphere& atm, RayQuadrature& q, doub
       const double t = double(k) / n[i];
       const double next =
           k == n[i] ? (descending ? s[i] : s[i + 1]) : low_end + sign * length * t * t;
-      tau += gauss3_extinction(atm, q.extinction, r, mu, std::min(prev, next),
-                               std::max(prev, next));
+      add_gauss3_nodes(atm, q, r, mu, std::min(prev, next), std::max(prev, next));
       prev = next;
     }
+  }
+  // sigma_t at every node, then each segment's Gauss sum in node order.
+  q.extinction.evaluate(q.heights, q.extinctions);
+  glm::dvec3 tau(0.0);
+  for (size_t i = 0; i < q.halves.size(); ++i) {
+    glm::dvec3 sum(0.0);
+    for (int k = 0; k < 3; ++k) sum += kGaussWeights[k] * q.extinctions[3 * i + k];
+    tau += q.halves[i] * sum;
   }
   return tau;
 }
