@@ -72,27 +72,49 @@ std::vector<glm::dvec3> fibonacci_sphere_directions(int n) {
 
 MultiscatteringSample compute_multiscattering(const Atmosphere& atm,
                                               const Texture& transmittance_lut, double r,
-                                              double mu_s,
-                                              const std::vector<glm::dvec3>& directions,
-                                              int steps) {
+                                              double mu_s, const SphereRule& rule, int steps) {
   MultiscatteringSample out;
-  if (directions.empty()) return out;
+  if (rule.dirs.empty()) return out;
   r = std::clamp(r, atm.bottom_radius_m, atm.top_radius_m);
   mu_s = clamp_cosine(mu_s);
   const glm::dvec3 position(0.0, 0.0, r);
   const glm::dvec3 sun_dir(safe_sqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
-  for (const glm::dvec3& dir : directions) {
-    const DirectionIntegrals d =
-        integrate_direction(atm, transmittance_lut, position, dir, sun_dir, std::max(steps, 1));
-    out.l2 += d.l_prime;
-    out.f_ms += d.l_f;
+  const bool weighted = !rule.weights.empty();
+  for (size_t k = 0; k < rule.dirs.size(); ++k) {
+    const DirectionIntegrals d = integrate_direction(atm, transmittance_lut, position,
+                                                     rule.dirs[k], sun_dir, std::max(steps, 1));
+    const double w = weighted ? rule.weights[k] : 1.0;
+    out.l2 += w * d.l_prime;
+    out.f_ms += w * d.l_f;
   }
-  // Integral over the sphere times p_u: each direction stands for 4 pi / n.
-  out.l2 /= double(directions.size());
-  out.f_ms /= double(directions.size());
+  // Integral over the sphere times p_u: the weights are fractions of 4 pi;
+  // without weights each direction stands for 4 pi / n.
+  if (!weighted) {
+    out.l2 /= double(rule.dirs.size());
+    out.f_ms /= double(rule.dirs.size());
+  }
   const glm::dvec3 f = glm::min(out.f_ms, glm::dvec3(kMaxMultiscatteringTransfer));
   out.psi_ms = out.l2 / (1.0 - f);  // eq. 9-10
   return out;
+}
+
+MultiscatteringSample compute_multiscattering(const Atmosphere& atm,
+                                              const Texture& transmittance_lut, double r,
+                                              double mu_s,
+                                              const std::vector<glm::dvec3>& directions,
+                                              int steps) {
+  return compute_multiscattering(atm, transmittance_lut, r, mu_s, SphereRule{directions, {}},
+                                 steps);
+}
+
+SphereRule multiscattering_rule(DirectionQuadrature quadrature, int directions,
+                                const Atmosphere& atm, double r) {
+  if (quadrature == DirectionQuadrature::fibonacci)
+    return {fibonacci_sphere_directions(directions), {}};
+  const double ratio = atm.bottom_radius_m / std::max(r, atm.bottom_radius_m);
+  const SymmetricGaussShape shape = symmetric_gauss_shape(directions);
+  return symmetric_gauss_rule(shape.below, shape.above, shape.azimuths,
+                              -safe_sqrt(1.0 - ratio * ratio));
 }
 
 namespace {
@@ -181,18 +203,28 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
   const MultiscatteringMapping mapping = spec.sun_mapping == SunMapping::terminator
                                              ? terminator_mapping(atm)
                                              : MultiscatteringMapping{};
-  const std::vector<glm::dvec3> dirs = fibonacci_sphere_directions(spec.directions);
+  const SphereRule fibonacci = {fibonacci_sphere_directions(spec.directions), {}};
+  const bool per_row = spec.quadrature != DirectionQuadrature::fibonacci;
   // Per-row maxima, reduced in row order afterwards: no shared mutable state.
   std::vector<double> row_fms_max(spec.height, 0.0);
   std::vector<int> row_clamped(spec.height, 0);
   ProgressCounter progress(ctx, size_t(spec.height));
   tbb::parallel_for(0, spec.height, [&](int y) {
+    // symmetric_gauss splits at the row's own horizon (r is constant along a row).
+    const SphereRule rule =
+        per_row ? multiscattering_rule(spec.quadrature, spec.directions, atm,
+                                       r_mu_s_from_multiscattering_uv(
+                                           atm, {0.5, texel_center(y, spec.height)}, spec.width,
+                                           spec.height, mapping)
+                                           .r)
+                : SphereRule{};
     for (int x = 0; x < spec.width; ++x) {
       const RadiusSunCosine p = r_mu_s_from_multiscattering_uv(
           atm, {texel_center(x, spec.width), texel_center(y, spec.height)}, spec.width,
           spec.height, mapping);
       const MultiscatteringSample s =
-          compute_multiscattering(atm, transmittance_lut, p.r, p.mu_s, dirs, spec.steps);
+          compute_multiscattering(atm, transmittance_lut, p.r, p.mu_s,
+                                  per_row ? rule : fibonacci, spec.steps);
       const double fms = std::max({s.f_ms.x, s.f_ms.y, s.f_ms.z});
       row_fms_max[y] = std::max(row_fms_max[y], fms);
       if (fms > kMaxMultiscatteringTransfer) ++row_clamped[y];
@@ -218,7 +250,16 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
   set_meta(m, "top_radius_m", atm.top_radius_m);
   set_meta(m, "units", std::string("1/sr (multiply by the sun illuminance)"));
   set_meta(m, "directions", spec.directions);
-  set_meta(m, "direction_set", std::string("spherical_fibonacci"));
+  if (spec.quadrature == DirectionQuadrature::fibonacci) {
+    set_meta(m, "direction_set", std::string("spherical_fibonacci"));
+  } else {
+    const SymmetricGaussShape shape = symmetric_gauss_shape(spec.directions);
+    set_meta(m, "direction_set", std::string("symmetric_gauss"));
+    set_meta(m, "direction_rule",
+             fmt::format("Gauss-Legendre zenith cosines, {} on [-1, mu_h(r)] and {} on "
+                         "[mu_h(r), 1], x {} midpoint azimuths on (0, pi) weighted twice",
+                         shape.below, shape.above, shape.azimuths));
+  }
   set_meta(m, "steps", spec.steps);
   set_meta(m, "fms_max", fms_max);
   set_meta(m, "fms_clamp", kMaxMultiscatteringTransfer);

@@ -16,13 +16,14 @@
 //               horizon's cosine at r, a_lo / a_hi the same atan at mu_s = -1 / 1:
 //               texels crowd where the planet's shadow sweeps over the air
 //               around the point and Psi_ms falls by orders of magnitude.
-// Per texel, eq. 5-10: over `directions` unit vectors spread uniformly on the
-// sphere (spherical Fibonacci set, below), march `steps` uniform segments to
+// Per texel, eq. 5-10: over a direction rule of `directions` rays (the
+// spherical Fibonacci set, below, or the symmetric Gauss rule,
+// DirectionQuadrature), march `steps` uniform segments to
 // the ground or the top and accumulate
-//   L2   = mean over directions of L'   (eq. 5-6: sigma_s T Vis T_sun p_u per
+//   L2   = weighted mean over directions of L'   (eq. 5-6: sigma_s T Vis T_sun p_u per
 //          segment, plus the lit ground albedo / pi T_sun max(mu_s, 0) T at a
 //          ground hit; E_I = 1)
-//   f_ms = mean over directions of L_f  (eq. 7-8: sigma_s T per segment)
+//   f_ms = weighted mean over directions of L_f  (eq. 7-8: sigma_s T per segment)
 // (the mean is the integral over 4 pi times p_u = 1 / (4 pi)); then
 //   Psi_ms = L2 / (1 - f_ms)            (eq. 9-10).
 // Segments use the energy-conserving integral (sky_integrator.hpp), so per
@@ -43,6 +44,7 @@
 #include <glm/glm.hpp>
 
 #include "atmosphere/medium.hpp"
+#include "atmosphere/sphere_rule.hpp"
 #include "core/bake_context.hpp"
 #include "core/texture.hpp"
 
@@ -76,12 +78,23 @@ double unit_from_sun_cosine(const MultiscatteringMapping& m, const Atmosphere& a
 double sun_cosine_from_unit(const MultiscatteringMapping& m, const Atmosphere& atm, double r,
                             double x_mu_s);
 
+// The direction rule of eq. 5-8. fibonacci: `directions` equal-weight points
+// of the spherical Fibonacci set (below; the paper's "uniformly distributed
+// directions"). symmetric_gauss: symmetric_gauss_rule with
+// symmetric_gauss_shape(directions), split at the horizon's cosine mu_h(r):
+// the integrand is symmetric about the plane of the sun and the zenith, and
+// jumps at the horizon (ground or sky), so Gauss-Legendre on each side
+// converges where the uniform set needs many times the rays
+// (docs/reference.md "Multiple scattering (Hillaire)").
+enum class DirectionQuadrature { fibonacci, symmetric_gauss };
+
 struct MultiscatteringLutSpec {
   int width = 32;       // texels along the sun zenith cosine axis (u)
   int height = 32;      // texels along the altitude axis (v)
   int directions = 64;  // ray directions per texel (Hillaire 2020: 64)
   int steps = 20;       // uniform segments per ray (Hillaire 2020 Table 2: 20)
   SunMapping sun_mapping = SunMapping::linear;  // terminator: terminator_mapping(atm)
+  DirectionQuadrature quadrature = DirectionQuadrature::fibonacci;
 };
 
 // Upper bound applied to f_ms per channel (eq. 9 needs f_ms < 1); F_ms = 1 / (1 - f_ms)
@@ -107,6 +120,16 @@ MultiscatteringSample compute_multiscattering(const Atmosphere& atm,
                                               const Texture& transmittance_lut, double r,
                                               double mu_s,
                                               const std::vector<glm::dvec3>& directions, int steps);
+
+// The same over a weighted direction rule (sphere_rule.hpp).
+MultiscatteringSample compute_multiscattering(const Atmosphere& atm,
+                                              const Texture& transmittance_lut, double r,
+                                              double mu_s, const SphereRule& rule, int steps);
+
+// The rule a bake uses at radius r (the point on the z axis, the sun in the
+// x-z plane, as compute_multiscattering puts them).
+SphereRule multiscattering_rule(DirectionQuadrature quadrature, int directions,
+                                const Atmosphere& atm, double r);
 
 // Texel-centre mapping pair (see the opening comment).
 glm::dvec2 multiscattering_uv_from_r_mu_s(const Atmosphere& atm, double r, double mu_s, int width,

@@ -85,20 +85,22 @@ nlohmann::json measure_multiscattering_error(const Scene& scene, const OutputSpe
   if (multiscattering_is_converged(spec))
     return measure_converged_multiscattering_error(scene, spec, in, lut);
   const Atmosphere& atm = scene.atmosphere;
-  const std::vector<glm::dvec3> dirs =
-      fibonacci_sphere_directions(kMultiscatteringReferenceDirections);
   QueryReads reads(kMultiscatteringQueries);
   tbb::parallel_for(size_t(0), reads.size(), [&](size_t i) {
     const RadiusCosine q = multiscattering_query(atm, i);
     reads[i].first = lookup_multiscattering(lut, atm, q.r, q.mu);
-    reads[i].second = compute_multiscattering(atm, *in.at("transmittance"), q.r, q.mu, dirs,
-                                              kMultiscatteringReferenceSteps)
-                          .psi_ms;
+    reads[i].second =
+        compute_multiscattering(atm, *in.at("transmittance"), q.r, q.mu,
+                                multiscattering_rule(DirectionQuadrature::symmetric_gauss,
+                                                     kMultiscatteringReferenceDirections, atm, q.r),
+                                kMultiscatteringReferenceSteps)
+            .psi_ms;
   });
   return error_record(
       reads, fmt::format("lookup_multiscattering (bilinear) at points uniform in altitude and sun "
                          "zenith cosine against the same integral (Hillaire 2020 eq. 5-10) with {} "
-                         "directions and {} steps, reading the same transmittance table",
+                         "directions of the symmetric Gauss rule and {} steps, reading the same "
+                         "transmittance table",
                          kMultiscatteringReferenceDirections, kMultiscatteringReferenceSteps));
 }
 

@@ -68,6 +68,8 @@ MultiscatteringLutSpec multiscattering_spec(const OutputSpec& spec) {
   lut.steps = option_int(spec, "steps", lut.steps);
   if (spec.options.value("sun_mapping", std::string("linear")) == "terminator")
     lut.sun_mapping = SunMapping::terminator;
+  if (spec.options.value("direction_quadrature", std::string("fibonacci")) == "symmetric_gauss")
+    lut.quadrature = DirectionQuadrature::symmetric_gauss;
   return lut;
 }
 
@@ -180,8 +182,15 @@ namespace {
 
 constexpr double kMaxConvergedTexels = 4.0 * 1024 * 1024;
 
-// The converged model's 4D iteration must be one bake_bruneton accepts.
+// The converged model's 4D iteration must be one bake_bruneton accepts; the
+// direction rule belongs to the hillaire2020 integral, which it does not run.
 std::vector<ProductProblem> converged_multiscattering_problems(const OutputSpec& spec) {
+  // (The options carry the schema's defaults, so only a rule other than the default is refused.)
+  if (multiscattering_is_converged(spec) &&
+      spec.options.value("direction_quadrature", std::string("fibonacci")) != "fibonacci")
+    return {{"/direction_quadrature",
+             "applies to model \"hillaire2020\" only (model \"converged\" integrates no "
+             "directions of its own)"}};
   if (!multiscattering_is_converged(spec) && !skyview_uses_multiple4d(spec)) return {};
   BrunetonSpec b = converged_multiscattering_spec(spec).bruneton;
   b.mu_s_min = -0.5;  // replaced at bake time by converged_mu_s_min, always in (-1, 0]

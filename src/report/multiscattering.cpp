@@ -2,7 +2,9 @@
 // directions x steps x sizes (the preset's size first), each table read with
 // lookup_multiscattering at pseudo-random (r, mu_s) against the same integral
 // (compute_multiscattering, Hillaire 2020 eq. 5-10) with many more directions
-// and steps, reading the fine reference transmittance table. The ladder's
+// and steps (the symmetric Gauss rule, which converges near the terminator
+// where the Fibonacci set does not: docs/reference.md), reading the fine
+// reference transmittance table. The ladder's
 // bakes read the operating-point transmittance table, as a bake would, so
 // their error includes that table's (small) error.
 //
@@ -29,16 +31,18 @@ struct MultiscatteringQuery {
 std::vector<MultiscatteringQuery> multiscattering_queries(const ReportInputs& in,
                                                           const MultiscatteringSetup& setup) {
   const Atmosphere& atm = in.scene.atmosphere;
-  const std::vector<glm::dvec3> dirs =
-      fibonacci_sphere_directions(setup.multiscattering_reference_directions);
   std::vector<MultiscatteringQuery> q(size_t(setup.multiscattering_queries));
   tbb::parallel_for(size_t(0), q.size(), [&](size_t i) {
     const RadiusCosine point = multiscattering_query(atm, i);
     q[i].r = point.r;
     q[i].mu_s = point.mu;
-    q[i].reference = compute_multiscattering(atm, in.reference_transmittance, q[i].r, q[i].mu_s,
-                                             dirs, setup.multiscattering_reference_steps)
-                         .psi_ms;
+    q[i].reference =
+        compute_multiscattering(atm, in.reference_transmittance, q[i].r, q[i].mu_s,
+                                multiscattering_rule(DirectionQuadrature::symmetric_gauss,
+                                                     setup.multiscattering_reference_directions,
+                                                     atm, q[i].r),
+                                setup.multiscattering_reference_steps)
+            .psi_ms;
   });
   return q;
 }
@@ -117,7 +121,8 @@ nlohmann::json multiscattering_report(const ReportInputs& in, const Multiscatter
   out["product"] = "multiscattering";
   out["kind"] = "lut";
   out["reference"] = fmt::format(
-      "the same integral (Hillaire 2020 eq. 5-10) with {} directions and {} steps, reading a "
+      "the same integral (Hillaire 2020 eq. 5-10) with {} directions of the symmetric Gauss "
+      "rule and {} steps, reading a "
       "{}x{} transmittance table baked with {} steps",
       setup.multiscattering_reference_directions, setup.multiscattering_reference_steps,
       in.level.reference_transmittance_size[0], in.level.reference_transmittance_size[1],

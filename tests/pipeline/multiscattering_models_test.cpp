@@ -67,6 +67,24 @@ TEST(MultiscatteringModels, ConvergedTerminatorAndSkyview4dBakeAndRecordThemselv
   EXPECT_TRUE(sv["error"].contains("max_rel")) << sv.dump();
 }
 
+TEST(MultiscatteringModels, SymmetricGaussRuleBakesAndNamesItself) {
+  const fs::path dir = test::fresh_dir("ms_symmetric_gauss");
+  const fs::path preset = write_scene(
+      dir,
+      {{"product", "multiscattering"}, {"size", {8, 8}}, {"formats", {"exr"}},
+       {"sun_mapping", "terminator"}, {"direction_quadrature", "symmetric_gauss"},
+       {"directions", 96}},
+      kSmallSkyview);
+  const auto r = test::run_skybake({"bake", preset.string(), "-o", (dir / "out").string(), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto ms = manifest_entry(dir / "out", "multiscattering");
+  EXPECT_EQ(ms["metadata"]["direction_set"], "symmetric_gauss");
+  EXPECT_NE(ms["metadata"]["direction_rule"].get<std::string>().find("6 on [-1, mu_h(r)]"),
+            std::string::npos)
+      << ms["metadata"].dump();
+  EXPECT_TRUE(ms["error"].contains("max_rel")) << ms.dump();
+}
+
 TEST(MultiscatteringModels, BadOptionsAreRefusedWithTheirPointer) {
   const fs::path dir = test::fresh_dir("ms_models_bad");
   const fs::path odd_mu = write_scene(dir,
@@ -94,6 +112,24 @@ TEST(MultiscatteringModels, BadOptionsAreRefusedWithTheirPointer) {
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;  // validate: a check failed
   EXPECT_NE((r.out + r.err).find("/outputs/2/multiple_scattering"), std::string::npos)
       << r.out << r.err;
+  const fs::path bad_rule = write_scene(
+      dir, {{"product", "multiscattering"}, {"size", {8, 8}}, {"direction_quadrature", "gauss"}},
+      kSmallSkyview);
+  r = test::run_skybake({"validate", bad_rule.string()});
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE((r.out + r.err).find("/outputs/1/direction_quadrature"), std::string::npos)
+      << r.out << r.err;
+  const fs::path converged_rule = write_scene(dir,
+                                              {{"product", "multiscattering"},
+                                               {"size", {8, 8}},
+                                               {"model", "converged"},
+                                               {"direction_quadrature", "symmetric_gauss"}},
+                                              kSmallSkyview);
+  r = test::run_skybake({"validate", converged_rule.string()});
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE((r.out + r.err).find("/outputs/1/direction_quadrature"), std::string::npos)
+      << r.out << r.err;
+  EXPECT_NE((r.out + r.err).find("hillaire2020"), std::string::npos) << r.out << r.err;
 }
 
 }  // namespace
