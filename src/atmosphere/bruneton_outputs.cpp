@@ -26,10 +26,6 @@ void set_common_metadata(Metadata& meta, const Atmosphere& atm, const BrunetonSp
   set_meta(meta, "units", std::string("relative to the sun_illuminance of the preset"));
 }
 
-std::string rgb_string(glm::dvec3 v) {
-  return fmt::format("{:.17g},{:.17g},{:.17g}", v.x, v.y, v.z);
-}
-
 void set_scattering_metadata(Metadata& meta, const Atmosphere& atm, const BrunetonSpec& spec,
                              const BrunetonTextures& out, const ScatteringPhases& phases,
                              bool is_mie) {
@@ -51,8 +47,8 @@ void set_scattering_metadata(Metadata& meta, const Atmosphere& atm, const Brunet
           "sqrt(Rb^2*m^2 + H^2) - (Rt - Rb))/(H - (Rt - Rb)), A = a(mu_s_min), u_mu_s = "
           "coord(max(1 - a(mu_s)/A, 0)/(1 + a(mu_s)), mu_s_size); u_nu = (nu + 1)/2, slice k "
           "at nu = -1 + 2k/(nu_size - 1), lerp between slices (Bruneton 2017)"));
-  set_meta(meta, "rayleigh_scattering_per_m", rgb_string(phases.rayleigh_per_m));
-  set_meta(meta, "mie_scattering_per_m", rgb_string(phases.mie_per_m));
+  set_meta(meta, "rayleigh_scattering_per_m", phases.rayleigh_per_m);
+  set_meta(meta, "mie_scattering_per_m", phases.mie_per_m);
   set_meta(meta, "mie_phase",
            std::string(phases.mie_phase == PhaseKind::henyey_greenstein ? "henyey_greenstein"
                                                                         : "cornette_shanks"));
@@ -65,7 +61,7 @@ void set_scattering_metadata(Metadata& meta, const Atmosphere& atm, const Brunet
                          "p_M(nu) * RGB"));
     return;
   }
-  set_meta(meta, "mie_in_alpha", std::string(spec.combined_mie_alpha ? "true" : "false"));
+  set_meta(meta, "mie_in_alpha", spec.combined_mie_alpha ? 1 : 0);
   set_meta(
       meta, "quantity",
       std::string(spec.combined_mie_alpha
@@ -118,8 +114,7 @@ void assemble_bruneton_outputs(const Atmosphere& atm, const BrunetonSpec& spec,
   set_irradiance_metadata(out.direct_irradiance.metadata, atm, spec, out,
                           "direct sunlight on a horizontal surface, E_sun*T(r, mu_s)*c(mu_s), "
                           "c the cosine averaged over the sun's disk");
-  set_meta(out.irradiance.metadata, "includes_direct",
-           std::string(spec.irradiance_includes_direct ? "true" : "false"));
+  set_meta(out.irradiance.metadata, "includes_direct", spec.irradiance_includes_direct ? 1 : 0);
 }
 
 }  // namespace skybake

@@ -33,11 +33,11 @@ inline glm::dvec3 geometric_tail_factor(glm::dvec3 order_sum, glm::dvec3 previou
   return f;
 }
 
-// The "geometric_tail" metadata value: f per channel, or "none" when the
-// bake has no tail (fixed orders, or the tail turned off).
-inline std::string geometric_tail_metadata(bool tail_mode, glm::dvec3 f) {
-  if (!tail_mode) return "none";
-  return fmt::format("{:.17g},{:.17g},{:.17g}", f.x, f.y, f.z);
+// The "geometric_tail" metadata value (double3): f per channel, or 0 when the
+// bake has no tail (fixed orders, or the tail turned off): a factor of 0 adds
+// nothing, which is what no tail means.
+inline glm::dvec3 geometric_tail_metadata(bool tail_mode, glm::dvec3 f) {
+  return tail_mode ? f : glm::dvec3(0.0);
 }
 
 }  // namespace skybake

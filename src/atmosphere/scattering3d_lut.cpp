@@ -150,12 +150,8 @@ void set_scattering3d_metadata(Metadata& meta, const Atmosphere& atm, const Scat
   set_meta(meta, "azimuth_samples", spec.azimuth_samples);
   set_meta(meta, "gathering_directions", spec.gathering_directions);
   set_meta(meta, "ray_nodes", spec.ray_nodes);
-  set_meta(meta, "rayleigh_scattering_per_m",
-           fmt::format("{:.17g},{:.17g},{:.17g}", phases.rayleigh_per_m.x, phases.rayleigh_per_m.y,
-                       phases.rayleigh_per_m.z));
-  set_meta(meta, "mie_scattering_per_m",
-           fmt::format("{:.17g},{:.17g},{:.17g}", phases.mie_per_m.x, phases.mie_per_m.y,
-                       phases.mie_per_m.z));
+  set_meta(meta, "rayleigh_scattering_per_m", phases.rayleigh_per_m);
+  set_meta(meta, "mie_scattering_per_m", phases.mie_per_m);
   set_meta(meta, "mie_g", phases.mie_g);
   set_meta(meta, "units", std::string("relative to the sun_illuminance of the preset"));
   set_meta(meta, "mapping",

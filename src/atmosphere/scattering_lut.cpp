@@ -37,13 +37,6 @@ double mu_s_parameter(const Atmosphere& atm, double mu_s) {
   return (ground_distance_to_top(atm, mu_s) - d_min) / (d_max - d_min);
 }
 
-int meta_int(const Metadata& meta, const std::string& key) {
-  const auto it = meta.find(key);
-  if (it == meta.end())
-    throw Error(fmt::format("scattering texture: metadata key '{}' missing", key));
-  return std::stoi(it->second);
-}
-
 // Reads `count` channels from `first` at the 16 taps.
 void read_channels(const Texture& table, const ScatteringShape& shape, const ScatteringTaps& t,
                    int first, int count, double* out) {
@@ -97,9 +90,7 @@ ScatteringShape scattering_shape_from_metadata(const Metadata& meta) {
   s.mu_size = meta_int(meta, "mu_size");
   s.mu_s_size = meta_int(meta, "mu_s_size");
   s.nu_size = meta_int(meta, "nu_size");
-  const auto it = meta.find("mu_s_min");
-  if (it == meta.end()) throw Error("scattering texture: metadata key 'mu_s_min' missing");
-  s.mu_s_min = std::stod(it->second);
+  s.mu_s_min = meta_double(meta, "mu_s_min");
   return s;
 }
 

@@ -38,11 +38,6 @@ double wrap_azimuth(double phi) {
   return phi < kTwoPi ? phi : 0.0;  // -tiny + 2 pi rounds to 2 pi
 }
 
-std::string join(const std::vector<SkyviewView>& views, double SkyviewView::*field) {
-  std::string s;
-  for (const SkyviewView& v : views) s += (s.empty() ? "" : ",") + fmt::format("{:.17g}", v.*field);
-  return s;
-}
 
 }  // namespace
 
@@ -137,8 +132,12 @@ Texture bake_skyview_lut(const Atmosphere& atm, const Texture& transmittance_lut
   set_meta(m, "steps", spec.steps);
   set_meta(m, "step_distribution",
            std::string(spec.distribution == StepDistribution::quadratic ? "quadratic" : "uniform"));
-  set_meta(m, "layer_altitude_m", join(spec.views, &SkyviewView::altitude_m));
-  set_meta(m, "layer_sun_zenith_rad", join(spec.views, &SkyviewView::sun_zenith_rad));
+  // One pair of doubles per layer: the list's length varies, and EXR and VDB
+  // have no list of doubles.
+  for (size_t i = 0; i < spec.views.size(); ++i) {
+    set_meta(m, fmt::format("layer.{}.altitude_m", i), spec.views[i].altitude_m);
+    set_meta(m, fmt::format("layer.{}.sun_zenith_rad", i), spec.views[i].sun_zenith_rad);
+  }
   return tex;
 }
 

@@ -13,6 +13,7 @@
 #include "cli/commands.hpp"
 #include "cli/errors.hpp"
 #include "core/error.hpp"
+#include "core/metadata_json.hpp"
 #include "io/texture_file.hpp"
 
 namespace skybake::cli {
@@ -44,8 +45,7 @@ int run_info(const InfoArgs& args) {
     const LoadedTexture loaded = read_texture_file(file);
     const Texture& tex = loaded.texture;
     const nlohmann::json stats = channel_stats(tex);
-    nlohmann::json meta = nlohmann::json::object();
-    for (const auto& [k, v] : tex.metadata) meta[k] = v;
+    const nlohmann::json meta = metadata_to_json(tex.metadata);
     all.push_back({{"file", file},
                    {"format", loaded.format},
                    {"encoding", loaded.encoding},
@@ -76,7 +76,8 @@ int run_info(const InfoArgs& args) {
     }
     if (!tex.metadata.empty()) {
       std::printf("  metadata\n");
-      for (const auto& [k, v] : tex.metadata) std::printf("    %-22s %s\n", k.c_str(), v.c_str());
+      for (const auto& [k, v] : tex.metadata)
+        std::printf("    %-22s %s\n", k.c_str(), meta_text(v).c_str());
     }
   }
   if (args.json) std::cout << nlohmann::json{{"files", all}}.dump(2) << "\n";

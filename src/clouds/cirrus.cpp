@@ -101,15 +101,14 @@ Texture bake_cirrus(const CirrusSpec& spec, const BakeContext& ctx) {
   Metadata& m = tex.metadata;
   set_meta(m, "product", "cirrus");
   set_meta(m, "tiling", "periodic on x, y");
-  set_meta(m, "seed", std::to_string(spec.seed));
+  set_meta(m, "seed", double(spec.seed));  // uint32: exact in a double
   set_meta(m, "channel.R", "cirrus streaks: ridged Perlin fBm 1 - |n|, fibres along x");
   set_meta(m, "channel.G", "cirrocumulus cells: inverted Worley fBm");
   set_meta(m, "channel.B", "altostratus sheets: Perlin fBm");
   const char* channels[3] = {"R", "G", "B"};
   for (int c = 0; c < 3; ++c) {
     const CirrusLayer& l = spec.*(kLayers[c].layer);
-    set_meta(m, fmt::format("period.{}", channels[c]),
-             fmt::format("{} {}", l.period.x, l.period.y));
+    set_meta(m, fmt::format("period.{}", channels[c]), l.period);
     set_meta(m, fmt::format("octaves.{}", channels[c]), l.octaves);
     set_meta(m, fmt::format("octaves_used.{}", channels[c]), within_size(l, spec).octaves);
     set_meta(m, fmt::format("coverage.{}", channels[c]), l.coverage);

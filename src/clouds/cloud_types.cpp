@@ -49,10 +49,10 @@ Texture bake_cloud_types(const CloudTypesSpec& spec) {
   for (int i = 0; i < types; ++i) {
     const CloudTypeProfile& t = spec.types[i];
     set_meta(m, fmt::format("type.{}", i), t.name);
-    set_meta(m, fmt::format("type.{}.density", i),
-             fmt::format("{} {} {} {}", t.density.a, t.density.b, t.density.c, t.density.d));
-    set_meta(m, fmt::format("type.{}.erosion", i),
-             fmt::format("{} {}", t.erosion_base, t.erosion_top));
+    // density = smoothstep(rise.x, rise.y, h) - smoothstep(fall.x, fall.y, h)
+    set_meta(m, fmt::format("type.{}.density_rise", i), glm::dvec2(t.density.a, t.density.b));
+    set_meta(m, fmt::format("type.{}.density_fall", i), glm::dvec2(t.density.c, t.density.d));
+    set_meta(m, fmt::format("type.{}.erosion", i), glm::dvec2(t.erosion_base, t.erosion_top));
   }
   return tex;
 }

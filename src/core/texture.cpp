@@ -26,16 +26,6 @@ std::string Texture::shape_string() const {
   return s;
 }
 
-void set_meta(Metadata& meta, const std::string& key, const std::string& value) {
-  meta[key] = value;
-}
-void set_meta(Metadata& meta, const std::string& key, double value) {
-  meta[key] = fmt::format("{:.17g}", value);
-}
-void set_meta(Metadata& meta, const std::string& key, int value) {
-  meta[key] = std::to_string(value);
-}
-
 void check_finite(const Texture& tex, const std::string& what) {
   const size_t nc = tex.channels.size();
   for (size_t i = 0; i < tex.data.size(); ++i) {

@@ -5,19 +5,18 @@
 // named channels stored as float32. Layout, channel fastest:
 //   index = (((layer * depth + z) * height + y) * width + x) * channels + c
 // so x is the fastest spatial axis (the layout DDS, EXR and our VDB export use).
-// Metadata is an ordered string map (key -> value) that writers copy into file
-// headers and the manifest; numbers are stored with round-trip precision.
+// Metadata is an ordered map of typed values (core/metadata.hpp) that writers
+// copy into file headers and the manifest.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
-#include <map>
 #include <string>
 #include <vector>
 
-namespace skybake {
+#include "core/metadata.hpp"
 
-using Metadata = std::map<std::string, std::string>;
+namespace skybake {
 
 struct Texture {
   int width = 0;
@@ -51,12 +50,6 @@ struct Texture {
   // "256x64", "128x128x128", "192x108[8]"
   std::string shape_string() const;
 };
-
-// Sets a metadata value; doubles are printed with 17 significant digits so
-// they read back bit-exactly.
-void set_meta(Metadata& meta, const std::string& key, const std::string& value);
-void set_meta(Metadata& meta, const std::string& key, double value);
-void set_meta(Metadata& meta, const std::string& key, int value);
 
 // Throws IoError naming `what` and the first offending texel when any value
 // is NaN or infinite. Every writer calls this before it opens a file.

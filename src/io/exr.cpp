@@ -19,6 +19,7 @@
 #include <vector>
 
 #include <ImfChannelList.h>
+#include <ImfDoubleAttribute.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputPart.h>
@@ -29,6 +30,7 @@
 #include <ImfOutputPart.h>
 #include <ImfPartType.h>
 #include <ImfStringAttribute.h>
+#include <ImfVecAttribute.h>
 #include <ImfThreading.h>
 #include <half.h>
 #include <fmt/format.h>
@@ -122,6 +124,47 @@ int exr_threads() {
   return threads;
 }
 
+// A metadata value as the EXR attribute of its type (docs/formats.md
+// "Metadata"): int, double, string, v2i, v3i, v2d, v3d.
+void insert_typed_attribute(Imf::Header& header, const std::string& name, const MetaValue& value) {
+  struct Insert {
+    Imf::Header& header;
+    const std::string& name;
+    void operator()(int v) const { header.insert(name, Imf::IntAttribute(v)); }
+    void operator()(double v) const { header.insert(name, Imf::DoubleAttribute(v)); }
+    void operator()(const std::string& v) const { header.insert(name, Imf::StringAttribute(v)); }
+    void operator()(const glm::ivec2& v) const {
+      header.insert(name, Imf::V2iAttribute(Imath::V2i(v.x, v.y)));
+    }
+    void operator()(const glm::ivec3& v) const {
+      header.insert(name, Imf::V3iAttribute(Imath::V3i(v.x, v.y, v.z)));
+    }
+    void operator()(const glm::dvec2& v) const {
+      header.insert(name, Imf::V2dAttribute(Imath::V2d(v.x, v.y)));
+    }
+    void operator()(const glm::dvec3& v) const {
+      header.insert(name, Imf::V3dAttribute(Imath::V3d(v.x, v.y, v.z)));
+    }
+  };
+  std::visit(Insert{header, name}, value);
+}
+
+// The metadata value of an attribute of one of the types above, or nullopt.
+std::optional<MetaValue> typed_attribute(const Imf::Attribute& a) {
+  if (const auto* v = dynamic_cast<const Imf::IntAttribute*>(&a)) return v->value();
+  if (const auto* v = dynamic_cast<const Imf::DoubleAttribute*>(&a)) return v->value();
+  if (const auto* v = dynamic_cast<const Imf::StringAttribute*>(&a)) return v->value();
+  if (const auto* v = dynamic_cast<const Imf::V2iAttribute*>(&a))
+    return glm::ivec2(v->value().x, v->value().y);
+  if (const auto* v = dynamic_cast<const Imf::V3iAttribute*>(&a))
+    return glm::ivec3(v->value().x, v->value().y, v->value().z);
+  if (const auto* v = dynamic_cast<const Imf::V2dAttribute*>(&a))
+    return glm::dvec2(v->value().x, v->value().y);
+  if (const auto* v = dynamic_cast<const Imf::V3dAttribute*>(&a))
+    return glm::dvec3(v->value().x, v->value().y, v->value().z);
+  return std::nullopt;
+}
+
 // The header every part shares: channels, compression, metadata and shape.
 Imf::Header base_header(const Texture& tex, int width, int height, ExrPrecision precision,
                         const std::string& layout) {
@@ -129,8 +172,7 @@ Imf::Header base_header(const Texture& tex, int width, int height, ExrPrecision 
   header.compression() = Imf::ZIP_COMPRESSION;
   const Imf::PixelType type = precision == ExrPrecision::half ? Imf::HALF : Imf::FLOAT;
   for (const std::string& name : tex.channels) header.channels().insert(name, Imf::Channel(type));
-  for (const auto& [key, value] : tex.metadata)
-    header.insert(kPrefix + key, Imf::StringAttribute(value));
+  for (const auto& [key, value] : tex.metadata) insert_typed_attribute(header, kPrefix + key, value);
   header.insert(kPrefix + "shape", Imf::StringAttribute(shape_attribute(tex)));
   header.insert(kPrefix + "channels", Imf::StringAttribute(join_channels(tex.channels)));
   header.insert(kPrefix + "layout", Imf::StringAttribute(layout));
@@ -513,10 +555,10 @@ Texture read_exr_file(const std::string& path, ExrShape shape_from) {
   Texture tex(shape.width, shape.height, shape.depth, shape.layers, channels);
   for (auto it = head.begin(); it != head.end(); ++it) {
     const std::string name = it.name();
-    const auto* value = dynamic_cast<const Imf::StringAttribute*>(&it.attribute());
-    if (name.rfind(kPrefix, 0) != 0 || !value) continue;
+    if (name.rfind(kPrefix, 0) != 0) continue;
     const std::string key = name.substr(kPrefix.size());
-    if (!is_reserved(key)) tex.metadata[key] = value->value();
+    if (is_reserved(key)) continue;
+    if (std::optional<MetaValue> value = typed_attribute(it.attribute())) tex.metadata[key] = *value;
   }
 
   if (layout == "atlas") {

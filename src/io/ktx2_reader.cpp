@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/metadata_json.hpp"
 #include "core/half.hpp"
 #include "core/mip_chain.hpp"
 #include "io/block_compression.hpp"
@@ -317,7 +318,10 @@ void apply_key_values(const std::string& path, const Ktx2Image& image, int compo
       channels = channels_of(path, json_of(path, key, value), components);
     } else if (key.compare(0, prefix.size(), prefix) == 0) {
       const nlohmann::json j = json_of(path, key, value);
-      meta[key.substr(prefix.size())] = j.is_string() ? j.get<std::string>() : j.dump();
+      std::string why;
+      std::optional<MetaValue> v = meta_from_json(j, &why);
+      if (!v) throw IoError(fmt::format("{}: key/value '{}': {}", path, key, why));
+      meta[key.substr(prefix.size())] = *v;
     }
   }
 }

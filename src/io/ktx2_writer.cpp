@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/metadata_json.hpp"
 #include "core/half.hpp"
 #include "core/mip_chain.hpp"
 #include "io/block_compression.hpp"
@@ -117,7 +118,7 @@ std::vector<uint8_t> key_value_data(const Texture& top) {
   kv["KTXwriter"] = text_value("skybake " SKYBAKE_VERSION);
   kv[std::string(ktx2::kMetaPrefix) + "channels"] = text_value(nlohmann::json(top.channels).dump());
   for (const auto& [key, value] : top.metadata)
-    kv[ktx2::kMetaPrefix + key] = text_value(nlohmann::json(value).dump());
+    kv[ktx2::kMetaPrefix + key] = text_value(meta_to_json(value).dump());
   std::vector<uint8_t> out;
   for (const auto& [key, value] : kv) {
     const uint32_t length = uint32_t(key.size() + 1 + value.size());

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "core/metadata_json.hpp"
 #include "core/safe_input.hpp"
 #include "io/atomic_file.hpp"
 
@@ -102,8 +103,12 @@ std::optional<std::string> entry_problem(const json& e, const std::string& at) {
     for (const json& v : c)
       if (!v.is_string()) return fmt::format("{}/channels: expected strings", at);
   }
-  if (e.contains("metadata") && !e["metadata"].is_object())
-    return fmt::format("{}/metadata: expected an object", at);
+  if (e.contains("metadata")) {
+    if (!e["metadata"].is_object()) return fmt::format("{}/metadata: expected an object", at);
+    std::string why;
+    for (const auto& [key, value] : e["metadata"].items())
+      if (!meta_from_json(value, &why)) return fmt::format("{}/metadata/{}: {}", at, key, why);
+  }
   if (e.contains("warnings") && !e["warnings"].is_array())
     return fmt::format("{}/warnings: expected an array", at);
   if (e.contains("bake_seconds") && !e["bake_seconds"].is_number())

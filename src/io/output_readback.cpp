@@ -1,6 +1,7 @@
 #include "io/output_readback.hpp"
 
 #include "core/error.hpp"
+#include "core/metadata_json.hpp"
 #include "io/texture_file.hpp"
 
 namespace skybake {
@@ -13,8 +14,7 @@ Texture trimmed_to_entry(const Texture& tex, const ManifestEntry& entry) {
   const size_t nc = entry.channels.size(), nd = size_t(tex.channel_count());
   for (size_t t = 0; t < tex.texel_count(); ++t)
     for (size_t c = 0; c < nc; ++c) trimmed.data[t * nc + c] = tex.data[t * nd + c];
-  for (const auto& [k, v] : entry.metadata.items())
-    trimmed.metadata[k] = v.is_string() ? v.get<std::string>() : v.dump();
+  trimmed.metadata = metadata_from_json(entry.metadata);
   return trimmed;
 }
 

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "core/metadata_json.hpp"
 #include "io/dds.hpp"
 #include "io/exr.hpp"
 #include "io/ktx2.hpp"
@@ -36,8 +37,8 @@ void attach_manifest_metadata(const fs::path& file, Texture& tex) {
   const Manifest m = read_manifest(file.parent_path() / "manifest.json");
   const ManifestFile* record = nullptr;
   if (const ManifestEntry* entry = find_manifest_entry(m, file, &record))
-    for (const auto& [k, v] : entry->metadata.items())
-      if (!tex.metadata.count(k)) tex.metadata[k] = v.is_string() ? v.get<std::string>() : v.dump();
+    for (const auto& [k, v] : metadata_from_json(entry->metadata))
+      if (!tex.metadata.count(k)) tex.metadata[k] = v;
 }
 
 std::string manifest_encoding(const fs::path& file) {

@@ -118,6 +118,50 @@ void check_writable(const std::string& path, const Texture& tex, double voxel_si
   check_finite(tex, path);
 }
 
+// A metadata value as the VDB metadata type of its type: int32, double,
+// string, vec2i, vec3i, vec2d, vec3d (docs/formats.md "Metadata").
+void insert_typed_meta(openvdb::GridBase& grid, const std::string& name, const MetaValue& value) {
+  struct Insert {
+    openvdb::GridBase& grid;
+    const std::string& name;
+    void operator()(int v) const { grid.insertMeta(name, openvdb::Int32Metadata(v)); }
+    void operator()(double v) const { grid.insertMeta(name, openvdb::DoubleMetadata(v)); }
+    void operator()(const std::string& v) const {
+      grid.insertMeta(name, openvdb::StringMetadata(v));
+    }
+    void operator()(const glm::ivec2& v) const {
+      grid.insertMeta(name, openvdb::Vec2IMetadata(openvdb::Vec2i(v.x, v.y)));
+    }
+    void operator()(const glm::ivec3& v) const {
+      grid.insertMeta(name, openvdb::Vec3IMetadata(openvdb::Vec3i(v.x, v.y, v.z)));
+    }
+    void operator()(const glm::dvec2& v) const {
+      grid.insertMeta(name, openvdb::Vec2DMetadata(openvdb::Vec2d(v.x, v.y)));
+    }
+    void operator()(const glm::dvec3& v) const {
+      grid.insertMeta(name, openvdb::Vec3DMetadata(openvdb::Vec3d(v.x, v.y, v.z)));
+    }
+  };
+  std::visit(Insert{grid, name}, value);
+}
+
+// The metadata value of a VDB metadata entry of one of the types above, or
+// nullopt for any other type.
+std::optional<MetaValue> typed_meta(const openvdb::Metadata& m) {
+  if (const auto* v = dynamic_cast<const openvdb::Int32Metadata*>(&m)) return v->value();
+  if (const auto* v = dynamic_cast<const openvdb::DoubleMetadata*>(&m)) return v->value();
+  if (const auto* v = dynamic_cast<const openvdb::StringMetadata*>(&m)) return v->value();
+  if (const auto* v = dynamic_cast<const openvdb::Vec2IMetadata*>(&m))
+    return glm::ivec2(v->value().x(), v->value().y());
+  if (const auto* v = dynamic_cast<const openvdb::Vec3IMetadata*>(&m))
+    return glm::ivec3(v->value().x(), v->value().y(), v->value().z());
+  if (const auto* v = dynamic_cast<const openvdb::Vec2DMetadata*>(&m))
+    return glm::dvec2(v->value().x(), v->value().y());
+  if (const auto* v = dynamic_cast<const openvdb::Vec3DMetadata*>(&m))
+    return glm::dvec3(v->value().x(), v->value().y(), v->value().z());
+  return std::nullopt;
+}
+
 // One channel as a grid whose every voxel in the texture's box is active.
 openvdb::FloatGrid::Ptr make_grid(const Texture& tex, int c, const std::string& name,
                                   VdbGridClass grid_class,
@@ -141,8 +185,7 @@ openvdb::FloatGrid::Ptr make_grid(const Texture& tex, int c, const std::string& 
                                                             : openvdb::GRID_UNKNOWN);
   grid->setTransform(xform.copy());
   grid->insertMeta(kPrefix + "texture_channel", openvdb::StringMetadata(tex.channels[c]));
-  for (const auto& [key, value] : tex.metadata)
-    grid->insertMeta(kPrefix + key, openvdb::StringMetadata(value));
+  for (const auto& [key, value] : tex.metadata) insert_typed_meta(*grid, kPrefix + key, value);
   grid->insertMeta(kPrefix + "shape",
                    openvdb::StringMetadata(
                        fmt::format("{}x{}x{}x{}", tex.width, tex.height, tex.depth, tex.layers)));
@@ -304,9 +347,9 @@ Texture dense_texture(const openvdb::CoordBBox& box,
   Texture tex(dim.x(), dim.y(), dim.z(), 1, channels);
   for (auto it = floats[0]->beginMeta(); it != floats[0]->endMeta(); ++it)
     if (it->first.rfind(kPrefix, 0) == 0 && it->first != kPrefix + "shape" &&
-        it->first != kPrefix + "channels" && it->first != kPrefix + "texture_channel" &&
-        it->second->typeName() == openvdb::StringMetadata::staticTypeName())
-      tex.metadata[it->first.substr(kPrefix.size())] = it->second->str();
+        it->first != kPrefix + "channels" && it->first != kPrefix + "texture_channel")
+      if (std::optional<MetaValue> value = typed_meta(*it->second))
+        tex.metadata[it->first.substr(kPrefix.size())] = *value;
   std::vector<float> plane(tex.texel_count());
   const size_t nc = channels.size();
   for (size_t c = 0; c < nc; ++c) {

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "core/metadata_json.hpp"
 #include "io/atomic_file.hpp"
 #include "io/bake_log.hpp"
 #include "io/file_record.hpp"
@@ -40,7 +41,7 @@ ManifestEntry make_entry(const GraphNode& node, const Texture& tex,
   if (tex.depth > 1) e.dimensions.push_back(tex.depth);
   e.layers = tex.layers;
   e.channels = tex.channels;
-  for (const auto& [key, value] : tex.metadata) e.metadata[key] = value;
+  e.metadata = metadata_to_json(tex.metadata);
   e.input_hash = node.input_hash;
   e.bake_seconds = seconds;
   return e;

@@ -30,6 +30,9 @@ OutputSpec default_spec(const ProductInfo& info) {
 
 namespace {
 
+// Raised whenever what a file holds for the same texels changes.
+constexpr const char* kFileLayout = "file layout 2: typed metadata, exact atlas";
+
 // Keys of an output object read only by the file writers.
 bool is_writer_key(const std::string& key) {
   return key == "exr_compression" || key == "dds_header" || key == "grid_names";
@@ -61,6 +64,9 @@ void compute_hashes(const Scene& scene, GraphNode& node, const std::vector<Graph
 
   Hasher input;
   input.add(node.value_hash).add(files.dump()).add(node.spec.name).add(node.spec.precision);
+  // The files' layout (docs/formats.md: attribute types, the atlas shape):
+  // files of another layout are not current, and their metadata is not read.
+  input.add(kFileLayout);
   for (const std::string& f : node.spec.formats) input.add(f);
   node.input_hash = input.hex();
 }

@@ -13,30 +13,18 @@ namespace skybake {
 
 namespace {
 
-// A number of the metadata, NaN when absent or not a number ("none" for a
-// bake without a geometric tail); NaN fails every comparison below.
+// A number of the metadata (an int or a double), NaN when absent or of
+// another type; NaN fails every comparison below.
 double meta_number(const Texture& t, const std::string& key) {
-  auto it = t.metadata.find(key);
-  if (it == t.metadata.end()) return NAN;
-  char* end = nullptr;
-  const double v = std::strtod(it->second.c_str(), &end);
-  return end != it->second.c_str() ? v : NAN;
+  if (const double* v = find_meta<double>(t.metadata, key)) return *v;
+  if (const int* v = find_meta<int>(t.metadata, key)) return double(*v);
+  return NAN;
 }
 
-// The largest of the comma-separated numbers of a metadata value ("f,f,f").
+// The largest channel of a double3 metadata value, NaN when absent.
 double meta_max(const Texture& t, const std::string& key) {
-  auto it = t.metadata.find(key);
-  if (it == t.metadata.end()) return NAN;
-  double best = NAN;
-  const char* p = it->second.c_str();
-  while (*p) {
-    char* end = nullptr;
-    const double v = std::strtod(p, &end);
-    if (end == p) return best;
-    best = std::isnan(best) ? v : std::max(best, v);
-    p = *end == ',' ? end + 1 : end;
-  }
-  return best;
+  const glm::dvec3* v = find_meta<glm::dvec3>(t.metadata, key);
+  return v ? std::max({v->x, v->y, v->z}) : NAN;
 }
 
 // A number of a record, or `fallback` when absent or not a number (JSON has

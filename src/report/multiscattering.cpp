@@ -112,7 +112,7 @@ nlohmann::json multiscattering_report(const ReportInputs& in, const Multiscatter
         in.level.min_timing_seconds);
     nlohmann::json point = measure(lut, atm, queries).json();
     point["seconds"] = seconds;
-    point["fms_max"] = std::stod(lut.metadata.at("fms_max"));
+    point["fms_max"] = meta_double(lut.metadata, "fms_max");
     return point;
   };
   const nlohmann::json op_settings = {

@@ -200,11 +200,11 @@ void expect_sane_lut(const Atmosphere& atm, bool expect_no_clamp) {
     ASSERT_TRUE(std::isfinite(v));
     ASSERT_GE(v, 0.0f);
   }
-  const double fms_max = std::stod(ms.metadata.at("fms_max"));
+  const double fms_max = meta_double(ms.metadata, "fms_max");
   EXPECT_GT(fms_max, 0.0);
   if (expect_no_clamp) {
     EXPECT_LT(fms_max, 1.0);
-    EXPECT_EQ(ms.metadata.at("fms_clamped_texels"), "0");
+    EXPECT_EQ(meta_int(ms.metadata, "fms_clamped_texels"), 0);
   }
   // Every texel's f_ms, recomputed from scratch, stays below 1.
   const std::vector<glm::dvec3> dirs = fibonacci_sphere_directions(64);

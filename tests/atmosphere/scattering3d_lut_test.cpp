@@ -365,10 +365,8 @@ TEST(BakeScattering3d, GeometricTailApproachesTheConvergedTableFromBelow) {
   EXPECT_EQ(plain.orders_used, tail.orders_used);
   EXPECT_GE(tail.orders_used, 3) << "no ratio of two multiple orders to extrapolate";
   EXPECT_EQ(plain.tail_factor, glm::dvec3(0.0));
-  EXPECT_EQ(reference.scattering.metadata.at("geometric_tail"), "none");
-  EXPECT_EQ(tail.gathering_sum.metadata.at("geometric_tail"),
-            fmt::format("{:.17g},{:.17g},{:.17g}", tail.tail_factor.x, tail.tail_factor.y,
-                        tail.tail_factor.z));
+  EXPECT_EQ(meta_double3(reference.scattering.metadata, "geometric_tail"), glm::dvec3(0.0));
+  EXPECT_EQ(meta_double3(tail.gathering_sum.metadata, "geometric_tail"), tail.tail_factor);
   RecordProperty("orders",
                  fmt::format("{} (reference {})", tail.orders_used, reference.orders_used));
   RecordProperty("tail_factor", fmt::format("{:.3f} {:.3f} {:.3f}", tail.tail_factor.x,
@@ -421,11 +419,11 @@ TEST(BakeScattering3d, ShapesChannelsMetadataAndLayouts) {
   EXPECT_EQ(t.residuals.size(), 2u);
   for (size_t i = 0; i < t.mie.texel_count(); ++i)
     ASSERT_EQ(t.scattering.data[4 * i + 3], t.mie.data[3 * i]);
-  EXPECT_EQ(t.scattering.metadata.at("parameterization"), "azimuth_free_3d_scattering");
-  EXPECT_EQ(t.scattering.metadata.at("orders"), "3");
-  EXPECT_EQ(std::stod(t.scattering.metadata.at("last_residual")), t.last_residual);
-  EXPECT_EQ(t.gathering_sum.metadata.at("orders"), "3");
-  EXPECT_FALSE(t.scattering.metadata.at("mapping").empty());
+  EXPECT_EQ(meta_string(t.scattering.metadata, "parameterization"), "azimuth_free_3d_scattering");
+  EXPECT_EQ(meta_int(t.scattering.metadata, "orders"), 3);
+  EXPECT_EQ(meta_double(t.scattering.metadata, "last_residual"), t.last_residual);
+  EXPECT_EQ(meta_int(t.gathering_sum.metadata, "orders"), 3);
+  EXPECT_FALSE(meta_string(t.scattering.metadata, "mapping").empty());
 
   spec.combined_mie_alpha = false;
   const Scattering3dTextures u = bake_scattering3d(atm, lut, spec, BakeContext{});

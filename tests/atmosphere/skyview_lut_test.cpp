@@ -233,9 +233,12 @@ TEST(SkyviewLut, LayersAreIndependentViewsWithMetadata) {
   const Texture b = bake_skyview_lut(atm, l.transmittance, l.multiscattering, one, {});
   ASSERT_EQ(a.layers, 2);
   EXPECT_EQ(std::vector<float>(a.data.begin() + a.data.size() / 2, a.data.end()), b.data);
-  EXPECT_EQ(a.metadata.at("layer_altitude_m"), "0,5000");
-  EXPECT_EQ(a.metadata.at("layer_sun_zenith_rad"), "0.29999999999999999,1.5");
-  EXPECT_EQ(a.metadata.at("parameterization"), "hillaire2020_skyview");
+  EXPECT_EQ(meta_double(a.metadata, "layer.0.altitude_m"), 0.0);
+  EXPECT_EQ(meta_double(a.metadata, "layer.1.altitude_m"), 5e3);
+  EXPECT_EQ(meta_double(a.metadata, "layer.0.sun_zenith_rad"), 0.3);
+  EXPECT_EQ(meta_double(a.metadata, "layer.1.sun_zenith_rad"), 1.5);
+  EXPECT_EQ(a.metadata.count("layer.2.altitude_m"), 0u);
+  EXPECT_EQ(meta_string(a.metadata, "parameterization"), "hillaire2020_skyview");
 }
 
 TEST(SkyviewLut, StiffMediaAndSpaceViewsStayFinite) {

@@ -396,17 +396,17 @@ TEST_F(EarthLut, ShapeChannelsAndMetadata) {
   EXPECT_EQ(lut.channels, (std::vector<std::string>{"R", "G", "B"}));
   EXPECT_EQ(lut.data.size(), size_t(256 * 64 * 3));
   const Metadata& m = lut.metadata;
-  EXPECT_EQ(m.at("parameterization"), "bruneton_transmittance");
-  EXPECT_EQ(std::stod(m.at("bottom_radius_m")), atm_->bottom_radius_m);
-  EXPECT_EQ(std::stod(m.at("top_radius_m")), atm_->top_radius_m);
-  EXPECT_NEAR(std::stod(m.at("horizon_distance_m")), std::sqrt(6460e3 * 6460e3 - 6360e3 * 6360e3),
+  EXPECT_EQ(meta_string(m, "parameterization"), "bruneton_transmittance");
+  EXPECT_EQ(meta_double(m, "bottom_radius_m"), atm_->bottom_radius_m);
+  EXPECT_EQ(meta_double(m, "top_radius_m"), atm_->top_radius_m);
+  EXPECT_NEAR(meta_double(m, "horizon_distance_m"), std::sqrt(6460e3 * 6460e3 - 6360e3 * 6360e3),
               1e-6);
-  EXPECT_EQ(m.at("width"), "256");
-  EXPECT_EQ(m.at("height"), "64");
-  EXPECT_EQ(m.at("integration_steps"), "40");
+  EXPECT_EQ(meta_int(m, "width"), 256);
+  EXPECT_EQ(meta_int(m, "height"), 64);
+  EXPECT_EQ(meta_int(m, "integration_steps"), 40);
   for (const char* key : {"quantity", "texel_centers", "mapping", "inverse_mapping", "domain"})
-    EXPECT_FALSE(m.at(key).empty()) << key;
-  EXPECT_NE(m.at("mapping").find("x_mu = (d - d_min)/(d_max - d_min)"), std::string::npos);
+    EXPECT_FALSE(meta_string(m, key).empty()) << key;
+  EXPECT_NE(meta_string(m, "mapping").find("x_mu = (d - d_min)/(d_max - d_min)"), std::string::npos);
 }
 
 TEST_F(EarthLut, TexelsHoldTheTransmittanceOfTheirCentre) {

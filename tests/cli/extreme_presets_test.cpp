@@ -68,7 +68,7 @@ TEST(ExtremePresets, MultipleScatteringTransferStaysBelowOne) {
         test::read_file(baked_extremes() / ("extreme_" + name) / "manifest.json"));
     for (const auto& o : manifest["outputs"]) {
       if (o["product"] != "multiscattering") continue;
-      const double fms_max = std::stod(o["metadata"]["fms_max"].get<std::string>());
+      const double fms_max = o["metadata"]["fms_max"].get<double>();
       // 1000x Rayleigh: f_ms rounds to 1 in double; the baker clamps it below 1.
       if (name == "rayleigh_1000x") {
         EXPECT_LE(fms_max, 1.0) << name;

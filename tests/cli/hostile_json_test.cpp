@@ -163,6 +163,9 @@ TEST(HostileJson, ManifestWithWrongTypesIsAMissingCache) {
        std::vector<std::pair<std::string, nlohmann::json>>{{"/outputs/0/files", {1, 2}},
                                                             {"/outputs/0/dimensions", {1e300}},
                                                             {"/outputs/0/metadata", 7},
+                                                            {"/outputs/0/metadata/x", {1, 2, 3, 4}},
+                                                            {"/outputs/0/metadata/x", {1, 2.5}},
+                                                            {"/outputs/0/metadata/x", {{"a", 1}}},
                                                             {"/outputs", "x"},
                                                             {"/outputs/0", 3}}) {
     auto bad = m;

@@ -105,7 +105,7 @@ TEST(CloudTypes, ColumnsFollowTheDocumentedOrderAndEqualTheClosedForm) {
   ASSERT_EQ(tex.channels, (std::vector<std::string>{"R", "G"}));
   const char* names[5] = {"stratus", "stratocumulus", "cumulus", "cumulonimbus", "anvil"};
   for (int i = 0; i < 5; ++i) {
-    EXPECT_EQ(tex.metadata.at("type." + std::to_string(i)), names[i]);
+    EXPECT_EQ(meta_string(tex.metadata, "type." + std::to_string(i)), names[i]);
     const CloudTypeProfile& t = spec.types[i];
     for (int j = 0; j < 64; ++j) {
       const double h = (j + 0.5) / 64;  // row 0 = bottom

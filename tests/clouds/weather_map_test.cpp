@@ -88,7 +88,7 @@ TEST(WeatherMap, MeanCoverageMatchesThePresetForSeveralCoveragesAndSeeds) {
       const Texture t = bake(s);
       const double mean = channel_mean(t, 0);
       EXPECT_NEAR(mean, coverage, 1e-5) << "coverage " << coverage << " seed " << seed;
-      EXPECT_NEAR(std::stod(t.metadata.at("coverage.mean_baked")), mean, 1e-12);
+      EXPECT_NEAR(meta_double(t.metadata, "coverage.mean_baked"), mean, 1e-12);
     }
   }
 }
@@ -140,7 +140,7 @@ TEST(WeatherMap, FrostbiteLayoutIndexesTheCloudTypeColumns) {
   s.layout = WeatherLayout::frostbite;
   const Texture frostbite = bake(s);
   ASSERT_EQ(frostbite.channels, (std::vector<std::string>{"R", "G"}));
-  EXPECT_EQ(frostbite.metadata.at("weather_layout"), "frostbite");
+  EXPECT_EQ(meta_string(frostbite.metadata, "weather_layout"), "frostbite");
   size_t raining = 0, dry = 0;
   for (size_t i = 0; i < schneider.texel_count(); ++i) {
     const float* a = &schneider.data[i * 3];
@@ -171,10 +171,10 @@ TEST(WeatherMap, MetadataRecordsWorldAndTexelSize) {
   s.world_size_km = 32.0;
   s.coverage.feature_km = 8.0;
   const Texture t = bake(s);
-  EXPECT_EQ(std::stod(t.metadata.at("world_size_km")), 32.0);
-  EXPECT_EQ(std::stod(t.metadata.at("texel_size_m")), 500.0);
-  EXPECT_EQ(t.metadata.at("coverage.period"), "4");
-  EXPECT_EQ(t.metadata.at("weather_layout"), "schneider");
+  EXPECT_EQ(meta_double(t.metadata, "world_size_km"), 32.0);
+  EXPECT_EQ(meta_double(t.metadata, "texel_size_m"), 500.0);
+  EXPECT_EQ(meta_int(t.metadata, "coverage.period"), 4);
+  EXPECT_EQ(meta_string(t.metadata, "weather_layout"), "schneider");
 }
 
 TEST(WeatherMap, PeriodFromFeatureSizeAndBack) {

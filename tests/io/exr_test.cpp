@@ -31,8 +31,14 @@ std::string tmp_path(const std::string& name, const std::string& file) {
 Texture make_texture(int w, int h, int d, int l, std::vector<std::string> channels) {
   Texture tex(w, h, d, l, std::move(channels));
   for (size_t i = 0; i < tex.data.size(); ++i) tex.data[i] = float(2.0 * std::sin(0.7 * i + 0.3));
-  tex.metadata["product"] = "transmittance";
-  tex.metadata["mu_min"] = "-0.20000000000000001";
+  // One value of every metadata type, so that the round trip covers each.
+  set_meta(tex.metadata, "product", "transmittance");
+  set_meta(tex.metadata, "mu_min", -0.20000000000000001);
+  set_meta(tex.metadata, "steps", 40);
+  set_meta(tex.metadata, "size", glm::ivec2(256, -64));
+  set_meta(tex.metadata, "box", glm::ivec3(5, 4, 3));
+  set_meta(tex.metadata, "uv", glm::dvec2(0.1, 1e-300));
+  set_meta(tex.metadata, "irradiance", glm::dvec3(1.0 / 3.0, 2.5, 7e10));
   return tex;
 }
 
@@ -256,7 +262,7 @@ TEST(Exr, HalfOverflowIsRefusedButFloatKeepsIt) {
 TEST(Exr, ReservedMetadataKeysAreRefused) {
   const std::string path = tmp_path("reserved", "t.exr");
   Texture tex = make_texture(2, 2, 1, 1, {"R"});
-  tex.metadata["shape"] = "mine";
+  set_meta(tex.metadata, "shape", "mine");
   EXPECT_THROW(write_exr(path, tex, ExrPrecision::float32), Error);
   EXPECT_FALSE(fs::exists(path));
 }

@@ -89,7 +89,7 @@ std::vector<Texture> chain(int w, int h, int d, int layers, int channels, Ktx2En
     levels.push_back(make(std::max(1, w >> p), std::max(1, h >> p), std::max(1, d >> p), layers,
                           channels, e, size_t(p) * 1000));
   levels[0].metadata["product"] = "noise_shape";
-  levels[0].metadata["mu_min"] = "-0.20000000000000001";
+  levels[0].metadata["mu_min"] = -0.20000000000000001;
   return levels;
 }
 

@@ -29,8 +29,14 @@ Texture make_volume(int w, int h, int d) {
   Texture tex(w, h, d, 1, {"R", "G", "B", "A"});
   for (size_t i = 0; i < tex.data.size(); ++i)
     tex.data[i] = i % 7 < 2 ? 0.0f : float(1.5 * std::sin(0.37 * i + 0.1));
-  tex.metadata["product"] = "noise_shape";
-  tex.metadata["period"] = "1";
+  // One value of every metadata type, so that the round trip covers each.
+  set_meta(tex.metadata, "product", "noise_shape");
+  set_meta(tex.metadata, "period", 1);
+  set_meta(tex.metadata, "gain", -0.20000000000000001);
+  set_meta(tex.metadata, "size", glm::ivec2(5, -4));
+  set_meta(tex.metadata, "box", glm::ivec3(5, 4, 3));
+  set_meta(tex.metadata, "uv", glm::dvec2(0.1, 1e-300));
+  set_meta(tex.metadata, "irradiance", glm::dvec3(1.0 / 3.0, 2.5, 7e10));
   return tex;
 }
 

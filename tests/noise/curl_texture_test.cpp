@@ -32,9 +32,9 @@ TEST(CurlTexture, DecodesToTheCurlAtTexelCentres) {
   const Texture t = bake_with_threads(spec, 2);
   EXPECT_EQ(t.shape_string(), "128x128");
   EXPECT_EQ(t.channels, (std::vector<std::string>{"R", "G", "B"}));
-  EXPECT_EQ(t.metadata.at("product"), "curl");
-  const float scale_rg = std::stof(t.metadata.at("curl_scale_rg"));
-  const float scale_b = std::stof(t.metadata.at("curl_scale_b"));
+  EXPECT_EQ(meta_string(t.metadata, "product"), "curl");
+  const float scale_rg = float(meta_double(t.metadata, "curl_scale_rg"));
+  const float scale_b = float(meta_double(t.metadata, "curl_scale_b"));
   for (int y = 0; y < 128; y += 9)
     for (int x = 0; x < 128; x += 7) {
       const glm::vec2 p(cell_coord_from_texel(x, 128, spec.period),

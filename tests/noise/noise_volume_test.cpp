@@ -94,15 +94,15 @@ TEST(NoiseShape, DefaultShapeChannelsAndMetadata) {
   const Texture& t = default_shape();
   EXPECT_EQ(t.shape_string(), "128x128x128");
   EXPECT_EQ(t.channels, (std::vector<std::string>{"R", "G", "B", "A"}));
-  EXPECT_EQ(t.metadata.at("product"), "noise_shape");
-  EXPECT_EQ(t.metadata.at("seed"), "0");
-  EXPECT_EQ(t.metadata.at("remap"), "worley_new_min");
-  EXPECT_EQ(t.metadata.at("period.G"), "8");
-  EXPECT_EQ(t.metadata.at("period.B"), "16");
-  EXPECT_EQ(t.metadata.at("period.A"), "32");
-  EXPECT_EQ(t.metadata.at("octaves.A"), "2");
+  EXPECT_EQ(meta_string(t.metadata, "product"), "noise_shape");
+  EXPECT_EQ(meta_double(t.metadata, "seed"), 0.0);
+  EXPECT_EQ(meta_string(t.metadata, "remap"), "worley_new_min");
+  EXPECT_EQ(meta_int(t.metadata, "period.G"), 8);
+  EXPECT_EQ(meta_int(t.metadata, "period.B"), 16);
+  EXPECT_EQ(meta_int(t.metadata, "period.A"), 32);
+  EXPECT_EQ(meta_int(t.metadata, "octaves.A"), 2);
   for (const char* c : {"channel.R", "channel.G", "channel.B", "channel.A"})
-    EXPECT_FALSE(t.metadata.at(c).empty());
+    EXPECT_FALSE(meta_string(t.metadata, c).empty());
 }
 
 TEST(NoiseShape, ValuesInUnitRangeAndTiling) {
@@ -185,7 +185,7 @@ TEST(NoiseShape, EveryRemapVariantBakesInRangeAndTiles) {
     SCOPED_TRACE(remap_name(remap));
     expect_unit_range(t);
     expect_tiles(t);
-    EXPECT_EQ(t.metadata.at("remap"), remap_name(remap));
+    EXPECT_EQ(meta_string(t.metadata, "remap"), remap_name(remap));
   }
 }
 
@@ -222,7 +222,7 @@ TEST(NoiseDetail, DefaultDetailVolume) {
   }
   EXPECT_EQ(t.shape_string(), "32x32x32");
   EXPECT_EQ(t.channels, (std::vector<std::string>{"R", "G", "B"}));
-  EXPECT_EQ(t.metadata.at("product"), "noise_detail");
+  EXPECT_EQ(meta_string(t.metadata, "product"), "noise_detail");
   EXPECT_TRUE(one.data == t.data);
   expect_unit_range(t);
   expect_tiles(t);
@@ -298,14 +298,14 @@ TEST(PackSingleChannel, FormulasOnKnownTexels) {
   Texture t(2, 1, 1, 1, {"R", "G", "B", "A"});
   t.data = {0.5f, 1.0f, 1.0f, 1.0f,   // fbm = 1: (0.5 + 0) / 1
             0.0f, 0.0f, 0.0f, 0.0f};  // fbm = 0: (0 + 1) / 2
-  t.metadata["channel.G"] = "worley";
+  set_meta(t.metadata, "channel.G", "worley");
   const Texture shape = pack_single_channel(t, shape_pack_weights());
   EXPECT_EQ(shape.channels, std::vector<std::string>{"R"});
   EXPECT_FLOAT_EQ(shape.data[0], 0.5f);
   EXPECT_FLOAT_EQ(shape.data[1], 0.5f);
-  EXPECT_EQ(shape.metadata.at("source.channel.G"), "worley");
+  EXPECT_EQ(meta_string(shape.metadata, "source.channel.G"), "worley");
   EXPECT_EQ(shape.metadata.count("channel.G"), 0u);
-  EXPECT_FALSE(shape.metadata.at("packed").empty());
+  EXPECT_FALSE(meta_string(shape.metadata, "packed").empty());
 
   Texture d(1, 1, 1, 1, {"R", "G", "B"});
   d.data = {0.8f, 0.4f, 0.2f};

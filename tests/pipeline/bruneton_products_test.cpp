@@ -50,11 +50,11 @@ TEST(BrunetonProducts, FixedOrdersAreRecordedAndFilesReadBack) {
   const auto s = manifest_entry(dir / "out", "scattering");
   EXPECT_EQ(s["dimensions"], nlohmann::json::array({32, 32, 8})) << "nu*mu_s x mu x r";
   EXPECT_EQ(s["channels"].size(), 4u) << "Mie red in alpha by default";
-  EXPECT_EQ(s["metadata"]["orders"], "3");
+  EXPECT_EQ(s["metadata"]["orders"], 3);
   EXPECT_TRUE(s["metadata"].contains("last_residual"));
   const auto irr = manifest_entry(dir / "out", "irradiance");
   EXPECT_EQ(irr["dimensions"], nlohmann::json::array({32, 8}));
-  EXPECT_EQ(irr["metadata"]["orders"], "3") << "irradiance comes from the same bake";
+  EXPECT_EQ(irr["metadata"]["orders"], 3) << "irradiance comes from the same bake";
   const Texture t = read_texture_file((dir / "out/small/scattering.dds").string()).texture;
   EXPECT_EQ(t.depth, 8);
   for (float v : t.data) ASSERT_GE(v, 0.0f);
@@ -68,8 +68,8 @@ TEST(BrunetonProducts, ConvergenceModeRecordsOrdersAndResidual) {
   const auto r = test::run_skybake({"bake", preset.string(), "-o", (dir / "out").string(), "-q"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto s = manifest_entry(dir / "out", "scattering");
-  const int orders = std::stoi(s["metadata"]["orders"].get<std::string>());
-  const double residual = std::stod(s["metadata"]["last_residual"].get<std::string>());
+  const int orders = s["metadata"]["orders"].get<int>();
+  const double residual = s["metadata"]["last_residual"].get<double>();
   EXPECT_GT(orders, 2);
   EXPECT_LT(orders, 30);
   EXPECT_LT(residual, 0.01);

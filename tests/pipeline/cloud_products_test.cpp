@@ -104,7 +104,7 @@ TEST(CloudProducts, RainRuleAndMeanCoverageHoldOnTheWrittenFiles) {
   EXPECT_NEAR(sum8 / dds.texel_count(), coverage, 0.5 / 255.0);
   const double area = weather["precipitation"]["area"].get<double>();
   EXPECT_EQ(raining, size_t(std::lround(area * exr.texel_count())));
-  EXPECT_EQ(exr.metadata.at("world_size_km"), "60");
+  EXPECT_EQ(meta_double(exr.metadata, "world_size_km"), 60.0);
 }
 
 TEST(CloudProducts, SchemaDefaultsAreTheDocumentedProfiles) {
@@ -117,7 +117,7 @@ TEST(CloudProducts, SchemaDefaultsAreTheDocumentedProfiles) {
   ASSERT_EQ(baked.width, 4);
   ASSERT_EQ(baked.height, 128);
   EXPECT_TRUE(baked.data == expected.data);
-  EXPECT_EQ(baked.metadata.at("type.3"), "cumulonimbus");
+  EXPECT_EQ(meta_string(baked.metadata, "type.3"), "cumulonimbus");
 }
 
 TEST(CloudProducts, FrostbiteLayoutPointsAtTheCumulonimbusColumnWhereItRains) {
@@ -133,7 +133,7 @@ TEST(CloudProducts, FrostbiteLayoutPointsAtTheCumulonimbusColumnWhereItRains) {
   const Texture f = read_exr((dir / "frostbite" / "weather.exr").string());
   ASSERT_EQ(f.channel_count(), 2);
   // storm.json adds one type ("anvil"): five columns, cumulonimbus is column 3.
-  EXPECT_EQ(f.metadata.at("type_count"), "5");
+  EXPECT_EQ(meta_int(f.metadata, "type_count"), 5);
   size_t raining = 0;
   for (size_t i = 0; i < s.texel_count(); ++i) {
     EXPECT_EQ(f.data[i * 2], s.data[i * 3]);

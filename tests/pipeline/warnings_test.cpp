@@ -54,7 +54,7 @@ TEST(Warnings, OrdersThatStoppedAtTheCapAndATailThatStandsForTheSky) {
   set_meta(t.metadata, "orders", 100);
   set_meta(t.metadata, "tolerance", 1e-3);
   set_meta(t.metadata, "last_residual", 0.0127);
-  set_meta(t.metadata, "geometric_tail", std::string("1.5,12,55"));
+  set_meta(t.metadata, "geometric_tail", glm::dvec3(1.5, 12.0, 55.0));
   const std::vector<OutputWarning> w =
       output_warnings(scene, spec_of("scattering"), t, json(), json());
   ASSERT_EQ(codes(w), (std::set<std::string>{"not_converged", "tail_dominates"}));
@@ -76,7 +76,7 @@ TEST(Warnings, OrdersThatStoppedAtTheCapAndATailThatStandsForTheSky) {
   // Fixed orders record tolerance 0 and no tail.
   set_meta(t.metadata, "tolerance", 0.0);
   set_meta(t.metadata, "last_residual", 0.5);
-  set_meta(t.metadata, "geometric_tail", std::string("none"));
+  set_meta(t.metadata, "geometric_tail", glm::dvec3(0.0));
   EXPECT_TRUE(output_warnings(scene, spec_of("scattering"), t, json(), json()).empty());
 }
 
