@@ -26,6 +26,19 @@ void set_common_metadata(Metadata& meta, const Atmosphere& atm, const BrunetonSp
   set_meta(meta, "units", std::string("relative to the sun_illuminance of the preset"));
 }
 
+// Orders >= 2 are stored divided by p_R at the unclamped nu of their slice
+// (scattering_orders.hpp "Storage of orders >= 2"; scattering_texel_grid):
+// nu_k = -1 + 2 k / (nu_size - 1), from -1 to 1.
+void set_rayleigh_divisor_metadata(Metadata& meta) {
+  set_meta(meta, "rayleigh_divisor_nu_range", glm::dvec2(-1.0, 1.0));
+  set_meta(meta, "rayleigh_divisor_nu_clamped", 0);
+  set_meta(meta, "rayleigh_divisor",
+           "RGB holds single Rayleigh without phase + orders >= 2 divided by p_R(nu_k) = 3 (1 + "
+           "nu_k^2) / (16 pi), nu_k = -1 + 2 k / (nu_size - 1) the nu of slice k as it is, not "
+           "clamped to the [mu mu_s - s, mu mu_s + s] (s = sqrt((1 - mu^2) (1 - mu_s^2))) that "
+           "the texel's own scattering is computed at");
+}
+
 void set_scattering_metadata(Metadata& meta, const Atmosphere& atm, const BrunetonSpec& spec,
                              const BrunetonTextures& out, const ScatteringPhases& phases,
                              bool is_mie) {
@@ -62,6 +75,7 @@ void set_scattering_metadata(Metadata& meta, const Atmosphere& atm, const Brunet
     return;
   }
   set_meta(meta, "mie_in_alpha", spec.combined_mie_alpha ? 1 : 0);
+  set_rayleigh_divisor_metadata(meta);
   set_meta(
       meta, "quantity",
       std::string(spec.combined_mie_alpha
@@ -84,6 +98,22 @@ void set_irradiance_metadata(Metadata& meta, const Atmosphere& atm, const Brunet
            std::string("coord(x, n) = 0.5/n + x*(1 - 1/n); u = coord(0.5 + 0.5*mu_s, width), "
                        "v = coord((r - Rb)/(Rt - Rb), height)"));
   set_meta(meta, "sun_angular_radius_rad", atm.sun_angular_radius_rad);
+}
+
+// The sky orders whose light the irradiance holds: E_1 .. E_N for N orders
+// (scattering_orders.cpp take_irradiance: E_k comes from order k's sky),
+// E_0 the direct sun when it is summed in.
+void set_irradiance_orders_metadata(Metadata& meta, const BrunetonSpec& spec,
+                                    const BrunetonTextures& out) {
+  const int first = spec.irradiance_includes_direct ? 0 : 1, last = out.orders_used;
+  const bool tail = spec.tolerance > 0.0 && spec.geometric_tail;
+  set_meta(meta, "irradiance_orders", glm::ivec2(first, last));
+  set_meta(meta, "irradiance_orders_note",
+           fmt::format("sky orders {}..{} ({} scattering orders{}{}); Bruneton's reference Init(N) "
+                       "holds sky orders 1..N-1, so this table matches its Init({})",
+                       1, last, last, spec.irradiance_includes_direct ? ", plus the direct sun" : "",
+                       tail ? ", order N times 1 + geometric_tail for the orders after it" : "",
+                       last + 1));
 }
 
 }  // namespace
@@ -115,6 +145,7 @@ void assemble_bruneton_outputs(const Atmosphere& atm, const BrunetonSpec& spec,
                           "direct sunlight on a horizontal surface, E_sun*T(r, mu_s)*c(mu_s), "
                           "c the cosine averaged over the sun's disk");
   set_meta(out.irradiance.metadata, "includes_direct", spec.irradiance_includes_direct ? 1 : 0);
+  set_irradiance_orders_metadata(out.irradiance.metadata, spec, out);
 }
 
 }  // namespace skybake

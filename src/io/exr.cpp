@@ -44,7 +44,7 @@ namespace {
 
 const std::string kPrefix = "skybake:";
 const char* const kReservedKeys[] = {"shape",      "channels",    "layout",       "atlas_columns",
-                                     "atlas_rows", "slice_width", "slice_height", "slice_depth"};
+                                     "atlas_rows", "slice_width", "slice_height", "slice_count"};
 // Half values at or above this magnitude round to Inf (65504 + half an ulp).
 constexpr float kHalfOverflow = 65520.0f;
 
@@ -211,7 +211,7 @@ Imf::FrameBuffer write_buffer(const Imf::Header& header, const std::vector<std::
   return frame_buffer(channels, halves.data(), width, 0, 0);
 }
 
-// Copies the slices of a volume into an atlas image (zero in unused cells).
+// Copies the slices of a volume into an atlas image of columns x rows cells.
 std::vector<float> make_atlas(const Texture& tex, int columns, int rows) {
   const size_t nc = tex.channels.size();
   const size_t atlas_width = size_t(columns) * tex.width;
@@ -263,9 +263,10 @@ ExrCompression exr_compression_from_name(const std::string& name) {
 }
 
 int exr_atlas_columns(int depth) {
-  int columns = 1;
-  while (columns * columns < depth) ++columns;
-  return columns;
+  int rows = 1;  // the largest divisor of depth not above sqrt(depth)
+  for (int r = 2; int64_t(r) * r <= depth; ++r)
+    if (depth % r == 0) rows = r;
+  return depth / rows;
 }
 
 void write_exr(const std::string& path, const Texture& tex, ExrPrecision precision,
@@ -276,14 +277,14 @@ void write_exr(const std::string& path, const Texture& tex, ExrPrecision precisi
   std::vector<float> atlas;
   if (tex.is_volume() && layout == ExrVolumeLayout::atlas) {
     const int columns = exr_atlas_columns(tex.depth);
-    const int rows = (tex.depth + columns - 1) / columns;
+    const int rows = tex.depth / columns;  // columns * rows == depth: no empty cell
     Imf::Header spec =
         base_header(tex, columns * tex.width, rows * tex.height, precision, "atlas");
     spec.insert(kPrefix + "atlas_columns", Imf::IntAttribute(columns));
     spec.insert(kPrefix + "atlas_rows", Imf::IntAttribute(rows));
     spec.insert(kPrefix + "slice_width", Imf::IntAttribute(tex.width));
     spec.insert(kPrefix + "slice_height", Imf::IntAttribute(tex.height));
-    spec.insert(kPrefix + "slice_depth", Imf::IntAttribute(tex.depth));
+    spec.insert(kPrefix + "slice_count", Imf::IntAttribute(tex.depth));
     atlas = make_atlas(tex, columns, rows);
     specs.push_back(spec);
     pixels.push_back(atlas.data());
@@ -449,6 +450,33 @@ void expect_part_size(const std::string& path, const PartInfo& spec, int part, i
                               spec.width, spec.height));
 }
 
+// The atlas layout from its int attributes (exr.hpp), checked against
+// skybake:shape and the image: slice_count x slice_width x slice_height is
+// the volume, atlas_columns x atlas_rows cells hold exactly slice_count
+// slices, and the image is that many slices wide and high. Returns columns.
+int atlas_columns(const std::string& path, const Imf::Header& h, const Shape& shape) {
+  const int columns = int_attribute(h, kPrefix + "atlas_columns");
+  const int rows = int_attribute(h, kPrefix + "atlas_rows");
+  const int count = int_attribute(h, kPrefix + "slice_count");
+  const int width = int_attribute(h, kPrefix + "slice_width");
+  const int height = int_attribute(h, kPrefix + "slice_height");
+  if (shape.layers != 1)
+    throw IoError(fmt::format("{}: expected 1 layer in an atlas (skybake:shape), got {}", path,
+                              shape.layers));
+  if (count != shape.depth || width != shape.width || height != shape.height)
+    throw IoError(fmt::format(
+        "{}: expected skybake:slice_count, slice_width, slice_height {}, {}, {} (skybake:shape), "
+        "got {}, {}, {}",
+        path, shape.depth, shape.width, shape.height, count, width, height));
+  if (columns < 1 || rows < 1 || int64_t(columns) * rows != count)
+    throw IoError(fmt::format("{}: expected an atlas of {} cells (skybake:atlas_columns x "
+                              "skybake:atlas_rows), got {}x{}",
+                              path, count, columns, rows));
+  const PartInfo info = part_info(h);
+  expect_part_size(path, info, 0, int64_t(columns) * width, int64_t(rows) * height);
+  return columns;
+}
+
 // OpenEXR allocates every attribute's declared size before it reads the
 // value (a 731-byte file declaring a 1.8 GB string took 2 GB and 15 s): the
 // headers are walked first, each attribute's size against the bytes left.
@@ -533,16 +561,7 @@ Texture read_exr_file(const std::string& path, ExrShape shape_from) {
           channels[c]));
   int columns = 0;
   if (layout == "atlas") {
-    columns = int_attribute(head, kPrefix + "atlas_columns");
-    const int rows = int_attribute(head, kPrefix + "atlas_rows");
-    if (shape.layers != 1)
-      throw IoError(fmt::format("{}: expected 1 layer in an atlas (skybake:shape), got {}", path,
-                                shape.layers));
-    if (columns < 1 || rows < 1 || int64_t(columns) * rows < shape.depth)
-      throw IoError(fmt::format("{}: expected an atlas of at least {} cells, got {}x{}", path,
-                                shape.depth, columns, rows));
-    expect_part_size(path, head_info, 0, int64_t(columns) * shape.width,
-                     int64_t(rows) * shape.height);
+    columns = atlas_columns(path, head, shape);
   } else {
     const uint64_t parts = uint64_t(shape.depth) * uint64_t(shape.layers);
     if (specs.size() != parts)
@@ -583,6 +602,25 @@ Texture read_exr_file(const std::string& path, ExrShape shape_from) {
 }
 
 }  // namespace
+
+ExrLayout read_exr_layout(const std::string& path) {
+  try {
+    check_header_sizes(path);
+    Imf::MultiPartInputFile in(path.c_str(), exr_threads());
+    const Imf::Header& h = in.header(0);
+    ExrLayout out;
+    out.parts = in.parts();
+    out.layout = string_attribute(h, kPrefix + "layout", out.parts > 1 ? "layers" : "image");
+    out.atlas_columns = int_attribute(h, kPrefix + "atlas_columns");
+    out.atlas_rows = int_attribute(h, kPrefix + "atlas_rows");
+    out.slice_count = int_attribute(h, kPrefix + "slice_count");
+    return out;
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw IoError(fmt::format("{}: cannot read EXR: {}", path, e.what()));
+  }
+}
 
 Texture read_exr(const std::string& path, ExrShape shape) {
   try {

@@ -7,23 +7,26 @@
 //   2D array (layers L)     a multi-part EXR, part i named "layer<i>".
 //   volume, atlas           one image of columns x rows slices, slice z at
 //                           column z % columns, row z / columns, with
-//                           columns = ceil(sqrt(depth)), rows =
-//                           ceil(depth / columns); unused cells are 0.
+//                           exactly columns x rows = depth cells: rows the
+//                           largest divisor of depth not above sqrt(depth)
+//                           (32 -> 8 x 4, 7 -> 7 x 1; docs/formats.md "EXR").
 //   volume, multipart       a multi-part EXR, part z named "slice<z>".
 // Channels keep the texture's names ("R", "G", "B", "A" or any other name).
 // Compression: zip by default (16 lines per block), or zips (1 line), piz or
 // none, all lossless; every one gives the same bytes for any thread count.
 //
 // Header attributes (every part of a multi-part file carries all of them):
-//   skybake:<key>          string, one per Texture::metadata entry.
+//   skybake:<key>          one per Texture::metadata entry, of its type: int,
+//                          double, string, v2i, v3i, v2d, v3d.
 //   skybake:shape          string "WxHxDxL" (width, height, depth, layers).
 //   skybake:channels       string, the channel names in texture order, comma
 //                          separated: EXR stores channels sorted by name, so
 //                          the file alone loses the order.
 //   skybake:layout         string "image", "layers", "atlas" or "slices".
-//   skybake:atlas_columns, skybake:atlas_rows, skybake:slice_width,
-//   skybake:slice_height, skybake:slice_depth
-//                          ints, atlas layout only.
+//   skybake:atlas_columns, skybake:atlas_rows, skybake:slice_count,
+//   skybake:slice_width, skybake:slice_height
+//                          ints, atlas layout only; the reader takes the
+//                          atlas from them (checked against skybake:shape).
 // No time stamp: OpenEXR writes no DateTime attribute (docs/architecture.md
 // "Determinism").
 // Metadata keys may therefore not be one of the structural names above
@@ -68,7 +71,18 @@ void write_exr(const std::string& path, const Texture& tex, ExrPrecision precisi
 enum class ExrShape { recorded, as_stored };
 Texture read_exr(const std::string& path, ExrShape shape = ExrShape::recorded);
 
-// Columns of the slice atlas of a volume with `depth` slices: ceil(sqrt(depth)).
+// Columns of the slice atlas of a volume with `depth` slices: depth / rows,
+// rows the largest divisor of depth not above sqrt(depth).
 int exr_atlas_columns(int depth);
+
+// The layout an EXR records (skybake:layout and the atlas ints; "image" or
+// "layers" and zeros for a foreign file), for `skybake info`. Throws IoError
+// when the file cannot be read.
+struct ExrLayout {
+  std::string layout;
+  int parts = 1;
+  int atlas_columns = 0, atlas_rows = 0, slice_count = 0;
+};
+ExrLayout read_exr_layout(const std::string& path);
 
 }  // namespace skybake

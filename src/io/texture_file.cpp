@@ -125,6 +125,12 @@ LoadedTexture read_texture_file(const std::string& path) {
   if (ext == ".exr") {
     out.texture = read_exr(path);
     out.format = "exr";
+    const ExrLayout layout = read_exr_layout(path);
+    out.details = {{"layout", layout.layout}, {"parts", layout.parts}};
+    if (layout.layout == "atlas")
+      out.details.update({{"atlas_columns", layout.atlas_columns},
+                          {"atlas_rows", layout.atlas_rows},
+                          {"slice_count", layout.slice_count}});
     out.encoding = manifest_encoding(path);
   } else if (ext == ".vdb") {
     out.texture = read_vdb(path);

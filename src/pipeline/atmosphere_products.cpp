@@ -1,5 +1,6 @@
 // Atmosphere products: presets in km and degrees become the bakers' SI specs
 // here, once.
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -13,6 +14,7 @@
 #include "pipeline/product_graph.hpp"
 #include "pipeline/product_options.hpp"
 #include "pipeline/product_tables.hpp"
+#include "pipeline/runtime_metadata.hpp"
 
 namespace skybake {
 
@@ -33,10 +35,15 @@ Texture bake_transmittance(const Scene& scene, const OutputSpec& spec, const Pro
 
 Texture bake_multiscattering(const Scene& scene, const OutputSpec& spec, const ProductInputs& in,
                              const BakeContext& ctx) {
-  if (multiscattering_is_converged(spec))
-    return bake_converged_multiscattering_lut(scene.atmosphere, *in.at("transmittance"),
-                                              multiscattering_spec(spec),
-                                              converged_multiscattering_spec(spec), ctx);
+  if (multiscattering_is_converged(spec)) {
+    Texture tex = bake_converged_multiscattering_lut(scene.atmosphere, *in.at("transmittance"),
+                                                     multiscattering_spec(spec),
+                                                     converged_multiscattering_spec(spec), ctx);
+    // Converged orders scatter with the real phases (Hillaire's model is
+    // isotropic and records none).
+    set_mie_phase_metadata(scene.atmosphere, tex.metadata);
+    return tex;
+  }
   return bake_multiscattering_lut(scene.atmosphere, *in.at("transmittance"),
                                   multiscattering_spec(spec), ctx);
 }
@@ -175,6 +182,10 @@ ProductInfo atmosphere_lut_product(std::string name, std::string summary,
   p.allowed_formats = {"exr", "dds", "ktx2", "png"};
   p.dependencies = std::move(dependencies);
   p.scene_sections = kAtmosphereSections;
+  // Texture axes: the product's size axes, the 4D table's packed in 3.
+  p.sampling.wrap.assign(std::min<size_t>(p.axes.size(), 3), "clamp");
+  p.atmosphere_table = true;
+  p.reads_mie_phase = true;
   return p;
 }
 
@@ -227,18 +238,21 @@ void add_atmosphere_products(std::vector<ProductInfo>& r) {
       "transmittance", "transmittance to the top of the atmosphere, (mu, r), Hillaire 2020 5.2",
       {"mu", "r"}, {256, 64}, {4096, 4096}, {}, bake_transmittance, 7000.0,
       measure_transmittance_error));
+  r.back().reads_mie_phase = false;
   ProductInfo ms = atmosphere_product(
       "multiscattering",
       "multiple-scattering transfer Psi_ms, (sun zenith, altitude), Hillaire 2020 5.5",
       {"mu_s", "h"}, {32, 32}, {1024, 1024}, {"transmittance"}, bake_multiscattering, 130000.0,
       measure_multiscattering_error);
   ms.check = converged_multiscattering_problems;
+  ms.reads_mie_phase = false;  // isotropic (Hillaire 2020 eq. 7); "converged" records it
   r.push_back(std::move(ms));
   ProductInfo skyview = atmosphere_product(
       "skyview", "sky-view lat/long LUT, one layer per (altitude, sun zenith), Hillaire 2020 5.3",
       {"azimuth", "latitude"}, {192, 108}, {4096, 4096}, {"transmittance", "multiscattering"},
       bake_skyview, 1400.0 * 8, measure_skyview_error);
   skyview.check = converged_multiscattering_problems;
+  skyview.sampling.wrap = {"repeat", "clamp"};  // u is the azimuth, all the way round
   r.push_back(std::move(skyview));
   ProductInfo ap = atmosphere_product(
       "aerial_perspective",

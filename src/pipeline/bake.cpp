@@ -17,6 +17,7 @@
 #include "pipeline/freshness.hpp"
 #include "pipeline/output_writer.hpp"
 #include "pipeline/product_graph.hpp"
+#include "pipeline/runtime_metadata.hpp"
 #include "pipeline/warnings.hpp"
 
 namespace fs = std::filesystem;
@@ -177,6 +178,7 @@ class SceneBake {
     set_meta(tex.metadata, "tool", std::string("skybake " SKYBAKE_VERSION));
     set_meta(tex.metadata, "input_hash", node.input_hash);
     set_meta(tex.metadata, "preset", scene_.file.filename().string());
+    add_runtime_metadata(scene_, *node.info, tex);
     summary_.computed.push_back(node.info->name);
   }
 

@@ -204,6 +204,7 @@ ProductInfo cloud_product(std::string name, std::string summary, std::vector<std
   p.default_mips = tileable;
   p.preview_tiled = tileable;
   p.preview_split = true;
+  p.sampling.wrap.assign(2, tileable ? "repeat" : "clamp");
   return p;
 }
 

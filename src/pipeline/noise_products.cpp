@@ -111,6 +111,7 @@ ProductInfo noise_product(std::string name, std::string summary, std::vector<std
   p.preview_split = true;
   p.tileable = true;
   p.density_volume = p.axes.size() == 3;  // the volumes; curl is a 2D vector field
+  p.sampling.wrap.assign(p.axes.size(), "repeat");
   return p;
 }
 

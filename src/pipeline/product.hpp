@@ -34,6 +34,15 @@ using MeasureFn = std::function<nlohmann::json(const Scene&, const OutputSpec&,
 using BakeFn = std::function<Texture(const Scene&, const OutputSpec&, const ProductInputs&,
                                      const BakeContext&)>;
 
+// How an engine samples a product's texture (docs/formats.md "Metadata"):
+// the filter, and the wrap mode of each texture axis (u, v, then w for a
+// volume; a 2D array's layers are never filtered across). Recorded in every
+// output's metadata as filter, wrap_u, wrap_v, wrap_w.
+struct Sampling {
+  std::string filter = "linear";
+  std::vector<std::string> wrap = {"clamp", "clamp"};  // "clamp" (to edge) or "repeat"
+};
+
 struct ProductInfo {
   std::string name;                          // "transmittance"
   std::string summary;                       // one line for --help and plan
@@ -63,6 +72,11 @@ struct ProductInfo {
   // and, unless the output names them (grid_names), its first channel's grid
   // is "density" (docs/formats.md "VDB").
   bool density_volume = false;
+  Sampling sampling;      // filter and wrap modes, in the metadata of every output
+  // Values relative to the preset's sun: records solar_irradiance.
+  bool atmosphere_table = false;
+  // Values depend on the Mie phase function: records mie_phase and mie_g.
+  bool reads_mie_phase = false;
 };
 
 // All products, in a stable order (dependencies before dependents).

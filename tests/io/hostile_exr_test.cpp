@@ -70,23 +70,46 @@ TEST(HostileExr, NegativeAtlasWidthIsRefused) {
 TEST(HostileExr, AtlasAttributesThatDoNotMatchTheImageAreRefused) {
   // columns * slice width overflows 32 bits: compared in 64 bits.
   EXPECT_THAT(refusal(write_exr_with("atlas_overflow", 8, 8,
-                                     {{"layout", "atlas"}, {"shape", "4x4x4x1"}},
-                                     {{"atlas_columns", 2147483647}, {"atlas_rows", 8}})),
-              HasSubstr("expected part 0 of 8589934588x32, got 8x8"));
+                                     {{"layout", "atlas"}, {"shape", "4x4x2147483647x1"}},
+                                     {{"atlas_columns", 2147483647},
+                                      {"atlas_rows", 1},
+                                      {"slice_count", 2147483647},
+                                      {"slice_width", 4},
+                                      {"slice_height", 4}})),
+              HasSubstr("expected part 0 of 8589934588x4, got 8x8"));
   EXPECT_THAT(refusal(write_exr_with("atlas_few_cells", 8, 8,
                                      {{"layout", "atlas"}, {"shape", "4x4x100x1"}},
-                                     {{"atlas_columns", 2}, {"atlas_rows", 2}})),
-              HasSubstr("expected an atlas of at least 100 cells, got 2x2"));
+                                     {{"atlas_columns", 2},
+                                      {"atlas_rows", 2},
+                                      {"slice_count", 100},
+                                      {"slice_width", 4},
+                                      {"slice_height", 4}})),
+              HasSubstr("expected an atlas of 100 cells (skybake:atlas_columns x "
+                        "skybake:atlas_rows), got 2x2"));
+  // An atlas has no empty cell: more cells than slices is refused too.
+  EXPECT_THAT(refusal(write_exr_with("atlas_empty_cells", 8, 8,
+                                     {{"layout", "atlas"}, {"shape", "4x4x3x1"}},
+                                     {{"atlas_columns", 2},
+                                      {"atlas_rows", 2},
+                                      {"slice_count", 3},
+                                      {"slice_width", 4},
+                                      {"slice_height", 4}})),
+              HasSubstr("expected an atlas of 3 cells"));
   EXPECT_THAT(refusal(write_exr_with("atlas_no_columns", 8, 8,
                                      {{"layout", "atlas"}, {"shape", "4x4x4x1"}})),
-              HasSubstr("expected an atlas of at least 4 cells, got 0x0"));
+              HasSubstr("expected skybake:slice_count, slice_width, slice_height 4, 4, 4 "
+                        "(skybake:shape), got 0, 0, 0"));
   EXPECT_THAT(refusal(write_exr_with("atlas_layers", 8, 8,
                                      {{"layout", "atlas"}, {"shape", "4x4x4x3"}},
                                      {{"atlas_columns", 2}, {"atlas_rows", 2}})),
               HasSubstr("expected 1 layer in an atlas (skybake:shape), got 3"));
   EXPECT_THAT(refusal(write_exr_with("atlas_big_slice", 8, 8,
                                      {{"layout", "atlas"}, {"shape", "100000x100000x1x1"}},
-                                     {{"atlas_columns", 1}, {"atlas_rows", 1}})),
+                                     {{"atlas_columns", 1},
+                                      {"atlas_rows", 1},
+                                      {"slice_count", 1},
+                                      {"slice_width", 100000},
+                                      {"slice_height", 100000}})),
               HasSubstr("expected part 0 of 100000x100000, got 8x8"));
 }
 

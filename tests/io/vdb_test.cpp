@@ -61,7 +61,14 @@ TEST(Vdb, GridsReadWithPlainOpenVdbMatchTheTexture) {
     EXPECT_EQ(grid->indexToWorld(openvdb::Coord(0, 0, 0)), openvdb::Vec3d(0.125));
     EXPECT_EQ(grid->indexToWorld(openvdb::Coord(4, 3, 2)), openvdb::Vec3d(1.125, 0.875, 0.625));
     EXPECT_EQ(grid->metaValue<std::string>("skybake:product"), "noise_shape");
-    EXPECT_EQ(grid->metaValue<std::string>("skybake:period"), "1");
+    // Every metadata type as OpenVDB's own typed metadata.
+    EXPECT_EQ(grid->metaValue<int32_t>("skybake:period"), 1);
+    EXPECT_EQ(grid->metaValue<double>("skybake:gain"), -0.20000000000000001);
+    EXPECT_EQ(grid->metaValue<openvdb::Vec2i>("skybake:size"), openvdb::Vec2i(5, -4));
+    EXPECT_EQ(grid->metaValue<openvdb::Vec3i>("skybake:box"), openvdb::Vec3i(5, 4, 3));
+    EXPECT_EQ(grid->metaValue<openvdb::Vec2d>("skybake:uv"), openvdb::Vec2d(0.1, 1e-300));
+    EXPECT_EQ(grid->metaValue<openvdb::Vec3d>("skybake:irradiance"),
+              openvdb::Vec3d(1.0 / 3.0, 2.5, 7e10));
     EXPECT_EQ(grid->metaValue<std::string>("skybake:shape"), "5x4x3x1");
     EXPECT_EQ(grid->metaValue<std::string>("skybake:channels"), "R,G,B,A");
     EXPECT_EQ(grid->activeVoxelCount(), openvdb::Index64(5 * 4 * 3));  // dense, zeros too
