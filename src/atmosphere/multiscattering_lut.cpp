@@ -285,13 +285,14 @@ void set_multiscattering_mapping_metadata(Metadata& m, const MultiscatteringMapp
 
 MultiscatteringMapping multiscattering_mapping_of(const Texture& lut) {
   MultiscatteringMapping m;
-  const auto name = lut.metadata.find("mu_s_mapping");
-  if (name == lut.metadata.end() || name->second == "linear") return m;
-  if (name->second != "terminator")
-    throw Error(fmt::format("multiscattering: unknown mu_s_mapping '{}'", name->second));
+  if (!lut.metadata.count("mu_s_mapping")) return m;
+  const std::string name = meta_string(lut.metadata, "mu_s_mapping");
+  if (name == "linear") return m;
+  if (name != "terminator")
+    throw Error(fmt::format("multiscattering: unknown mu_s_mapping '{}'", name));
   m.sun = SunMapping::terminator;
-  m.width = std::stod(lut.metadata.at("mu_s_mapping_width"));
-  m.offset = std::stod(lut.metadata.at("mu_s_mapping_offset"));
+  m.width = meta_double(lut.metadata, "mu_s_mapping_width");
+  m.offset = meta_double(lut.metadata, "mu_s_mapping_offset");
   return m;
 }
 

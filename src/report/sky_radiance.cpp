@@ -250,8 +250,8 @@ void bake_both_models(const ReportInputs& in, SkyRadianceScene& s) {
   s.converged = converged_multiscattering_table(atm, in.transmittance, table, spec, s.field,
                                                 BakeContext{});
   s.converged_seconds = std::chrono::duration<double>(clock::now() - t0).count();
-  s.converged_orders = std::stoi(s.converged.metadata.at("orders_used"));
-  s.converged_residual = std::stod(s.converged.metadata.at("last_residual"));
+  s.converged_orders = meta_int(s.converged.metadata, "orders_used");
+  s.converged_residual = meta_double(s.converged.metadata, "last_residual");
 }
 
 SkyRadianceScene sky_radiance_scene(const ReportInputs& in, const SkyRadianceSetup& setup) {
@@ -404,8 +404,8 @@ nlohmann::json sky_radiance_report(const ReportInputs& in, const SkyRadianceSetu
        {{"bake_seconds", scene.converged_seconds},
         {"orders_used", scene.converged_orders},
         {"last_residual", scene.converged_residual},
-        {"scattering_shape", scene.converged.metadata.at("scattering_shape")},
-        {"tolerance", std::stod(scene.converged.metadata.at("tolerance"))}}}};
+        {"scattering_shape", meta_string(scene.converged.metadata, "scattering_shape")},
+        {"tolerance", meta_double(scene.converged.metadata, "tolerance")}}}};
   out.update(
       {{"camera_altitude_m", scene.altitude_m},
        {"sun_elevations_deg", setup.sun_elevations_deg},

@@ -40,7 +40,7 @@ TEST(ConvergedMultiscattering, NoMediumOverABlackGroundIsZero) {
   MultiscatteringLutSpec table{8, 8, 16, 10};
   const Texture ms = bake_converged_multiscattering_lut(atm, t, table, small_spec(), {});
   for (float v : ms.data) EXPECT_EQ(v, 0.0f);
-  EXPECT_EQ(ms.metadata.at("model"), "converged");
+  EXPECT_EQ(meta_string(ms.metadata, "model"), "converged");
 }
 
 TEST(ConvergedMultiscattering, NoMediumOverALitGroundIsTheGroundsMeanRadiance) {

@@ -103,7 +103,7 @@ TEST(MultiscatteringMapping, RecordedInTheMetadataAndReadBack) {
   MultiscatteringLutSpec spec{8, 8, 16, 10};
   spec.sun_mapping = SunMapping::terminator;
   const Texture ms = bake_multiscattering_lut(atm, small_transmittance(atm), spec, {});
-  EXPECT_EQ(ms.metadata.at("mu_s_mapping"), "terminator");
+  EXPECT_EQ(meta_string(ms.metadata, "mu_s_mapping"), "terminator");
   const MultiscatteringMapping m = multiscattering_mapping_of(ms);
   const MultiscatteringMapping expected = terminator_mapping(atm);
   EXPECT_EQ(m.sun, SunMapping::terminator);
@@ -119,7 +119,7 @@ TEST(MultiscatteringMapping, RecordedInTheMetadataAndReadBack) {
     }
   // A linear table says so, and a table without the key reads as linear.
   const Texture linear = bake_multiscattering_lut(atm, small_transmittance(atm), {8, 8, 16, 10}, {});
-  EXPECT_EQ(linear.metadata.at("mu_s_mapping"), "linear");
+  EXPECT_EQ(meta_string(linear.metadata, "mu_s_mapping"), "linear");
   EXPECT_EQ(multiscattering_mapping_of(Texture(2, 2, 1, 1, {"R", "G", "B"})).sun,
             SunMapping::linear);
 }
