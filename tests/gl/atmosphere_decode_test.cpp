@@ -54,6 +54,26 @@ TEST(AtmosphereDecode, ManifestParametersMatchThePreset) {
   EXPECT_EQ(irradiance.sun_angular_radius, gl_atmosphere(separate_mie_scene().atmosphere).sun_angular_radius);
 }
 
+// The sampler state every atmosphere table's metadata asks for (filter,
+// wrap_u, wrap_v, wrap_w) is the one docs/runtime.md gives, and the one the
+// C++ lookups filter with: linear, clamp to edge, except the sky-view's
+// azimuth, which repeats.
+TEST(AtmosphereDecode, ManifestSamplersMatchTheDocs) {
+  const SamplerState unknown{Filter::nearest, Wrap::repeat, Wrap::repeat, Wrap::repeat};
+  const BakedScene& s = separate_mie_scene();
+  for (const char* output : {"transmittance", "multiscattering", "skyview", "aerial_perspective",
+                             "scattering", "single_mie", "irradiance", "scattering3d",
+                             "gathering_sum"}) {
+    const SamplerState got = s.sampler(output, unknown);
+    const bool volume = s.entry(output).at("dimensions").size() == 3;
+    const SamplerState expected = std::string(output) == "skyview" ? kRepeatU : kClamp;
+    EXPECT_EQ(got.filter, Filter::linear) << output;
+    EXPECT_EQ(got.wrap_s, expected.wrap_s) << output;
+    EXPECT_EQ(got.wrap_t, expected.wrap_t) << output;
+    if (volume) EXPECT_EQ(got.wrap_r, expected.wrap_r) << output;
+  }
+}
+
 // ---- Transmittance ----------------------------------------------------------
 
 TEST(AtmosphereDecode, LookupTransmittanceToTop) {
