@@ -39,7 +39,7 @@ if [ ! -f "$dir/CMakeCache.txt" ]; then
   if command -v ccache >/dev/null 2>&1; then configure+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
   cmake -S . -B "$dir" "${configure[@]}"
 fi
-build=(--target fuzz_seeds --target skybake_vdb)  # the VDB reader is a plugin
+build=(--target fuzz_seeds --target skybake_vdb --target skybake_bc)  # VDB and BC are plugins
 for t in "${targets[@]}"; do build+=(--target "${t}_fuzz"); done
 cmake --build "$dir" --parallel "$(nproc)" "${build[@]}"
 
