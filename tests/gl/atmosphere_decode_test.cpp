@@ -70,7 +70,9 @@ TEST(AtmosphereDecode, ManifestSamplersMatchTheDocs) {
     EXPECT_EQ(got.filter, Filter::linear) << output;
     EXPECT_EQ(got.wrap_s, expected.wrap_s) << output;
     EXPECT_EQ(got.wrap_t, expected.wrap_t) << output;
-    if (volume) EXPECT_EQ(got.wrap_r, expected.wrap_r) << output;
+    if (volume) {
+      EXPECT_EQ(got.wrap_r, expected.wrap_r) << output;
+    }
   }
 }
 
