@@ -162,14 +162,7 @@ Texture converged_multiscattering_table(const Atmosphere& atm, const Texture& tr
            std::string("mean incident radiance of every order (sky and ground) per unit sun "
                        "illuminance, from the 4D order iteration (docs/reference.md "
                        "\"Converged Psi_ms\")"));
-  set_multiscattering_mapping_metadata(m, mapping);
-  set_meta(m, "v",
-           std::string("texel_coord_from_unit((r - bottom_radius_m) / "
-                       "(top_radius_m - bottom_radius_m), height)"));
-  set_meta(m, "texel_coord_from_unit", std::string("0.5 / n + x * (1 - 1 / n)"));
-  set_meta(m, "bottom_radius_m", atm.bottom_radius_m);
-  set_meta(m, "top_radius_m", atm.top_radius_m);
-  set_meta(m, "units", std::string("1/sr (multiply by the sun illuminance)"));
+  set_multiscattering_axes_metadata(m, mapping, atm);
   const BrunetonSpec& b = spec.bruneton;
   set_meta(m, "scattering_shape",
            fmt::format("{}x{}x{}x{}", b.r_size, b.mu_size, b.mu_s_size, b.nu_size));

@@ -241,14 +241,7 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
   }
   Metadata& m = tex.metadata;
   set_meta(m, "parameterization", std::string("hillaire2020_multiscattering"));
-  set_multiscattering_mapping_metadata(m, mapping);
-  set_meta(m, "v",
-           std::string("texel_coord_from_unit((r - bottom_radius_m) / "
-                       "(top_radius_m - bottom_radius_m), height)"));
-  set_meta(m, "texel_coord_from_unit", std::string("0.5 / n + x * (1 - 1 / n)"));
-  set_meta(m, "bottom_radius_m", atm.bottom_radius_m);
-  set_meta(m, "top_radius_m", atm.top_radius_m);
-  set_meta(m, "units", std::string("1/sr (multiply by the sun illuminance)"));
+  set_multiscattering_axes_metadata(m, mapping, atm);
   set_meta(m, "directions", spec.directions);
   if (spec.quadrature == DirectionQuadrature::fibonacci) {
     set_meta(m, "direction_set", std::string("spherical_fibonacci"));
@@ -265,6 +258,18 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
   set_meta(m, "fms_clamp", kMaxMultiscatteringTransfer);
   set_meta(m, "fms_clamped_texels", clamped);
   return tex;
+}
+
+void set_multiscattering_axes_metadata(Metadata& m, const MultiscatteringMapping& mapping,
+                                       const Atmosphere& atm) {
+  set_multiscattering_mapping_metadata(m, mapping);
+  set_meta(m, "v",
+           std::string("texel_coord_from_unit((r - bottom_radius_m) / "
+                       "(top_radius_m - bottom_radius_m), height)"));
+  set_meta(m, "texel_coord_from_unit", std::string("0.5 / n + x * (1 - 1 / n)"));
+  set_meta(m, "bottom_radius_m", atm.bottom_radius_m);
+  set_meta(m, "top_radius_m", atm.top_radius_m);
+  set_meta(m, "units", std::string("1/sr (multiply by the sun illuminance)"));
 }
 
 void set_multiscattering_mapping_metadata(Metadata& m, const MultiscatteringMapping& mapping) {

@@ -158,5 +158,9 @@ glm::dvec3 lookup_multiscattering(const Texture& lut, const Atmosphere& atm, dou
 
 // Writes the mapping into a table's metadata (name, constants, formulas).
 void set_multiscattering_mapping_metadata(Metadata& m, const MultiscatteringMapping& mapping);
+// Both axes of a multiscattering table (either model): the sun mapping
+// above, the altitude axis, the radii and the units.
+void set_multiscattering_axes_metadata(Metadata& m, const MultiscatteringMapping& mapping,
+                                       const Atmosphere& atm);
 
 }  // namespace skybake

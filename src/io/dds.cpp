@@ -20,6 +20,7 @@
 #include <fmt/ranges.h>
 
 #include "core/error.hpp"
+#include "io/file_bytes.hpp"
 #include "core/mip_chain.hpp"
 #include "core/suggest.hpp"
 #include "io/block_compression.hpp"
@@ -202,32 +203,6 @@ void decode_level(const uint8_t* p, const FormatInfo& f, Texture& m, int layer) 
 }
 
 // ---- reading ---------------------------------------------------------------
-
-// At most `max_bytes` from the start of a regular file (opened without
-// blocking, so a FIFO swapped in after the caller's stat cannot hang it).
-std::vector<uint8_t> read_bytes(const std::string& path, size_t max_bytes) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
-  if (fd < 0)
-    throw IoError(fmt::format("{}: cannot open for reading: {}", path, std::strerror(errno)));
-  struct Closer {
-    int fd;
-    ~Closer() { ::close(fd); }
-  } closer{fd};
-  struct stat st {};
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode))
-    throw IoError(fmt::format("{}: expected a regular file", path));
-  std::vector<uint8_t> bytes(std::min<uint64_t>(max_bytes, uint64_t(st.st_size)));
-  size_t got = 0;
-  while (got < bytes.size()) {
-    const ssize_t n = ::read(fd, bytes.data() + got, bytes.size() - got);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw IoError(fmt::format("{}: read error: {}", path, std::strerror(errno)));
-    if (n == 0) break;
-    got += size_t(n);
-  }
-  bytes.resize(got);
-  return bytes;
-}
 
 DdsHeaderInfo parse_header(const std::string& path, const std::vector<uint8_t>& b,
                            uint64_t file_size) {

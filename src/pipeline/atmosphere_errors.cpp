@@ -4,6 +4,8 @@
 // transmittance, no table at all. The sky tables' references read the same
 // input tables the bake read (transmittance, multiple scattering), as the
 // report's do, so each table's own error is measured.
+#include <functional>
+
 #include <tbb/parallel_for.h>
 
 #include <fmt/format.h>
@@ -106,16 +108,14 @@ nlohmann::json measure_multiscattering_error(const Scene& scene, const OutputSpe
 
 namespace {
 
-// Sky-view with the 4D table's orders >= 2: the same single-scattering march
-// finer plus the same iteration's orders >= 2 at the query's own direction
-// (the iteration recomputed), so the record is the layer's interpolation
-// and march error.
-nlohmann::json measure_skyview_multiple4d_error(const Scene& scene, const OutputSpec& spec,
-                                                const ProductInputs& in, const Texture& lut) {
-  const Atmosphere& atm = scene.atmosphere;
-  const SkyviewLutSpec baked = skyview_spec(spec);
-  const ConvergedField field = compute_converged_field(
-      atm, *in.at("transmittance"), converged_multiscattering_spec(spec), BakeContext{});
+// The sky-view table read at the query points against the same single-
+// scattering march finer, reading `multiscattering` (null: none), plus
+// `more_light` toward each query's direction.
+QueryReads skyview_reads(
+    const Atmosphere& atm, const Texture& lut, const Texture& transmittance,
+    const Texture* multiscattering, const SkyviewLutSpec& baked,
+    const std::function<glm::dvec3(double r, const SkyviewDirection& view, double zenith)>&
+        more_light) {
   IntegrationOptions options;
   options.distribution = baked.distribution;
   QueryReads reads(kSkyviewQueries);
@@ -125,12 +125,29 @@ nlohmann::json measure_skyview_multiple4d_error(const Scene& scene, const Output
     const glm::dvec3 sun(std::sin(zenith), 0.0, std::cos(zenith));
     reads[i].first = lookup_skyview(lut, q.layer, atm, q.r, q.view);
     reads[i].second =
-        integrate_scattered_luminance(atm, *in.at("transmittance"), nullptr, {0.0, 0.0, q.r},
+        integrate_scattered_luminance(atm, transmittance, multiscattering, {0.0, 0.0, q.r},
                                       skyview_vector_from_direction(q.view), sun, INFINITY,
                                       kSkyviewReferenceSteps, options)
             .luminance +
-        lookup_field_multiple_scattering(atm, field, q.r, q.view, zenith);
+        more_light(q.r, q.view, zenith);
   });
+  return reads;
+}
+
+// Sky-view with the 4D table's orders >= 2: the same single-scattering march
+// finer plus the same iteration's orders >= 2 at the query's own direction
+// (the iteration recomputed), so the record is the layer's interpolation
+// and march error.
+nlohmann::json measure_skyview_multiple4d_error(const Scene& scene, const OutputSpec& spec,
+                                                const ProductInputs& in, const Texture& lut) {
+  const Atmosphere& atm = scene.atmosphere;
+  const ConvergedField field = compute_converged_field(
+      atm, *in.at("transmittance"), converged_multiscattering_spec(spec), BakeContext{});
+  const QueryReads reads = skyview_reads(
+      atm, lut, *in.at("transmittance"), nullptr, skyview_spec(spec),
+      [&](double r, const SkyviewDirection& view, double zenith) {
+        return lookup_field_multiple_scattering(atm, field, r, view, zenith);
+      });
   return error_record(
       reads, fmt::format("lookup_skyview (bilinear, azimuth wraps) at a uniform layer and view "
                          "direction against single scattering marched with {} steps plus the "
@@ -143,22 +160,10 @@ nlohmann::json measure_skyview_multiple4d_error(const Scene& scene, const Output
 nlohmann::json measure_skyview_error(const Scene& scene, const OutputSpec& spec,
                                      const ProductInputs& in, const Texture& lut) {
   if (skyview_uses_multiple4d(spec)) return measure_skyview_multiple4d_error(scene, spec, in, lut);
-  const Atmosphere& atm = scene.atmosphere;
-  const SkyviewLutSpec baked = skyview_spec(spec);
-  IntegrationOptions options;
-  options.distribution = baked.distribution;
-  QueryReads reads(kSkyviewQueries);
-  tbb::parallel_for(size_t(0), reads.size(), [&](size_t i) {
-    const SkyviewQueryPoint q = skyview_query(atm, baked.views, i);
-    const double zenith = baked.views[size_t(q.layer)].sun_zenith_rad;
-    const glm::dvec3 sun(std::sin(zenith), 0.0, std::cos(zenith));
-    reads[i].first = lookup_skyview(lut, q.layer, atm, q.r, q.view);
-    reads[i].second =
-        integrate_scattered_luminance(atm, *in.at("transmittance"), in.at("multiscattering"),
-                                      {0.0, 0.0, q.r}, skyview_vector_from_direction(q.view), sun,
-                                      INFINITY, kSkyviewReferenceSteps, options)
-            .luminance;
-  });
+  const QueryReads reads =
+      skyview_reads(scene.atmosphere, lut, *in.at("transmittance"), in.at("multiscattering"),
+                    skyview_spec(spec),
+                    [](double, const SkyviewDirection&, double) { return glm::dvec3(0.0); });
   return error_record(
       reads, fmt::format("lookup_skyview (bilinear, azimuth wraps) at a uniform layer and view "
                          "direction against the same march with {} steps, reading the same "
