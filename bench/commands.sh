@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# The whole commands the speed targets are stated on, side by side in one run:
+# each command is run RUNS times per executable, interleaved (so load affects
+# every column alike), into a fresh output folder each time; prints the median
+# CPU (user + sys of the process, rusage) and median wall, in seconds.
+#
+#   bench/commands.sh [SKYBAKE...]          (default: build/skybake)
+#   env: RUNS (3), ONLY (space-separated row keys: version hillaire noise_all
+#        noise_dds scattering4 scattering_tol)
+#
+# Give several executables (e.g. a build of main before and after a change;
+# copy its libskybake_*.so plugins next to it) to compare them in one run.
+# Rows (docs/decisions.md "Speed targets" states the target of each):
+#   version         skybake --version
+#   hillaire        Earth's Hillaire set: transmittance, multiscattering,
+#                   skyview, aerial_perspective (presets/earth.json --only)
+#   noise_all       the Horizon Zero Dawn noise set, every format
+#   noise_dds       the same, DDS only
+#   scattering4     the 4D table 32x128x32x8 (single Mie), 4 orders, EXR
+#   scattering_tol  the same at tolerance 1e-3
+# Not a test: figures depend on the machine and its load (printed with them).
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+repo="$(cd "$here/.." && pwd)"
+RUNS="${RUNS:-3}"
+exes=("$@")
+[ ${#exes[@]} -gt 0 ] || exes=("$repo/build/skybake")
+for exe in "${exes[@]}"; do
+  [ -x "$exe" ] || { echo "commands: $exe: not an executable" >&2; exit 2; }
+done
+
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+
+python3 - "$RUNS" "$repo" "$work" "${ONLY:-}" "${exes[@]}" <<'EOF'
+import json, os, shutil, statistics, subprocess, sys, time
+
+runs, repo, work, only, exes = int(sys.argv[1]), sys.argv[2], sys.argv[3], sys.argv[4].split(), sys.argv[5:]
+
+def scene(name, outputs, atmosphere=True):
+    d = {"name": name, "outputs": outputs}
+    if atmosphere:
+        d["planet"] = {"radius_km": 6360, "ground_albedo": [0.3, 0.3, 0.3]}
+        d["atmosphere"] = os.path.join(repo, "presets/atmospheres/earth.json")
+    path = os.path.join(work, name + ".json")
+    json.dump(d, open(path, "w"))
+    return path
+
+def noise_set(formats):
+    d = json.load(open(os.path.join(repo, "presets/clouds/horizon_zero_dawn.json")))
+    for out in d["outputs"]:
+        out["formats"] = [f for f in out["formats"] if f in formats]
+    return scene("hzd_" + "_".join(formats), d["outputs"], atmosphere=False)
+
+transmittance = {"product": "transmittance", "size": [256, 64], "formats": ["exr"]}
+scattering = {"product": "scattering", "size": [32, 128, 32, 8], "formats": ["exr"]}
+rows = {
+    "version": ["--version"],
+    "hillaire": ["bake", os.path.join(repo, "presets/earth.json"), "--only",
+                 "transmittance,multiscattering,skyview,aerial_perspective"],
+    "noise_all": ["bake", noise_set(["dds", "vdb", "exr", "png"])],
+    "noise_dds": ["bake", noise_set(["dds"])],
+    "scattering4": ["bake", scene("scattering4", [transmittance, dict(scattering, orders=4)])],
+    "scattering_tol": ["bake", scene("scattering_tol", [transmittance, dict(scattering, tolerance=1e-3)])],
+}
+if only:
+    rows = {k: v for k, v in rows.items() if k in only}
+
+def timed(argv):
+    t0 = time.perf_counter()
+    p = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    _, status, ru = os.wait4(p.pid, 0)
+    wall = time.perf_counter() - t0
+    if status != 0:
+        sys.exit(f"commands: {' '.join(argv)} failed ({status})")
+    return ru.ru_utime + ru.ru_stime, wall
+
+cells = {}
+for _ in range(runs):
+    for key, argv in rows.items():
+        for exe in exes:
+            out = os.path.join(work, "out")
+            shutil.rmtree(out, ignore_errors=True)
+            extra = ["-q", "-o", out] if argv[0] == "bake" else []
+            cells.setdefault((key, exe), []).append(timed([exe] + argv + extra))
+
+print(f"runs per cell: {runs}; median CPU s (user+sys) / median wall s; {os.cpu_count()} CPUs, "
+      f"load {' '.join(open('/proc/loadavg').read().split()[:3])}")
+print()
+print("| command | " + " | ".join(exes) + " |")
+print("|---|" + "---|" * len(exes))
+for key in rows:
+    line = []
+    for exe in exes:
+        c = cells[(key, exe)]
+        line.append(f"{statistics.median(x[0] for x in c):.3f} / {statistics.median(x[1] for x in c):.3f}")
+    print(f"| {key} | " + " | ".join(line) + " |")
+EOF
