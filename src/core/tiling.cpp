@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include "core/tiling_profiles.hpp"
+
 namespace skybake {
 
 namespace {
@@ -36,67 +38,6 @@ double ratio_or_one(double a, double b) {
   return a > 0.0 ? kInf : 1.0;  // a face no different from flat neighbours
 }
 
-// Per face f (texels f, f + 1 mod n), means over every line of the layer
-// along `axis`: the jump |d_f| and the slope turn |d_{f+1} - d_{f-1}|, each
-// with its busier side (per line, the larger of the means over two faces
-// before and two faces after f: f - 2, f - 1 | f + 1, f + 2 for jumps,
-// f - 3, f - 2 | f + 2, f + 3 for turns, whose f +- 1 share a difference
-// with f); and the mean far jump.
-struct Profiles {
-  std::vector<double> jump, jump_side, turn, turn_side;
-  double far = 0.0;
-};
-
-Profiles profiles(const Texture& t, int layer, int channel, int axis) {
-  const int n[3] = {t.width, t.height, t.depth};
-  const int len = n[axis];
-  const int u_axis = axis == 0 ? 1 : 0, v_axis = axis == 2 ? 1 : 2;
-  const size_t nc = t.channels.size();
-  const size_t stride =
-      (axis == 0 ? 1 : axis == 1 ? size_t(t.width) : size_t(t.width) * size_t(t.height)) * nc;
-  std::vector<int> lags;
-  for (int k : {2, 3, 4, 5})
-    if (len / k >= 2 && std::find(lags.begin(), lags.end(), len / k) == lags.end())
-      lags.push_back(len / k);
-  Profiles p;
-  for (auto* v : {&p.jump, &p.jump_side, &p.turn, &p.turn_side}) v->assign(len, 0.0);
-  std::vector<double> line(len), d(len), k(len);
-  auto wrap = [len](int i) { return i < 0 ? i + len : i >= len ? i - len : i; };
-  // The busier side of face f in `x`: faces f - gap - 1, f - gap | f + gap, f + gap + 1.
-  auto side = [&](const std::vector<double>& x, int f, int gap) {
-    return std::max(x[wrap(f - gap - 1)] + x[wrap(f - gap)],
-                    x[wrap(f + gap)] + x[wrap(f + gap + 1)]) / 2;
-  };
-  long double far = 0.0;
-  size_t lines = 0;
-  for (int v = 0; v < n[v_axis]; ++v)
-    for (int u = 0; u < n[u_axis]; ++u) {
-      int c[3] = {0, 0, 0};
-      c[u_axis] = u;
-      c[v_axis] = v;
-      const float* first = &t.data[t.index(c[0], c[1], c[2], layer) + size_t(channel)];
-      for (int i = 0; i < len; ++i) line[i] = double(first[size_t(i) * stride]);
-      for (int f = 0; f < len; ++f) d[f] = line[wrap(f + 1)] - line[f];
-      for (int f = 0; f < len; ++f) k[f] = std::abs(d[wrap(f + 1)] - d[wrap(f - 1)]);
-      for (int f = 0; f < len; ++f) d[f] = std::abs(d[f]);
-      for (int f = 0; f < len; ++f) {
-        p.jump[f] += d[f];
-        p.jump_side[f] += side(d, f, 1);
-        p.turn[f] += k[f];
-        p.turn_side[f] += side(k, f, 2);
-      }
-      double line_far = 0.0;
-      for (int lag : lags)
-        for (int i = 0; i < len; ++i) line_far += std::abs(line[wrap(i + lag)] - line[i]);
-      far += line_far;
-      ++lines;
-    }
-  for (auto* v : {&p.jump, &p.jump_side, &p.turn, &p.turn_side})
-    for (double& x : *v) x /= double(lines);
-  p.far = lags.empty() ? 0.0 : double(far / (double(lines) * len * lags.size()));
-  return p;
-}
-
 // Score of every face: num over den.
 std::vector<double> scores(const std::vector<double>& num, const std::vector<double>& den) {
   std::vector<double> s(num.size());
@@ -117,8 +58,11 @@ SeamScore seam_score(const std::vector<double>& s, int first, int last, double m
   return r;
 }
 
+int min_judged_texels(int level) { return level == 0 ? kMinJudgedTexels : kMinJudgedMipTexels; }
+
+// `p`: the axis's profiles of the channel, null when the axis is too short.
 AxisTiling measure_axis(const Texture& t, int level, int layer, int channel, int axis,
-                        double tolerance) {
+                        const TilingProfiles* p, double tolerance) {
   const int n[3] = {t.width, t.height, t.depth};
   AxisTiling a;
   a.level = level;
@@ -127,26 +71,25 @@ AxisTiling measure_axis(const Texture& t, int level, int layer, int channel, int
   a.channel = t.channels[channel];
   a.texels = n[axis];
   const TilingVerdict unjudged = level == 0 ? TilingVerdict::cannot_tell : TilingVerdict::not_judged;
-  const int min_texels = level == 0 ? kMinJudgedTexels : kMinJudgedMipTexels;
-  if (a.texels < min_texels) {
+  const int min_texels = min_judged_texels(level);
+  if (!p) {
     a.verdict = unjudged;
     a.reason = fmt::format("{} texels, at least {} are needed to judge a seam", a.texels,
                            min_texels);
     return a;
   }
-  const Profiles p = profiles(t, layer, channel, axis);
-  if (*std::max_element(p.jump.begin(), p.jump.end()) == 0.0) {
+  if (*std::max_element(p->jump.begin(), p->jump.end()) == 0.0) {
     a.reason = "constant";
     return a;
   }
   const int len = a.texels;
   // Interior faces: the values stencil spans texels f - 2 .. f + 3, the
   // slopes stencil f - 4 .. f + 5; neither may hold both texels n - 1 and 0.
-  a.values = seam_score(scores(p.jump, p.jump_side), 2, len - 4, tolerance);
-  a.slopes = seam_score(scores(p.turn, p.turn_side), 4, len - 6, kSlopeMargin);
+  a.values = seam_score(scores(p->jump, p->jump_side), 2, len - 4, tolerance);
+  a.slopes = seam_score(scores(p->turn, p->turn_side), 4, len - 6, kSlopeMargin);
   const double typical_jump =
-      quantile(std::vector<double>(p.jump.begin() + 2, p.jump.begin() + len - 3), 0.5);
-  a.contrast = ratio_or_one(p.far, typical_jump);
+      quantile(std::vector<double>(p->jump.begin() + 2, p->jump.begin() + len - 3), 0.5);
+  a.contrast = ratio_or_one(p->far, typical_jump);
   // A join of unrelated texels scores about contrast x the median score.
   const double needed = ratio_or_one(a.values.limit, a.values.median);
   if (!(a.contrast > needed)) {
@@ -167,17 +110,22 @@ AxisTiling measure_axis(const Texture& t, int level, int layer, int channel, int
 void measure_level(const Texture& t, int level, double tolerance, std::vector<AxisTiling>& out) {
   const int n[3] = {t.width, t.height, t.depth};
   struct Job {
-    int layer, axis, channel;
+    int layer, axis;
   };
-  std::vector<Job> jobs;
+  std::vector<Job> jobs;  // every channel of a layer's axis at once: each texel read once
   for (int layer = 0; layer < t.layers; ++layer)
-    for (int axis = 0; axis < 3; ++axis) {
-      if (n[axis] < 2) continue;
-      for (int c = 0; c < t.channel_count(); ++c) jobs.push_back({layer, axis, c});
-    }
-  std::vector<AxisTiling> results(jobs.size());
+    for (int axis = 0; axis < 3; ++axis)
+      if (n[axis] >= 2) jobs.push_back({layer, axis});
+  const int nc = t.channel_count();
+  std::vector<AxisTiling> results(jobs.size() * size_t(nc));
   tbb::parallel_for(size_t(0), jobs.size(), [&](size_t i) {
-    results[i] = measure_axis(t, level, jobs[i].layer, jobs[i].channel, jobs[i].axis, tolerance);
+    const Job& job = jobs[i];
+    std::vector<TilingProfiles> p;
+    if (n[job.axis] >= min_judged_texels(level)) p = compute_tiling_profiles(t, job.layer, job.axis);
+    for (int c = 0; c < nc; ++c)
+      results[i * size_t(nc) + size_t(c)] = measure_axis(t, level, job.layer, c, job.axis,
+                                                          p.empty() ? nullptr : &p[size_t(c)],
+                                                          tolerance);
   });
   for (AxisTiling& a : results) {
     a.tiles = a.verdict == TilingVerdict::tiles || a.verdict == TilingVerdict::not_judged;
