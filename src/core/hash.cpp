@@ -1,5 +1,7 @@
 #include "core/hash.hpp"
 
+#include <cstring>
+
 #include <fmt/format.h>
 
 namespace skybake {
@@ -23,5 +25,40 @@ Hasher& Hasher::add(std::string_view bytes) {
 std::string Hasher::hex() const { return fmt::format("{:016x}", h_); }
 
 std::string hash_hex(std::string_view bytes) { return Hasher().add(bytes).hex(); }
+
+namespace {
+
+constexpr uint64_t kMul1 = 0x9E3779B97F4A7C15ull;
+constexpr uint64_t kMul2 = 0xC2B2AE3D27D4EB4Full;
+
+uint64_t rotl(uint64_t x, int r) { return (x << r) | (x >> (64 - r)); }
+
+}  // namespace
+
+uint64_t hash_words_mix(uint64_t h, const void* data, size_t size) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  size_t i = 0;
+  for (; i + 8 <= size; i += 8) {
+    uint64_t w;
+    std::memcpy(&w, p + i, 8);
+    h = rotl(h ^ (w * kMul1), 29) * kMul2;
+  }
+  uint64_t tail = 0;
+  std::memcpy(&tail, p + i, size - i);
+  if (size > i) h = rotl(h ^ (tail * kMul1), 29) * kMul2;
+  return h;
+}
+
+uint64_t hash_words_finish(uint64_t h, uint64_t length) {
+  h ^= length * kMul2;
+  h ^= h >> 33;
+  h *= kMul1;
+  h ^= h >> 29;
+  return h;
+}
+
+uint64_t hash_words(const void* data, size_t size, uint64_t seed) {
+  return hash_words_finish(hash_words_mix(seed, data, size), size);
+}
 
 }  // namespace skybake

@@ -11,6 +11,8 @@ namespace {
 // busier side: t_{f+3} = |d_{f+4} - d_{f+2}|, d_{f+4} = v(f + 5) - v(f + 4)).
 constexpr int kPadBefore = 4;
 constexpr int kPadAfter = 5;
+// Lines read side by side along x: 8 doubles, one cache line of a plane.
+constexpr int kLineBlock = 8;
 
 int wrap_index(int i, int len) { return ((i % len) + len) % len; }
 
@@ -22,12 +24,16 @@ void read_planes(const Texture& t, int layer, int axis, int v, int lines,
                  std::vector<std::vector<double>>& planes) {
   const size_t nc = t.channels.size();
   const int len = axis == 0 ? t.width : axis == 1 ? t.height : t.depth;
-  if (axis == 0) {
-    for (int u = 0; u < lines; ++u) {
-      const float* row = t.texel(0, u, v, layer);
+  if (axis == 0) {  // lines are rows: kLineBlock of them at a time fill whole cache lines
+    for (int u0 = 0; u0 < lines; u0 += kLineBlock) {
+      const int block = std::min(kLineBlock, lines - u0);
+      const float* rows[kLineBlock];
+      for (int b = 0; b < block; ++b) rows[b] = t.texel(0, u0 + b, v, layer);
       for (int i = 0; i < len; ++i)
-        for (size_t c = 0; c < nc; ++c)
-          planes[c][size_t(i) * lines + u] = double(row[size_t(i) * nc + c]);
+        for (size_t c = 0; c < nc; ++c) {
+          double* out = &planes[c][size_t(i) * lines + u0];
+          for (int b = 0; b < block; ++b) out[b] = double(rows[b][size_t(i) * nc + c]);
+        }
     }
     return;
   }

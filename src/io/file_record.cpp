@@ -11,40 +11,9 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "core/hash.hpp"
 
 namespace skybake {
-
-namespace {
-
-constexpr uint64_t kMul1 = 0x9E3779B97F4A7C15ull;
-constexpr uint64_t kMul2 = 0xC2B2AE3D27D4EB4Full;
-
-uint64_t rotl(uint64_t x, int r) { return (x << r) | (x >> (64 - r)); }
-
-// Word-at-a-time mixing (a multiply-rotate round per 8 bytes), several times
-// faster than byte-wise FNV on large outputs.
-uint64_t mix_block(uint64_t h, const unsigned char* p, size_t n) {
-  size_t i = 0;
-  for (; i + 8 <= n; i += 8) {
-    uint64_t w;
-    std::memcpy(&w, p + i, 8);
-    h = rotl(h ^ (w * kMul1), 29) * kMul2;
-  }
-  uint64_t tail = 0;
-  std::memcpy(&tail, p + i, n - i);
-  if (n > i) h = rotl(h ^ (tail * kMul1), 29) * kMul2;
-  return h;
-}
-
-uint64_t finish(uint64_t h, uint64_t length) {
-  h ^= length * kMul2;
-  h ^= h >> 33;
-  h *= kMul1;
-  h ^= h >> 29;
-  return h;
-}
-
-}  // namespace
 
 FileStat stat_file(const std::filesystem::path& path) {
   struct stat st;
@@ -75,12 +44,12 @@ std::string hash_file(const std::filesystem::path& path) {
       if (n == 0) break;
       filled += size_t(n);
     }
-    h = mix_block(h, block.data(), filled);
+    h = hash_words_mix(h, block.data(), filled);
     length += filled;
     if (filled < block.size()) break;
   }
   ::close(fd);
-  return fmt::format("{:016x}", finish(h, length));
+  return fmt::format("{:016x}", hash_words_finish(h, length));
 }
 
 }  // namespace skybake

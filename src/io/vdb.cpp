@@ -13,7 +13,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <iterator>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -22,6 +21,7 @@
 #include <fmt/ranges.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Dense.h>
+#include <tbb/parallel_for.h>
 
 #include "core/error.hpp"
 #include "core/hash.hpp"
@@ -39,6 +39,8 @@ using DenseXYZ = openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ>;
 // "has grid offsets" flag (1), then the UUID as 36 ASCII characters.
 constexpr size_t kUuidOffset = 21;
 constexpr size_t kUuidLength = 36;
+// Seeds of the two hashes that make the UUID (any two distinct values).
+constexpr uint64_t kUuidSeeds[2] = {0x736b7962616b6531ull, 0x766462757569643aull};
 
 // Bounds on the dense texture read_vdb makes: a side of at most 2^20 voxels
 // (skybake writes at most 1024) and 4 GiB for the texture with its one-grid
@@ -195,10 +197,15 @@ openvdb::FloatGrid::Ptr make_grid(const Texture& tex, int c, const std::string& 
 }
 
 // Replaces the random UUID OpenVDB wrote with one derived from the file's
-// other bytes: same content, same bytes.
+// other bytes: same content, same bytes. Two word-at-a-time hashes (seeds
+// apart) of the file with the UUID's bytes zeroed make its 128 bits.
 void make_uuid_deterministic(const std::string& path) {
   std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
-  std::string bytes(std::istreambuf_iterator<char>(file), {});
+  file.seekg(0, std::ios::end);
+  const std::streamoff size = file ? std::streamoff(file.tellg()) : std::streamoff(0);
+  std::string bytes(size_t(std::max<std::streamoff>(size, 0)), '\0');
+  file.seekg(0);
+  file.read(bytes.data(), std::streamsize(bytes.size()));
   const auto is_uuid = [&](const std::string& u) {
     for (size_t i = 0; i < kUuidLength; ++i)
       if ((i == 8 || i == 13 || i == 18 || i == 23) ? u[i] != '-' : !std::isxdigit(u[i]))
@@ -209,10 +216,10 @@ void make_uuid_deterministic(const std::string& path) {
       !is_uuid(bytes.substr(kUuidOffset, kUuidLength)))
     throw Error(
         fmt::format("{}: expected an OpenVDB header with a UUID at byte {}", path, kUuidOffset));
-  const std::string head = bytes.substr(0, kUuidOffset);
-  const std::string tail = bytes.substr(kUuidOffset + kUuidLength);
-  const std::string hex = Hasher().add(head).add(tail).hex() +
-                          Hasher().add("skybake vdb uuid").add(head).add(tail).hex();
+  std::fill_n(bytes.begin() + kUuidOffset, kUuidLength, '\0');
+  const std::string hex =
+      fmt::format("{:016x}{:016x}", hash_words(bytes.data(), bytes.size(), kUuidSeeds[0]),
+                  hash_words(bytes.data(), bytes.size(), kUuidSeeds[1]));
   const std::string uuid = hex.substr(0, 8) + "-" + hex.substr(8, 4) + "-" + hex.substr(12, 4) +
                            "-" + hex.substr(16, 4) + "-" + hex.substr(20, 12);
   file.clear();
@@ -235,9 +242,13 @@ void write_vdb_file(const std::string& path, const Texture& tex, const VdbWriteO
   init_openvdb();
   auto xform = openvdb::math::Transform::createLinearTransform(voxel_size);
   xform->postTranslate(openvdb::Vec3d(0.5 * voxel_size));  // voxel i covers [i s, (i + 1) s]
-  openvdb::GridCPtrVec grids;
-  for (int c = 0; c < tex.channel_count(); ++c)
-    grids.push_back(make_grid(tex, c, names[size_t(c)], options.grid_class, *xform));
+  // One grid per channel, built side by side; each grid's tree is the same
+  // whatever the order they are built in, and they are written in channel order.
+  std::vector<openvdb::FloatGrid::Ptr> built(tex.channels.size());
+  tbb::parallel_for(size_t(0), built.size(), [&](size_t c) {
+    built[c] = make_grid(tex, int(c), names[c], options.grid_class, *xform);
+  });
+  const openvdb::GridCPtrVec grids(built.begin(), built.end());
   try {
     openvdb::io::File(path).write(grids);
     make_uuid_deterministic(path);

@@ -43,7 +43,8 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
   if (format == "exr") {
     const bool half = spec.precision == "half";
     write_exr(tmp, tex, half ? ExrPrecision::half : ExrPrecision::float32, ExrVolumeLayout::atlas,
-              exr_compression_from_name(option_string(spec, "exr_compression", "zip")));
+              exr_compression_from_name(
+                  option_string(spec, "exr_compression", info.default_exr_compression)));
     return half ? "half" : "float";
   }
   if (format == "dds") {

@@ -56,6 +56,9 @@ struct ProductInfo {
   // DXGI name, "unorm8" (R8_UNORM for one channel, else R8G8B8A8_UNORM), or
   // empty (float32 RGBA, or half with precision "half").
   std::string default_dds_format;
+  // exr_compression when the output gives none (docs/decisions.md "EXR
+  // compression": chosen per product family by measurement).
+  std::string default_exr_compression = "zip";
   BakeFn bake;
   // Rough cost for farm scheduling: single-thread nanoseconds per output
   // texel at default settings (measured with bench/); `plan` sums it into

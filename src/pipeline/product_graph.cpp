@@ -31,7 +31,8 @@ OutputSpec default_spec(const ProductInfo& info) {
 namespace {
 
 // Raised whenever what a file holds for the same texels changes.
-constexpr const char* kFileLayout = "file layout 2: typed metadata, exact atlas";
+constexpr const char* kFileLayout =
+    "file layout 3: typed metadata, exact atlas, EXR compression per product";
 
 // Keys of an output object read only by the file writers.
 bool is_writer_key(const std::string& key) {

@@ -117,6 +117,28 @@ TEST(OutputWriter, ExrCompressionIsTheOutputsOwn) {
   }
 }
 
+TEST(OutputWriter, ExrCompressionDefaultsToTheProducts) {
+  // docs/formats.md "EXR": zip for the tables and maps, none for the
+  // tileable noises, whose float texels zip barely shrinks.
+  const fs::path dir = test::fresh_dir("output_writer_exr_default");
+  const Texture tex = rgba_volume();
+  for (const auto& [product, compression] :
+       {std::pair<const char*, const char*>{"aerial_perspective", "zip"},
+        {"noise_shape", "none"},
+        {"noise_detail", "none"}}) {
+    const ProductInfo* info = find_product(product);
+    ASSERT_NE(info, nullptr) << product;
+    OutputSpec spec = spec_of(product, {"exr"});
+    spec.product = product;
+    write_outputs(tex, *info, spec, dir);
+    const std::string path = (dir / (std::string(product) + ".exr")).string();
+    auto in = OIIO::ImageInput::open(path);
+    ASSERT_TRUE(in) << OIIO::geterror();
+    EXPECT_EQ(in->spec().get_string_attribute("compression"), compression) << product;
+    expect_same_texels(read_texture_file(path).texture, tex, path);
+  }
+}
+
 TEST(OutputWriter, HalfPrecisionIsWithinHalfRounding) {
   const fs::path dir = test::fresh_dir("output_writer_half");
   const Texture tex = rgba_volume();
