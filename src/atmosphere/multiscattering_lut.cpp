@@ -9,25 +9,38 @@
 
 #include "atmosphere/phase.hpp"
 #include "atmosphere/sky_integrator.hpp"
+#include "atmosphere/transmittance_lut.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
 
 namespace skybake {
 namespace {
 
-struct DirectionIntegrals {
-  glm::dvec3 l_prime{0.0};  // L' of eq. 6 (E_I = 1)
-  glm::dvec3 l_f{0.0};      // L_f of eq. 8
+// One direction's march from a point, everything but the sun: the texels of
+// a table row share their point and so their marches, and differ in mu_s only.
+struct DirectionMarch {
+  std::vector<glm::dvec3> points;                // segment midpoints
+  std::vector<double> radii;                     // |point|, at least Rb
+  std::vector<TransmittanceAtRadius> sun_reads;  // the sun's lookups at those radii
+  std::vector<glm::dvec3> scattered;  // T sigma_s (1 - exp(-sigma_t dt)) / sigma_t per segment
+  glm::dvec3 l_f{0.0};                // L_f of eq. 8: the sum of `scattered`
+  bool ground = false;                // the ray ends on the ground, lit by the sun
+  glm::dvec3 ground_up{0.0};          // the ground's normal there
+  glm::dvec3 ground_transmittance{1.0};  // T from the point to the ground
 };
 
 // Eq. 6 and 8 along one direction from `position`, `steps` uniform segments
-// sampled at their midpoints, plus the lit ground where the ray ends on it.
-DirectionIntegrals integrate_direction(const Atmosphere& atm, const Texture& transmittance_lut,
-                                       glm::dvec3 position, glm::dvec3 dir, glm::dvec3 sun_dir,
-                                       int steps) {
-  DirectionIntegrals out;
+// sampled at their midpoints, without the sun.
+void march_direction(const Atmosphere& atm, const Texture& transmittance_lut, glm::dvec3 position,
+                     glm::dvec3 dir, int steps, DirectionMarch& out) {
+  out.points.clear();
+  out.radii.clear();
+  out.sun_reads.clear();
+  out.scattered.clear();
+  out.l_f = glm::dvec3(0.0);
+  out.ground = false;
   const AtmosphereSpan span = clip_ray_to_atmosphere(atm, position, dir);
-  if (!span.hits_atmosphere) return out;
+  if (!span.hits_atmosphere) return;
   glm::dvec3 transmittance(1.0);
   const double dt = (span.t_exit - span.t_enter) / steps;
   for (int i = 0; i < steps && dt > 0.0; ++i) {
@@ -37,22 +50,75 @@ DirectionIntegrals integrate_direction(const Atmosphere& atm, const Texture& tra
     if (medium.extinction == glm::dvec3(0.0)) continue;
     // (1 - exp(-sigma_t dt)) / sigma_t: the energy-conserving segment weight.
     const SegmentWeights w = segment_weights(medium.extinction, dt);
-    const glm::dvec3 t_sun =
-        lookup_sun_transmittance(transmittance_lut, atm, r, glm::dot(p, sun_dir) / r);
     const glm::dvec3 scattered = transmittance * medium.scattering * w.weight;
-    out.l_prime += scattered * t_sun * isotropic_phase();
+    out.points.push_back(p);
+    out.radii.push_back(r);
+    out.sun_reads.push_back(transmittance_at_radius(transmittance_lut, atm, r));
+    out.scattered.push_back(scattered);
     out.l_f += scattered;
     transmittance *= w.transmittance;
   }
   if (span.exits_on_ground) {
-    const glm::dvec3 up = glm::normalize(position + span.t_exit * dir);
-    const double mu_s = clamp_cosine(glm::dot(up, sun_dir));
+    out.ground = true;
+    out.ground_up = glm::normalize(position + span.t_exit * dir);
+    out.ground_transmittance = transmittance;
+  }
+}
+
+// L' of eq. 6 (E_I = 1) of a marched direction under the sun `sun_dir`:
+// sigma_s T Vis T_sun p_u per segment, plus the lit ground where the ray ends on it.
+glm::dvec3 sunlit_direction(const Atmosphere& atm, const Texture& transmittance_lut,
+                            const DirectionMarch& m, glm::dvec3 sun_dir) {
+  glm::dvec3 l_prime(0.0);
+  for (size_t i = 0; i < m.points.size(); ++i) {
+    const glm::dvec3 t_sun =
+        lookup_sun_transmittance(transmittance_lut, m.sun_reads[i], atm.bottom_radius_m,
+                                 glm::dot(m.points[i], sun_dir) / m.radii[i]);
+    l_prime += m.scattered[i] * t_sun * isotropic_phase();
+  }
+  if (m.ground) {
+    const double mu_s = clamp_cosine(glm::dot(m.ground_up, sun_dir));
     if (mu_s > 0.0) {
       const glm::dvec3 t_sun =
           lookup_sun_transmittance(transmittance_lut, atm, atm.bottom_radius_m, mu_s);
-      out.l_prime += transmittance * t_sun * mu_s * atm.ground_albedo / kPi;
+      l_prime += m.ground_transmittance * t_sun * mu_s * atm.ground_albedo / kPi;
     }
   }
+  return l_prime;
+}
+
+// The marches of every direction of `rule` from (0, 0, r).
+void march_directions(const Atmosphere& atm, const Texture& transmittance_lut, double r,
+                      const SphereRule& rule, int steps, std::vector<DirectionMarch>& marches) {
+  marches.resize(rule.dirs.size());
+  const glm::dvec3 position(0.0, 0.0, r);
+  for (size_t k = 0; k < rule.dirs.size(); ++k)
+    march_direction(atm, transmittance_lut, position, rule.dirs[k], std::max(steps, 1),
+                    marches[k]);
+}
+
+// Eq. 5-10 from the marches of `rule` under a sun of zenith cosine mu_s
+// (clamped), in the x-z plane.
+MultiscatteringSample sunlit_multiscattering(const Atmosphere& atm,
+                                             const Texture& transmittance_lut,
+                                             const std::vector<DirectionMarch>& marches,
+                                             const SphereRule& rule, double mu_s) {
+  MultiscatteringSample out;
+  const glm::dvec3 sun_dir(safe_sqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
+  const bool weighted = !rule.weights.empty();
+  for (size_t k = 0; k < marches.size(); ++k) {
+    const double w = weighted ? rule.weights[k] : 1.0;
+    out.l2 += w * sunlit_direction(atm, transmittance_lut, marches[k], sun_dir);
+    out.f_ms += w * marches[k].l_f;
+  }
+  // Integral over the sphere times p_u: the weights are fractions of 4 pi;
+  // without weights each direction stands for 4 pi / n.
+  if (!weighted) {
+    out.l2 /= double(marches.size());
+    out.f_ms /= double(marches.size());
+  }
+  const glm::dvec3 f = glm::min(out.f_ms, glm::dvec3(kMaxMultiscatteringTransfer));
+  out.psi_ms = out.l2 / (1.0 - f);  // eq. 9-10
   return out;
 }
 
@@ -73,29 +139,11 @@ std::vector<glm::dvec3> fibonacci_sphere_directions(int n) {
 MultiscatteringSample compute_multiscattering(const Atmosphere& atm,
                                               const Texture& transmittance_lut, double r,
                                               double mu_s, const SphereRule& rule, int steps) {
-  MultiscatteringSample out;
-  if (rule.dirs.empty()) return out;
-  r = std::clamp(r, atm.bottom_radius_m, atm.top_radius_m);
-  mu_s = clamp_cosine(mu_s);
-  const glm::dvec3 position(0.0, 0.0, r);
-  const glm::dvec3 sun_dir(safe_sqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
-  const bool weighted = !rule.weights.empty();
-  for (size_t k = 0; k < rule.dirs.size(); ++k) {
-    const DirectionIntegrals d = integrate_direction(atm, transmittance_lut, position,
-                                                     rule.dirs[k], sun_dir, std::max(steps, 1));
-    const double w = weighted ? rule.weights[k] : 1.0;
-    out.l2 += w * d.l_prime;
-    out.f_ms += w * d.l_f;
-  }
-  // Integral over the sphere times p_u: the weights are fractions of 4 pi;
-  // without weights each direction stands for 4 pi / n.
-  if (!weighted) {
-    out.l2 /= double(rule.dirs.size());
-    out.f_ms /= double(rule.dirs.size());
-  }
-  const glm::dvec3 f = glm::min(out.f_ms, glm::dvec3(kMaxMultiscatteringTransfer));
-  out.psi_ms = out.l2 / (1.0 - f);  // eq. 9-10
-  return out;
+  if (rule.dirs.empty()) return {};
+  std::vector<DirectionMarch> marches;
+  march_directions(atm, transmittance_lut, std::clamp(r, atm.bottom_radius_m, atm.top_radius_m),
+                   rule, steps, marches);
+  return sunlit_multiscattering(atm, transmittance_lut, marches, rule, clamp_cosine(mu_s));
 }
 
 MultiscatteringSample compute_multiscattering(const Atmosphere& atm,
@@ -210,21 +258,22 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
   std::vector<int> row_clamped(spec.height, 0);
   ProgressCounter progress(ctx, size_t(spec.height));
   tbb::parallel_for(0, spec.height, [&](int y) {
-    // symmetric_gauss splits at the row's own horizon (r is constant along a row).
+    const double v = texel_center(y, spec.height);
+    // r is constant along a row: its texels share their marches and differ
+    // in the sun only; symmetric_gauss splits at the row's own horizon.
+    const double r = r_mu_s_from_multiscattering_uv(atm, {0.5, v}, spec.width, spec.height,
+                                                    mapping)
+                         .r;
     const SphereRule rule =
-        per_row ? multiscattering_rule(spec.quadrature, spec.directions, atm,
-                                       r_mu_s_from_multiscattering_uv(
-                                           atm, {0.5, texel_center(y, spec.height)}, spec.width,
-                                           spec.height, mapping)
-                                           .r)
-                : SphereRule{};
+        per_row ? multiscattering_rule(spec.quadrature, spec.directions, atm, r) : fibonacci;
+    std::vector<DirectionMarch> marches;
+    march_directions(atm, transmittance_lut, std::clamp(r, atm.bottom_radius_m, atm.top_radius_m),
+                     rule, spec.steps, marches);
     for (int x = 0; x < spec.width; ++x) {
       const RadiusSunCosine p = r_mu_s_from_multiscattering_uv(
-          atm, {texel_center(x, spec.width), texel_center(y, spec.height)}, spec.width,
-          spec.height, mapping);
-      const MultiscatteringSample s =
-          compute_multiscattering(atm, transmittance_lut, p.r, p.mu_s,
-                                  per_row ? rule : fibonacci, spec.steps);
+          atm, {texel_center(x, spec.width), v}, spec.width, spec.height, mapping);
+      const MultiscatteringSample s = sunlit_multiscattering(atm, transmittance_lut, marches,
+                                                             rule, clamp_cosine(p.mu_s));
       const double fms = std::max({s.f_ms.x, s.f_ms.y, s.f_ms.z});
       row_fms_max[y] = std::max(row_fms_max[y], fms);
       if (fms > kMaxMultiscatteringTransfer) ++row_clamped[y];
@@ -299,6 +348,24 @@ MultiscatteringMapping multiscattering_mapping_of(const Texture& lut) {
   m.width = meta_double(lut.metadata, "mu_s_mapping_width");
   m.offset = meta_double(lut.metadata, "mu_s_mapping_offset");
   return m;
+}
+
+MultiscatteringAtRadius multiscattering_at_radius(const Texture& lut,
+                                                  const MultiscatteringMapping& mapping,
+                                                  const Atmosphere& atm, double r) {
+  // The r half of multiscattering_uv_from_r_mu_s, the same operations.
+  r = std::clamp(r, atm.bottom_radius_m, atm.top_radius_m);
+  MultiscatteringAtRadius at;
+  at.mapping = mapping;
+  if (mapping.sun == SunMapping::terminator) {
+    const TerminatorFrame f = terminator_frame(mapping, atm, r);
+    at.centre = f.centre;
+    at.a_lo = f.a_lo;
+    at.a_hi = f.a_hi;
+  }
+  const double x_h = (r - atm.bottom_radius_m) / (atm.top_radius_m - atm.bottom_radius_m);
+  at.row = bilinear_row(lut, texel_coord_from_unit(x_h, lut.height), 0, 0);
+  return at;
 }
 
 glm::dvec3 lookup_multiscattering(const Texture& lut, const MultiscatteringMapping& mapping,

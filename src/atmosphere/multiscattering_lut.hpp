@@ -47,6 +47,7 @@
 #include "atmosphere/sphere_rule.hpp"
 #include "core/bake_context.hpp"
 #include "core/texture.hpp"
+#include "core/texture_sampling.hpp"
 
 namespace skybake {
 
@@ -155,6 +156,31 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
 glm::dvec3 lookup_multiscattering(const Texture& lut, const MultiscatteringMapping& mapping,
                                   const Atmosphere& atm, double r, double mu_s);
 glm::dvec3 lookup_multiscattering(const Texture& lut, const Atmosphere& atm, double r, double mu_s);
+
+// The parts of lookup_multiscattering that depend on r alone (the altitude
+// axis, the terminator mapping's centre and span), worked out once for many
+// lookups at one radius.
+struct MultiscatteringAtRadius {
+  MultiscatteringMapping mapping;
+  double centre = 0.0, a_lo = 0.0, a_hi = 0.0;  // terminator: c(r) and the atan span
+  BilinearRow row;                              // the table's rows around v(r)
+};
+MultiscatteringAtRadius multiscattering_at_radius(const Texture& lut,
+                                                  const MultiscatteringMapping& mapping,
+                                                  const Atmosphere& atm, double r);
+
+// lookup_multiscattering(lut, at.mapping, atm, r, mu_s) at the radius `at`
+// was made for, bit for bit.
+inline glm::dvec3 lookup_multiscattering(const Texture& lut, const MultiscatteringAtRadius& at,
+                                         double mu_s) {
+  mu_s = clamp_cosine(mu_s);
+  double x = 0.5 + 0.5 * mu_s;
+  if (at.mapping.sun == SunMapping::terminator)
+    x = std::clamp((std::atan((mu_s - at.centre) / at.mapping.width) - at.a_lo) /
+                       (at.a_hi - at.a_lo),
+                   0.0, 1.0);
+  return sample_bilinear_rgb(lut, at.row, texel_coord_from_unit(x, lut.width));
+}
 
 // Writes the mapping into a table's metadata (name, constants, formulas).
 void set_multiscattering_mapping_metadata(Metadata& m, const MultiscatteringMapping& mapping);

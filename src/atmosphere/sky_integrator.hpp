@@ -33,7 +33,9 @@
 
 #include <glm/glm.hpp>
 
+#include "atmosphere/geometry.hpp"
 #include "atmosphere/medium.hpp"
+#include "atmosphere/transmittance_lut.hpp"
 #include "core/texture.hpp"
 #include "core/texture_sampling.hpp"
 
@@ -121,5 +123,14 @@ inline glm::dvec3 integrate_segment(glm::dvec3 source, glm::dvec3 sigma_t, doubl
 // planet's shadow Vis of eq. 4: 0 when that ray meets the ground.
 glm::dvec3 lookup_sun_transmittance(const Texture& transmittance_lut, const Atmosphere& atm,
                                     double r, double mu_s);
+
+// lookup_sun_transmittance at the radius `at` was made for, bit for bit.
+inline glm::dvec3 lookup_sun_transmittance(const Texture& transmittance_lut,
+                                           const TransmittanceAtRadius& at, double bottom_m,
+                                           double mu_s) {
+  mu_s = clamp_cosine(mu_s);
+  if (ray_intersects_ground(bottom_m, at.r, mu_s)) return glm::dvec3(0.0);  // Vis = 0
+  return lookup_transmittance_to_top(transmittance_lut, at, mu_s);
+}
 
 }  // namespace skybake

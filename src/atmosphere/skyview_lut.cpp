@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include "atmosphere/multiscattering_lut.hpp"
+#include "atmosphere/skyview_row_march.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
 
@@ -92,28 +94,50 @@ Texture bake_skyview_lut(const Atmosphere& atm, const Texture& transmittance_lut
                     spec.width, spec.height, spec.views.size()));
   const int layers = int(spec.views.size());
   Texture tex(spec.width, spec.height, 1, layers, {"R", "G", "B"});
-  const IntegrationOptions options{spec.distribution, false};
-  ProgressCounter progress(ctx, size_t(layers) * spec.height);
-  tbb::parallel_for(0, layers * spec.height, [&](int row) {
-    const int layer = row / spec.height, y = row % spec.height;
-    const SkyviewView& view = spec.views[layer];
-    const double r = atm.bottom_radius_m + std::max(view.altitude_m, 0.0);
-    const glm::dvec3 sun_dir(std::sin(view.sun_zenith_rad), 0.0, std::cos(view.sun_zenith_rad));
-    // The sky is symmetric about the sun's vertical plane (the medium varies
-    // with altitude only): texel width - 1 - x sees the mirror image of
-    // texel x, so half the row is marched and mirrored.
-    for (int x = 0; x < (spec.width + 1) / 2; ++x) {
-      const SkyviewDirection d =
-          view_from_skyview_uv(atm, r, {texel_center(x, spec.width), texel_center(y, spec.height)},
-                               spec.width, spec.height);
-      const ScatteringResult s = integrate_scattered_luminance(
-          atm, transmittance_lut, &multiscattering_lut, {0.0, 0.0, r},
-          skyview_vector_from_direction(d), sun_dir, INFINITY, spec.steps, options);
-      float* t = tex.texel(x, y, 0, layer);
-      float* mirror = tex.texel(spec.width - 1 - x, y, 0, layer);
-      for (int c = 0; c < 3; ++c) t[c] = mirror[c] = float(s.luminance[c]);
+  // Layers grouped by viewer radius: a row's march is shared by the layers
+  // at its radius (skyview_row_march.hpp).
+  std::vector<double> radii;
+  std::vector<std::vector<int>> layers_at;
+  for (int layer = 0; layer < layers; ++layer) {
+    const double r = atm.bottom_radius_m + std::max(spec.views[layer].altitude_m, 0.0);
+    const auto it = std::find(radii.begin(), radii.end(), r);
+    if (it == radii.end()) {
+      radii.push_back(r);
+      layers_at.push_back({layer});
+    } else {
+      layers_at[size_t(it - radii.begin())].push_back(layer);
     }
-    progress.tick();
+  }
+  const MultiscatteringMapping mapping = multiscattering_mapping_of(multiscattering_lut);
+  ProgressCounter progress(ctx, size_t(layers) * spec.height);
+  tbb::parallel_for(0, int(radii.size()) * spec.height, [&](int task) {
+    const int group = task / spec.height, y = task % spec.height;
+    const double r = radii[group];
+    const double v = texel_center(y, spec.height);
+    const double mu = view_from_skyview_uv(atm, r, {0.5, v}, spec.width, spec.height).mu;
+    const SkyviewRowMarch row = march_skyview_row(atm, transmittance_lut, multiscattering_lut,
+                                                  mapping, r, mu, spec.steps, spec.distribution);
+    std::vector<glm::dvec3> scratch;
+    for (int layer : layers_at[group]) {
+      const double sun_zenith = spec.views[layer].sun_zenith_rad;
+      const double cos_s = std::cos(sun_zenith), sin_s = std::sin(sun_zenith);
+      const glm::dvec3 sun_dir(sin_s, 0.0, cos_s);
+      // The sky is symmetric about the sun's vertical plane (the medium varies
+      // with altitude only): texel width - 1 - x sees the mirror image of
+      // texel x, so half the row is marched and mirrored.
+      for (int x = 0; x < (spec.width + 1) / 2; ++x) {
+        const SkyviewDirection d =
+            view_from_skyview_uv(atm, r, {texel_center(x, spec.width), v}, spec.width, spec.height);
+        const double nu = clamp_cosine(glm::dot(skyview_vector_from_direction(d), sun_dir));
+        const glm::dvec3 luminance =
+            skyview_texel_luminance(row, atm, transmittance_lut, multiscattering_lut,
+                                    std::cos(d.azimuth_rad), cos_s, sin_s, nu, scratch);
+        float* t = tex.texel(x, y, 0, layer);
+        float* mirror = tex.texel(spec.width - 1 - x, y, 0, layer);
+        for (int c = 0; c < 3; ++c) t[c] = mirror[c] = float(luminance[c]);
+      }
+      progress.tick();
+    }
   });
   Metadata& m = tex.metadata;
   set_meta(m, "parameterization", std::string("hillaire2020_skyview"));

@@ -382,6 +382,16 @@ glm::dvec3 lookup_transmittance_to_top(const Texture& lut, const Atmosphere& atm
   return glm::dvec3(sample_bilinear(lut, uv.x, uv.y, 0, 0, false));
 }
 
+TransmittanceAtRadius transmittance_at_radius(const Texture& lut, const Atmosphere& atm, double r) {
+  // The r half of transmittance_uv_from_r_mu, the same operations.
+  const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+  r = std::clamp(r, rb, rt);
+  const double H = horizon_distance(atm);
+  const double rho = safe_sqrt((r - rb) * (r + rb));
+  const double v = texel_coord_from_unit(rho / H, lut.height);
+  return {r, rt, rt - r, rho + H, bilinear_row(lut, v, 0, 0)};
+}
+
 glm::dvec3 lookup_transmittance(const Texture& lut, const Atmosphere& atm, double r, double mu,
                                 double d, bool ray_hits_ground) {
   const double r_d = std::clamp(radius_after(r, mu, d), atm.bottom_radius_m, atm.top_radius_m);

@@ -27,9 +27,11 @@
 
 #include <glm/glm.hpp>
 
+#include "atmosphere/geometry.hpp"
 #include "atmosphere/medium.hpp"
 #include "core/bake_context.hpp"
 #include "core/texture.hpp"
+#include "core/texture_sampling.hpp"
 
 namespace skybake {
 
@@ -89,6 +91,24 @@ Texture bake_transmittance_lut(const Atmosphere& atm, const TransmittanceLutSpec
 // the horizon column.
 glm::dvec3 lookup_transmittance_to_top(const Texture& lut, const Atmosphere& atm, double r,
                                        double mu);
+
+// The parts of lookup_transmittance_to_top that depend on r alone, worked out
+// once for many lookups at one radius (a march's sample seen from many suns).
+struct TransmittanceAtRadius {
+  double r;             // m, clamped to [Rb, Rt]
+  double top_m;         // Rt
+  double d_min, d_max;  // the mapping's distance range at r
+  BilinearRow row;      // the table's rows around v(r)
+};
+TransmittanceAtRadius transmittance_at_radius(const Texture& lut, const Atmosphere& atm, double r);
+
+// lookup_transmittance_to_top(lut, atm, at.r, mu), bit for bit.
+inline glm::dvec3 lookup_transmittance_to_top(const Texture& lut, const TransmittanceAtRadius& at,
+                                              double mu) {
+  const double d = distance_to_top_boundary(at.top_m, at.r, clamp_cosine(mu));
+  const double x_mu = std::clamp((d - at.d_min) / (at.d_max - at.d_min), 0.0, 1.0);
+  return sample_bilinear_rgb(lut, at.row, texel_coord_from_unit(x_mu, lut.width));
+}
 
 // Transmittance between the point (r, mu) and the point at distance d (m)
 // along the ray (Bruneton 2017 GetTransmittance), each channel in [0, 1]:

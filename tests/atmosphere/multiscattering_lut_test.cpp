@@ -312,5 +312,54 @@ TEST(MultiscatteringLut, IdenticalForOneAndTwoThreads) {
   EXPECT_EQ(one.metadata, two.metadata);
 }
 
+// The per-radius lookup (multiscattering_at_radius, then many sun cosines)
+// is the lookup, bit for bit, with either sun mapping.
+TEST(MultiscatteringLut, LookupAtARadiusIsTheLookupBitForBit) {
+  const Atmosphere atm = earth_atmosphere();
+  const Texture t = small_transmittance(atm);
+  for (bool terminator : {false, true}) {
+    MultiscatteringLutSpec spec{8, 8, 16, 10};
+    if (terminator) spec.sun_mapping = SunMapping::terminator;
+    const Texture ms = bake_multiscattering_lut(atm, t, spec, {});
+    const MultiscatteringMapping mapping = multiscattering_mapping_of(ms);
+    const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+    for (double r : {rb - 5.0, rb, rb + 2e3, rb + 61.7e3, rt, rt + 1e3}) {
+      const MultiscatteringAtRadius at = multiscattering_at_radius(ms, mapping, atm, r);
+      for (double mu_s : {-1.2, -1.0, -0.4, -0.1, -0.02, 0.0, 0.03, 0.5, 1.0, 1.3}) {
+        const glm::dvec3 a = lookup_multiscattering(ms, mapping, atm, r, mu_s);
+        const glm::dvec3 b = lookup_multiscattering(ms, at, mu_s);
+        for (int c = 0; c < 3; ++c)
+          EXPECT_EQ(a[c], b[c]) << "terminator " << terminator << " r " << r << " mu_s " << mu_s;
+      }
+    }
+  }
+}
+
+// The bake shares each row's marches among its texels (one radius, many
+// suns); every texel must still be compute_multiscattering at its centre.
+TEST(MultiscatteringLut, TexelsAreTheIntegralAtTheirCentres) {
+  const Atmosphere atm = earth_atmosphere();
+  const Texture t = small_transmittance(atm);
+  for (DirectionQuadrature quadrature :
+       {DirectionQuadrature::fibonacci, DirectionQuadrature::symmetric_gauss}) {
+    MultiscatteringLutSpec spec{6, 5, 24, 8};
+    spec.sun_mapping = SunMapping::terminator;
+    spec.quadrature = quadrature;
+    const Texture ms = bake_multiscattering_lut(atm, t, spec, {});
+    const MultiscatteringMapping mapping = multiscattering_mapping_of(ms);
+    for (int y = 0; y < ms.height; ++y) {
+      for (int x = 0; x < ms.width; ++x) {
+        const RadiusSunCosine p = r_mu_s_from_multiscattering_uv(
+            atm, {texel_center(x, ms.width), texel_center(y, ms.height)}, ms.width, ms.height,
+            mapping);
+        const SphereRule rule = multiscattering_rule(quadrature, spec.directions, atm, p.r);
+        const glm::dvec3 psi =
+            compute_multiscattering(atm, t, p.r, p.mu_s, rule, spec.steps).psi_ms;
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(ms.at(x, y, 0, 0, c), float(psi[c])) << x << " " << y;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace skybake

@@ -377,5 +377,43 @@ TEST(SkyRender, ImagesFromTheGroundAndFromSpaceAreFiniteAndShowTheSun) {
   EXPECT_GT(planet.at(16, 9, 0, 0, 2), 0.0f);
 }
 
+// The bake marches a row once for every azimuth and every layer at its
+// radius (skyview_row_march.hpp); each texel must still be the march of
+// sky_integrator.hpp along its own direction, up to rounding: for viewers on
+// the ground, aloft, at the top and above it, suns up, low and below the horizon.
+TEST(SkyviewLut, TexelsAreTheMarchOfTheirDirection) {
+  const Atmosphere atm = earth_atmosphere();
+  const SkyLutInputs l = bake_sky_lut_inputs(atm);
+  const double top = atm.top_radius_m - atm.bottom_radius_m;
+  SkyviewLutSpec spec{14,
+                      22,
+                      30,
+                      StepDistribution::quadratic,
+                      {{0.0, 0.3}, {5e3, 1.5}, {0.0, 1.62}, {5e3, 0.0}, {top, 1.0}, {top + 20e3, 1.2}}};
+  for (StepDistribution dist : {StepDistribution::quadratic, StepDistribution::uniform}) {
+    spec.distribution = dist;
+    const Texture sky = bake_skyview_lut(atm, l.transmittance, l.multiscattering, spec, {});
+    for (int layer = 0; layer < sky.layers; ++layer) {
+      const SkyviewView& v = spec.views[layer];
+      const double r = atm.bottom_radius_m + v.altitude_m;
+      const glm::dvec3 sun(std::sin(v.sun_zenith_rad), 0.0, std::cos(v.sun_zenith_rad));
+      for (int y = 0; y < sky.height; ++y) {
+        for (int x = 0; x < sky.width; ++x) {
+          const SkyviewDirection d = view_from_skyview_uv(
+              atm, r, {texel_center(x, sky.width), texel_center(y, sky.height)}, sky.width,
+              sky.height);
+          const ScatteringResult ref = integrate_scattered_luminance(
+              atm, l.transmittance, &l.multiscattering, {0, 0, r}, skyview_vector_from_direction(d),
+              sun, INFINITY, spec.steps, {dist, false});
+          for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(sky.at(x, y, 0, layer, c), ref.luminance[c],
+                        1e-6 * ref.luminance[c] + 1e-15)
+                << "layer " << layer << " x " << x << " y " << y << " c " << c;
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace skybake

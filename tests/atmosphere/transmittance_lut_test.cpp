@@ -555,5 +555,20 @@ TEST_F(EarthLut, LookupOfAnEmptySegmentIsOne) {
   }
 }
 
+// The per-radius lookup (transmittance_at_radius, then many cosines) is the
+// lookup: the same value bit for bit, radii outside the shell (clamped) and
+// cosines below the horizon or outside [-1, 1] included.
+TEST_F(EarthLut, LookupAtARadiusIsTheLookupBitForBit) {
+  const double rb = atm_->bottom_radius_m, rt = atm_->top_radius_m;
+  for (double r : {rb - 10.0, rb, rb + 1.0, rb + 3e3, rb + 47.3e3, rt - 1.0, rt, rt + 5e3}) {
+    const TransmittanceAtRadius at = transmittance_at_radius(*lut_, *atm_, r);
+    for (double mu : {-1.5, -1.0, -0.3, -0.12, -0.05, 0.0, 1e-4, 0.07, 0.4, 0.999, 1.0, 2.0}) {
+      const glm::dvec3 a = lookup_transmittance_to_top(*lut_, *atm_, r, mu);
+      const glm::dvec3 b = lookup_transmittance_to_top(*lut_, at, mu);
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(a[c], b[c]) << "r " << r << " mu " << mu;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace skybake
