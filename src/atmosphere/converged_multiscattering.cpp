@@ -9,7 +9,10 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include "atmosphere/geometry.hpp"
 #include "atmosphere/irradiance_lut.hpp"
+#include "atmosphere/phase.hpp"
+#include "atmosphere/transmittance_lut.hpp"
 #include "atmosphere/order_progress.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
@@ -25,6 +28,10 @@ BrunetonSpec ConvergedMultiscatteringSpec::default_converged_bruneton_spec() {
   b.tolerance = 1e-3;
   b.max_orders = 100;
   return b;
+}
+
+const char* psi_estimator_name(PsiEstimator e) {
+  return e == PsiEstimator::relative ? "relative" : "mean";
 }
 
 double converged_mu_s_min(const Atmosphere& atm) {
@@ -76,25 +83,39 @@ ConvergedField compute_converged_field(const Atmosphere& atm, const Texture& tra
   return f;
 }
 
-glm::dvec3 compute_converged_multiscattering(const Atmosphere& atm,
-                                             const Texture& transmittance_lut,
-                                             const ConvergedField& field, double r, double mu_s,
-                                             const SphereGrid& grid) {
-  r = std::clamp(r, atm.bottom_radius_m, atm.top_radius_m);
-  mu_s = clamp_cosine(mu_s);
-  if (mu_s < field.shape.mu_s_min) return glm::dvec3(0.0);
+namespace {
+
+// The cells of the grid's half (bands x azimuths / 2, band-major) that
+// azimuths mirrored about the sun's plane share: cell m of a band and cell
+// azimuths - 1 - m see the same light.
+int half_cells(const SphereGrid& grid) {
+  return grid.bands * (grid.azimuths / 2);
+}
+
+// The direction of half cell i in the sun's frame (its band's and azimuth's middle).
+glm::dvec3 half_cell_direction(const SphereGrid& grid, int i) {
+  const int half = grid.azimuths / 2;
+  return grid.directions[size_t((i / half) * grid.azimuths + i % half)];
+}
+
+// L* / E in each half cell: the sky of every order and the ground's light,
+// the share-weighted mean over the band's parts at the cell's azimuth.
+std::vector<glm::dvec3> incident_light(const Atmosphere& atm, const ConvergedField& field,
+                                       double r, double mu_s, const SphereGrid& grid) {
   const ScatteringOrder single{&field.single.rayleigh, &field.single.mie, nullptr, &field.phases};
   const ScatteringOrder multiple{nullptr, nullptr, &field.multiple, &field.phases};
   const glm::dvec3 sun(safe_sqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
   const glm::dvec3 albedo_over_pi = atm.ground_albedo / kPi;
+  glm::dvec3 per_sun(0.0);
+  for (int c = 0; c < 3; ++c)
+    per_sun[c] = atm.sun_illuminance[c] > 0.0 ? 1.0 / atm.sun_illuminance[c] : 0.0;
   const double d_theta = kPi / grid.bands, d_phi = 2.0 * kPi / grid.azimuths;
-  glm::dvec3 sum(0.0);
+  const int half = grid.azimuths / 2;
+  std::vector<glm::dvec3> light(size_t(half_cells(grid)), glm::dvec3(0.0));
   for (int l = 0; l < grid.bands; ++l) {
-    const double band_solid_angle = d_phi * (std::cos(l * d_theta) - std::cos((l + 1) * d_theta));
     const std::vector<BandPart> parts =
         band_parts(atm, r, l * d_theta, (l + 1) * d_theta, /*with_transmittance=*/true);
-    // Azimuths m and azimuths - 1 - m mirror each other about the sun's plane.
-    for (int m = 0; m < grid.azimuths / 2; ++m) {
+    for (int m = 0; m < half; ++m) {
       const double phi = (m + 0.5) * d_phi;
       glm::dvec3 radiance(0.0);
       for (const BandPart& p : parts) {
@@ -110,13 +131,144 @@ glm::dvec3 compute_converged_multiscattering(const Atmosphere& atm,
         }
         radiance += p.share * part;
       }
-      sum += 2.0 * band_solid_angle * radiance;
+      light[size_t(l * half + m)] = radiance * per_sun;
     }
   }
-  glm::dvec3 psi = sum / (4.0 * kPi);
-  for (int c = 0; c < 3; ++c)
-    psi[c] = atm.sun_illuminance[c] > 0.0 ? psi[c] / atm.sun_illuminance[c] : 0.0;
+  return light;
+}
+
+// Psi_conv: the mean of L* / E over the sphere.
+glm::dvec3 mean_light(const std::vector<glm::dvec3>& light, const PsiQuadrature& q) {
+  glm::dvec3 sum(0.0);
+  for (size_t i = 0; i < light.size(); ++i) sum += 2.0 * q.solid_angle[i] * light[i];
+  return sum / (4.0 * kPi);
+}
+
+// The source of orders >= 2 toward each half cell v, j(v) = sum_c f_c
+// int p_c(v . w) L*(w) dw / E with f_c = sigma_s,c / sigma_s (the kernel's
+// rows), and single scattering's, s1(v) = Vis T_sun sum_c f_c p_c(nu), both
+// per unit of sigma_s E as the runtime's Psi_ms. Channels that do not
+// scatter at this altitude stay 0.
+struct DirectionalSource {
+  std::vector<glm::dvec3> multiple, single;
+};
+DirectionalSource directional_source(const Atmosphere& atm, const Texture& transmittance_lut,
+                                     const std::vector<glm::dvec3>& light, const PsiQuadrature& q,
+                                     double r, double mu_s) {
+  glm::dvec3 rayleigh, mie;
+  scattering_by_group(atm, r - atm.bottom_radius_m, rayleigh, mie);
+  const glm::dvec3 sigma_s = rayleigh + mie;
+  const glm::dvec3 sun_light = ray_intersects_ground(atm.bottom_radius_m, r, mu_s)
+                                   ? glm::dvec3(0.0)
+                                   : lookup_transmittance_to_top(transmittance_lut, atm, r, mu_s);
+  const glm::dvec3 sun(safe_sqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
+  const size_t n = light.size();
+  DirectionalSource out{std::vector<glm::dvec3>(n, glm::dvec3(0.0)),
+                        std::vector<glm::dvec3>(n, glm::dvec3(0.0))};
+  for (size_t v = 0; v < n; ++v) {
+    glm::dvec3 jr(0.0), jm(0.0);
+    const double* kr = &q.kernel_rayleigh[v * n];
+    const double* km = &q.kernel_mie[v * n];
+    for (size_t k = 0; k < n; ++k) {
+      jr += kr[k] * light[k];
+      jm += km[k] * light[k];
+    }
+    const double nu = glm::dot(q.directions[v], sun);
+    for (int c = 0; c < 3; ++c) {
+      if (!(sigma_s[c] > 0.0)) continue;
+      const double fr = rayleigh[c] / sigma_s[c], fm = mie[c] / sigma_s[c];
+      out.multiple[v][c] = fr * jr[c] + fm * jm[c];
+      out.single[v][c] = sun_light[c] * (fr * rayleigh_phase(nu) + fm * q.mie_phase(nu));
+    }
+  }
+  return out;
+}
+
+// Psi_rel (docs/reference.md "Converged Psi_ms", "The relative estimator"):
+// per channel, the constant whose relative error against the whole source
+// q(v) = s1(v) + j(v) averages to zero over the sphere,
+//   sum_v dOmega_v (Psi_rel - j(v)) / q(v) = 0, i.e.
+//   Psi_rel = sum_v dOmega_v j(v) / q(v) / sum_v dOmega_v / q(v).
+// A channel that does not scatter here (sigma_s = 0: the runtime multiplies
+// Psi by 0) or has no source in any direction keeps the mean.
+glm::dvec3 relative_fit(const Atmosphere& atm, const Texture& transmittance_lut,
+                        const std::vector<glm::dvec3>& light, const PsiQuadrature& q, double r,
+                        double mu_s, glm::dvec3 mean) {
+  const DirectionalSource s = directional_source(atm, transmittance_lut, light, q, r, mu_s);
+  glm::dvec3 psi = mean;
+  for (int c = 0; c < 3; ++c) {
+    double largest = 0.0;
+    for (size_t v = 0; v < light.size(); ++v)
+      largest = std::max(largest, s.single[v][c] + s.multiple[v][c]);
+    if (!(largest > 0.0)) continue;
+    // Directions with no light at all would take every weight: floored far
+    // below anything visible.
+    const double floor = 1e-9 * largest;
+    double num = 0.0, den = 0.0;
+    for (size_t v = 0; v < light.size(); ++v) {
+      const double w = q.solid_angle[v] / std::max(s.single[v][c] + s.multiple[v][c], floor);
+      num += w * s.multiple[v][c];
+      den += w;
+    }
+    psi[c] = num / den;
+  }
   return psi;
+}
+
+}  // namespace
+
+PsiQuadrature psi_quadrature(const ConvergedMultiscatteringSpec& spec,
+                             const ScatteringPhases& phases) {
+  PsiQuadrature q;
+  q.grid = sphere_grid(spec.bands);
+  q.estimator = spec.estimator;
+  q.phases = phases;
+  const SphereGrid& g = q.grid;
+  const int n = half_cells(g), half = g.azimuths / 2;
+  for (int i = 0; i < n; ++i) {
+    q.directions.push_back(half_cell_direction(g, i));
+    q.solid_angle.push_back(g.solid_angle[size_t((i / half) * g.azimuths)]);
+  }
+  if (q.estimator != PsiEstimator::relative) return q;
+  // Each view's phase over the full grid, normalised to one on the grid (an
+  // isotropic L* then gives j = L* exactly, whatever the cells' size against
+  // Mie's forward peak), folded onto the half cells (mirror pairs added).
+  auto kernel = [&](auto phase) {
+    std::vector<double> k(size_t(n) * size_t(n), 0.0);
+    for (int v = 0; v < n; ++v) {
+      double norm = 0.0;
+      for (int l = 0; l < g.bands; ++l)
+        for (int m = 0; m < g.azimuths; ++m) {
+          const size_t cell = size_t(l * g.azimuths + m);
+          const double p = phase(glm::dot(q.directions[size_t(v)], g.directions[cell])) *
+                           g.solid_angle[cell];
+          norm += p;
+          k[size_t(v) * n + size_t(l * half + std::min(m, g.azimuths - 1 - m))] += p;
+        }
+      for (int i = 0; i < n; ++i) k[size_t(v) * n + size_t(i)] /= norm;
+    }
+    return k;
+  };
+  q.kernel_rayleigh = kernel([](double c) { return rayleigh_phase(c); });
+  q.kernel_mie = kernel([&](double c) { return phases.has_mie ? phases.mie(c) : rayleigh_phase(c); });
+  return q;
+}
+
+double PsiQuadrature::mie_phase(double nu) const {
+  return phases.has_mie ? phases.mie(nu) : 0.0;
+}
+
+glm::dvec3 compute_converged_multiscattering(const Atmosphere& atm,
+                                             const Texture& transmittance_lut,
+                                             const ConvergedField& field, double r, double mu_s,
+                                             const PsiQuadrature& q) {
+  r = std::clamp(r, atm.bottom_radius_m, atm.top_radius_m);
+  mu_s = clamp_cosine(mu_s);
+  if (mu_s < field.shape.mu_s_min) return glm::dvec3(0.0);
+  const std::vector<glm::dvec3> light = incident_light(atm, field, r, mu_s, q.grid);
+  const glm::dvec3 mean = mean_light(light, q);
+  if (q.estimator == PsiEstimator::mean) return mean;
+  return relative_fit(atm, transmittance_lut, light, q, r, mu_s, mean);
 }
 
 Texture bake_converged_multiscattering_lut(const Atmosphere& atm, const Texture& transmittance_lut,
@@ -140,7 +292,7 @@ Texture converged_multiscattering_table(const Atmosphere& atm, const Texture& tr
   const MultiscatteringMapping mapping = table.sun_mapping == SunMapping::terminator
                                              ? terminator_mapping(atm)
                                              : MultiscatteringMapping{};
-  const SphereGrid grid = sphere_grid(spec.bands);
+  const PsiQuadrature quadrature = psi_quadrature(spec, field.phases);
   Texture tex(table.width, table.height, 1, 1, {"R", "G", "B"});
   ProgressCounter progress(ctx, size_t(table.height));
   tbb::parallel_for(0, table.height, [&](int y) {
@@ -149,7 +301,7 @@ Texture converged_multiscattering_table(const Atmosphere& atm, const Texture& tr
           atm, {texel_center(x, table.width), texel_center(y, table.height)}, table.width,
           table.height, mapping);
       const glm::dvec3 psi =
-          compute_converged_multiscattering(atm, transmittance_lut, field, p.r, p.mu_s, grid);
+          compute_converged_multiscattering(atm, transmittance_lut, field, p.r, p.mu_s, quadrature);
       float* t = tex.texel(x, y);
       for (int c = 0; c < 3; ++c) t[c] = float(psi[c]);
     }
@@ -171,6 +323,7 @@ Texture converged_multiscattering_table(const Atmosphere& atm, const Texture& tr
   set_meta(m, "orders_used", field.orders_used);
   set_meta(m, "last_residual", field.last_residual);
   set_meta(m, "bands", spec.bands);
+  set_meta(m, "estimator", std::string(psi_estimator_name(spec.estimator)));
   return tex;
 }
 

@@ -10,6 +10,8 @@
 // Reads: the transmittance LUT.
 #pragma once
 
+#include <vector>
+
 #include <glm/glm.hpp>
 
 #include "atmosphere/incident_radiance.hpp"
@@ -21,10 +23,21 @@
 
 namespace skybake {
 
+// How the one value per point is taken from the light around it
+// (docs/reference.md "Converged Psi_ms"): `mean`, the mean incident radiance
+// (the isotropic source carries the scattered power exactly); `relative`,
+// the least-squares fit of the source toward every direction in relative
+// error against the whole source, single scattering included (what the
+// sky's relative error asks for; differs where Mie's forward peak makes the
+// source anisotropic).
+enum class PsiEstimator { mean, relative };
+const char* psi_estimator_name(PsiEstimator e);
+
 struct ConvergedMultiscatteringSpec {
   // The 4D iteration: shape (mu_s_min is replaced, below), tolerance, tail.
   BrunetonSpec bruneton = default_converged_bruneton_spec();
   int bands = 16;  // zenith bands of the sphere grid the mean is taken over (x 2 bands azimuths)
+  PsiEstimator estimator = PsiEstimator::mean;
 
   static BrunetonSpec default_converged_bruneton_spec();
 };
@@ -48,12 +61,29 @@ ConvergedField compute_converged_field(const Atmosphere& atm, const Texture& tra
                                        const ConvergedMultiscatteringSpec& spec,
                                        const BakeContext& ctx);
 
-// Psi_conv at (r, mu_s): the mean of L* over the sphere grid, per unit of
-// sun illuminance (1/sr). 0 below the field's mu_s_min. Thread-safe.
+// What the estimator reads besides the field, the same at every point: the
+// sphere grid (its half: cells mirrored about the sun's plane see the same
+// light), and for the relative estimator each view cell's phase over the
+// incident cells (normalised to one on the grid, mirror pairs folded),
+// row-major [view][incident].
+struct PsiQuadrature {
+  SphereGrid grid;
+  PsiEstimator estimator = PsiEstimator::mean;
+  ScatteringPhases phases;
+  std::vector<glm::dvec3> directions;  // half cells, band-major
+  std::vector<double> solid_angle;     // of one cell of the pair
+  std::vector<double> kernel_rayleigh, kernel_mie;
+  double mie_phase(double nu) const;  // 0 without Mie
+};
+PsiQuadrature psi_quadrature(const ConvergedMultiscatteringSpec& spec,
+                             const ScatteringPhases& phases);
+
+// Psi at (r, mu_s) from L* on the sphere grid, per unit of sun illuminance
+// (1/sr), with the spec's estimator. 0 below the field's mu_s_min. Thread-safe.
 glm::dvec3 compute_converged_multiscattering(const Atmosphere& atm,
                                              const Texture& transmittance_lut,
                                              const ConvergedField& field, double r, double mu_s,
-                                             const SphereGrid& grid);
+                                             const PsiQuadrature& quadrature);
 
 // The table; rows in parallel, each texel independent (same data for any
 // thread count). Metadata as bake_multiscattering_lut's, model "converged",

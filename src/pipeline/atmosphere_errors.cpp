@@ -65,14 +65,15 @@ nlohmann::json measure_converged_multiscattering_error(const Scene& scene, const
   const ConvergedMultiscatteringSpec c = converged_multiscattering_spec(spec);
   const ConvergedField field =
       compute_converged_field(atm, *in.at("transmittance"), c, BakeContext{});
-  const SphereGrid grid = sphere_grid(c.bands);
+  const PsiQuadrature quadrature = psi_quadrature(c, field.phases);
   const MultiscatteringMapping mapping = multiscattering_mapping_of(lut);
   QueryReads reads(kMultiscatteringQueries);
   tbb::parallel_for(size_t(0), reads.size(), [&](size_t i) {
     const RadiusCosine q = multiscattering_query(atm, i);
     reads[i].first = lookup_multiscattering(lut, mapping, atm, q.r, q.mu);
     reads[i].second =
-        compute_converged_multiscattering(atm, *in.at("transmittance"), field, q.r, q.mu, grid);
+        compute_converged_multiscattering(atm, *in.at("transmittance"), field, q.r, q.mu,
+                                          quadrature);
   });
   return error_record(
       reads, "lookup_multiscattering (bilinear) at points uniform in altitude and sun zenith "

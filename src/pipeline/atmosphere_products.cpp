@@ -95,6 +95,9 @@ ConvergedMultiscatteringSpec converged_multiscattering_spec(const OutputSpec& sp
   }
   c.bruneton.tolerance = option_double(spec, "tolerance", c.bruneton.tolerance);
   c.bands = option_int(spec, "bands", c.bands);
+  c.estimator = spec.options.value("estimator", std::string("mean")) == "relative"
+                    ? PsiEstimator::relative
+                    : PsiEstimator::mean;
   return c;
 }
 
@@ -202,6 +205,11 @@ std::vector<ProductProblem> converged_multiscattering_problems(const OutputSpec&
     return {{"/direction_quadrature",
              "applies to model \"hillaire2020\" only (model \"converged\" integrates no "
              "directions of its own)"}};
+  if (!multiscattering_is_converged(spec) &&
+      spec.options.value("estimator", std::string("mean")) != "mean")
+    return {{"/estimator",
+             "applies to model \"converged\" only (model \"hillaire2020\" computes its "
+             "Psi_ms from L_2nd and f_ms)"}};
   if (!multiscattering_is_converged(spec) && !skyview_uses_multiple4d(spec)) return {};
   BrunetonSpec b = converged_multiscattering_spec(spec).bruneton;
   b.mu_s_min = -0.5;  // replaced at bake time by converged_mu_s_min, always in (-1, 0]

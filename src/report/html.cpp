@@ -164,6 +164,14 @@ std::string sky_section(const nlohmann::json& sky) {
     s += target_paragraph("the converged Psi_ms", sky["converged_target"]);
     s += radiance_table("With multiple scattering (converged Psi_ms) vs path tracer, all orders",
                         sky["converged_vs_path_tracer"]);
+    if (sky.contains("converged_relative_vs_path_tracer")) {
+      s += target_paragraph("the converged Psi_ms, relative estimator",
+                            sky["converged_relative_target"]);
+      s += radiance_table(
+          "With multiple scattering (converged Psi_ms, relative estimator) vs path tracer, all "
+          "orders",
+          sky["converged_relative_vs_path_tracer"]);
+    }
     s += target_paragraph("the sky-view with the 4D orders >= 2",
                           sky["skyview_multiple4d_target"]);
     s += radiance_table(

@@ -81,7 +81,8 @@ Texture second_order_table(const Atmosphere& atm, const Texture& transmittance,
 struct ViewResult {
   double sun_elevation_deg = 0, view_elevation_deg = 0, view_azimuth_deg = 0;
   glm::dvec3 lut{0.0}, lut_second{0.0}, lut_single{0.0}, quadrature_single{0.0};
-  glm::dvec3 lut_converged{0.0};  // the same views with the converged Psi_ms
+  glm::dvec3 lut_converged{0.0};  // the same views with the converged Psi_ms (mean)
+  glm::dvec3 lut_converged_relative{0.0};  // and with its relative estimator
   glm::dvec3 lut_multiple4d{0.0};  // sky-view: single marched + the 4D orders >= 2
   RadianceEstimate all, second, single;  // path tracer: every order, 2 vertices, 1 vertex
 };
@@ -92,6 +93,7 @@ nlohmann::json view_json(const ViewResult& v) {
           {"view_azimuth_deg", v.view_azimuth_deg},
           {"lut", vec_json(v.lut)},
           {"lut_converged", vec_json(v.lut_converged)},
+          {"lut_converged_relative", vec_json(v.lut_converged_relative)},
           {"lut_skyview_multiple4d", vec_json(v.lut_multiple4d)},
           {"path_traced", vec_json(v.all.mean)},
           {"path_traced_ci95", vec_json(v.all.ci95)},
@@ -227,7 +229,7 @@ struct SkyRadianceScene {
   Texture no_multiscattering, second_order;
   // Both Psi_ms models at the operating point's size and mapping, each
   // baked once more and timed (docs/report.md "Two Psi_ms models").
-  Texture converged;
+  Texture converged, converged_relative;  // estimators mean and relative
   ConvergedField field;  // the iteration behind `converged`, shared with the 4D sky-view
   double hillaire_seconds = 0.0, converged_seconds = 0.0;
   int converged_orders = 0;
@@ -245,11 +247,15 @@ void bake_both_models(const ReportInputs& in, SkyRadianceScene& s) {
   s.hillaire_seconds = std::chrono::duration<double>(clock::now() - t0).count();
   in.stage("sky radiance: the converged Psi_ms model");
   t0 = clock::now();
-  const ConvergedMultiscatteringSpec spec = converged_multiscattering_spec(op);
+  ConvergedMultiscatteringSpec spec = converged_multiscattering_spec(op);
+  spec.estimator = PsiEstimator::mean;
   s.field = compute_converged_field(atm, in.transmittance, spec, BakeContext{});
   s.converged = converged_multiscattering_table(atm, in.transmittance, table, spec, s.field,
                                                 BakeContext{});
   s.converged_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  spec.estimator = PsiEstimator::relative;
+  s.converged_relative = converged_multiscattering_table(atm, in.transmittance, table, spec,
+                                                         s.field, BakeContext{});
   s.converged_orders = meta_int(s.converged.metadata, "orders_used");
   s.converged_residual = meta_double(s.converged.metadata, "last_residual");
 }
@@ -282,7 +288,8 @@ void measure_sun(const ReportInputs& in, const SkyRadianceSetup& setup, SkyRadia
     return bake_skyview_lut(atm, in.transmittance, ms, s.sky, BakeContext{});
   };
   const Texture full = layer(in.multiscattering), second = layer(s.second_order),
-                single = layer(s.no_multiscattering), converged = layer(s.converged);
+                single = layer(s.no_multiscattering), converged = layer(s.converged),
+                converged_relative = layer(s.converged_relative);
   const Texture multiple4d =
       bake_skyview_lut_multiple4d(atm, in.transmittance, s.field, s.sky, BakeContext{});
   SkyRenderOptions render;
@@ -300,6 +307,7 @@ void measure_sun(const ReportInputs& in, const SkyRadianceSetup& setup, SkyRadia
     r.view_azimuth_deg = 360.0 * double(v % size_t(setup.view_azimuths)) / setup.view_azimuths;
     r.lut = render_with(in.multiscattering, full, dir);
     r.lut_converged = render_with(s.converged, converged, dir);
+    r.lut_converged_relative = render_with(s.converged_relative, converged_relative, dir);
     r.lut_multiple4d = render_with(s.no_multiscattering, multiple4d, dir);
     r.lut_second = render_with(s.second_order, second, dir);
     r.lut_single = render_with(s.no_multiscattering, single, dir);
@@ -330,6 +338,12 @@ nlohmann::json comparisons_json(const std::vector<ViewResult>& views) {
        compare(views,
                [](const ViewResult& v) {
                  return RadiancePair{v.lut_converged, v.all.mean, v.all.ci95, v.all.mean};
+               })},
+      {"converged_relative_vs_path_tracer",
+       compare(views,
+               [](const ViewResult& v) {
+                 return RadiancePair{v.lut_converged_relative, v.all.mean, v.all.ci95,
+                                     v.all.mean};
                })},
       {"skyview_multiple4d_vs_path_tracer",
        compare(views,
@@ -391,12 +405,17 @@ nlohmann::json sky_radiance_report(const ReportInputs& in, const SkyRadianceSetu
                       {"multiple", compare(these, multiple_pair)},
                       {"converged", compare(these, [](const ViewResult& v) {
                          return RadiancePair{v.lut_converged, v.all.mean, v.all.ci95, v.all.mean};
+                       })},
+                      {"converged_relative", compare(these, [](const ViewResult& v) {
+                         return RadiancePair{v.lut_converged_relative, v.all.mean, v.all.ci95,
+                                             v.all.mean};
                        })}});
   }
   nlohmann::json rows = nlohmann::json::array();
   for (const ViewResult& v : views) rows.push_back(view_json(v));
   nlohmann::json out = comparisons_json(views);
   out["converged_target"] = target_json(out["converged_vs_path_tracer"]);
+  out["converged_relative_target"] = target_json(out["converged_relative_vs_path_tracer"]);
   out["skyview_multiple4d_target"] = target_json(out["skyview_multiple4d_vs_path_tracer"]);
   out["models"] = {
       {"hillaire2020", {{"bake_seconds", scene.hillaire_seconds}}},

@@ -53,7 +53,7 @@ TEST(MultiscatteringModels, ConvergedTerminatorAndSkyview4dBakeAndRecordThemselv
       dir,
       {{"product", "multiscattering"}, {"size", {8, 8}}, {"formats", {"exr"}},
        {"model", "converged"}, {"sun_mapping", "terminator"}, {"scattering_shape", {4, 16, 4, 2}},
-       {"tolerance", 0.01}},
+       {"tolerance", 0.01}, {"estimator", "relative"}},
       skyview);
   const auto r = test::run_skybake({"bake", preset.string(), "-o", (dir / "out").string(), "-q"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -61,6 +61,7 @@ TEST(MultiscatteringModels, ConvergedTerminatorAndSkyview4dBakeAndRecordThemselv
   EXPECT_EQ(ms["metadata"]["model"], "converged");
   EXPECT_EQ(ms["metadata"]["mu_s_mapping"], "terminator");
   EXPECT_EQ(ms["metadata"]["scattering_shape"], "4x16x4x2");
+  EXPECT_EQ(ms["metadata"]["estimator"], "relative");
   EXPECT_TRUE(ms["error"].contains("max_rel")) << ms.dump();
   const auto sv = manifest_entry(dir / "out", "skyview");
   EXPECT_EQ(sv["metadata"]["multiple_scattering"], "scattering4d");
@@ -130,6 +131,22 @@ TEST(MultiscatteringModels, BadOptionsAreRefusedWithTheirPointer) {
   EXPECT_NE((r.out + r.err).find("/outputs/1/direction_quadrature"), std::string::npos)
       << r.out << r.err;
   EXPECT_NE((r.out + r.err).find("hillaire2020"), std::string::npos) << r.out << r.err;
+  const fs::path hillaire_estimator = write_scene(
+      dir, {{"product", "multiscattering"}, {"size", {8, 8}}, {"estimator", "relative"}},
+      kSmallSkyview);
+  r = test::run_skybake({"validate", hillaire_estimator.string()});
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE((r.out + r.err).find("/outputs/1/estimator"), std::string::npos) << r.out << r.err;
+  EXPECT_NE((r.out + r.err).find("converged"), std::string::npos) << r.out << r.err;
+  const fs::path bad_estimator = write_scene(dir,
+                                             {{"product", "multiscattering"},
+                                              {"size", {8, 8}},
+                                              {"model", "converged"},
+                                              {"estimator", "median"}},
+                                             kSmallSkyview);
+  r = test::run_skybake({"validate", bad_estimator.string()});
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE((r.out + r.err).find("/outputs/1/estimator"), std::string::npos) << r.out << r.err;
 }
 
 }  // namespace

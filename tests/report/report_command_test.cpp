@@ -160,7 +160,8 @@ void check_sky_radiance() {
       EXPECT_GT(v["quadrature_single"][c].get<double>(), 0.0);
     }
   for (const char* section :
-       {"multiple", "second_order_vs_path_tracer", "single_vs_path_tracer", "single_vs_quadrature"})
+       {"multiple", "converged_vs_path_tracer", "converged_relative_vs_path_tracer",
+        "second_order_vs_path_tracer", "single_vs_path_tracer", "single_vs_quadrature"})
     for (const json& c : sky[section]["channels"]) {
       EXPECT_TRUE(std::isfinite(c["rel_rmse"].get<double>())) << section;
       EXPECT_TRUE(std::isfinite(c["noise_rel_rms"].get<double>())) << section;
