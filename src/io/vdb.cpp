@@ -164,6 +164,14 @@ std::optional<MetaValue> typed_meta(const openvdb::Metadata& m) {
   return std::nullopt;
 }
 
+// OpenVDB's flags for `c`; the active mask is cheap and lossless, so always.
+uint32_t compression_flags(VdbCompression c) {
+  const uint32_t values = c == VdbCompression::blosc ? openvdb::io::COMPRESS_BLOSC
+                          : c == VdbCompression::zip ? openvdb::io::COMPRESS_ZIP
+                                                     : openvdb::io::COMPRESS_NONE;
+  return values | openvdb::io::COMPRESS_ACTIVE_MASK;
+}
+
 // One channel as a grid whose every voxel in the texture's box is active.
 openvdb::FloatGrid::Ptr make_grid(const Texture& tex, int c, const std::string& name,
                                   VdbGridClass grid_class,
@@ -250,7 +258,9 @@ void write_vdb_file(const std::string& path, const Texture& tex, const VdbWriteO
   });
   const openvdb::GridCPtrVec grids(built.begin(), built.end());
   try {
-    openvdb::io::File(path).write(grids);
+    openvdb::io::File file(path);
+    file.setCompression(compression_flags(options.compression));
+    file.write(grids);
     make_uuid_deterministic(path);
   } catch (const openvdb::Exception& e) {
     std::remove(path.c_str());

@@ -20,7 +20,8 @@
 //   and on each grid "skybake:texture_channel", the channel it holds; metadata
 //   keys may not be "shape", "channels" or "texture_channel". OpenVDB adds its
 //   own file_* statistics and "class".
-//   Compression: OpenVDB's default (Blosc + active mask when available).
+//   Compression (VdbCompression): the active-value mask always; the value
+//   buffers Blosc (LZ4, OpenVDB's default), zlib, or none.
 // Determinism: OpenVDB writes a random UUID into the file header; we replace
 // it with one derived from a hash of the rest of the file, so the same
 // texture gives byte-identical files (and distinct contents distinct UUIDs).
@@ -38,6 +39,12 @@ namespace skybake {
 
 enum class VdbGridClass { unknown, fog_volume };
 
+// How the grids' value buffers are compressed (docs/formats.md "VDB").
+enum class VdbCompression { blosc, zip, none };
+
+// "blosc", "zip", "none"; throws Error naming the value otherwise.
+VdbCompression vdb_compression_from_name(const std::string& name);
+
 struct VdbWriteOptions {
   // World-space edge length of one voxel (> 0; 1/N maps an N-texel axis onto [0, 1]).
   double voxel_size = 1.0;
@@ -48,6 +55,7 @@ struct VdbWriteOptions {
   // openvdb::GRID_FOG_VOLUME for density-like data (values 0 = empty and up),
   // so viewers shade it as a volume; GRID_UNKNOWN otherwise.
   VdbGridClass grid_class = VdbGridClass::unknown;
+  VdbCompression compression = VdbCompression::blosc;
 };
 
 // True when `name` is a grid name VdbWriteOptions accepts. Inline: both

@@ -52,6 +52,13 @@ void rethrow(int status, const std::string& message) {
 
 }  // namespace
 
+VdbCompression vdb_compression_from_name(const std::string& name) {
+  if (name == "blosc") return VdbCompression::blosc;
+  if (name == "zip") return VdbCompression::zip;
+  if (name == "none") return VdbCompression::none;
+  throw Error(fmt::format("expected a VDB compression of blosc, zip or none, got '{}'", name));
+}
+
 void write_vdb(const std::string& path, const Texture& tex, const VdbWriteOptions& options) {
   const VdbPlugin& plugin = plugin_for(path, "write");
   std::string message;

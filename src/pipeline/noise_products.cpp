@@ -108,6 +108,7 @@ ProductInfo noise_product(std::string name, std::string summary, std::vector<std
   // Float noise has little redundancy: zip saves 1-4% for about 7x the
   // bake's CPU (docs/decisions.md "EXR compression").
   p.default_exr_compression = "none";
+  p.default_vdb_compression = "none";  // Blosc: -14% for 2x the VDB write's CPU
   p.check = std::move(check_fn);
   p.default_mips = true;
   p.preview_tiled = true;

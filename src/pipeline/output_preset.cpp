@@ -29,7 +29,7 @@ const std::vector<std::string> kCommonOutputKeys = {
 
 // Output keys of the file writers, which every product takes too.
 const std::vector<std::string> kWriterOutputKeys = {"exr_compression", "dds_header",
-                                                    "grid_names"};
+                                                    "grid_names", "vdb_compression"};
 
 }  // namespace
 
@@ -234,7 +234,8 @@ void check_formats(json& out, const ProductInfo& info, OutputSpec& spec, const S
   };
   for (const auto& [key, format] : {std::pair<const char*, const char*>{"exr_compression", "exr"},
                                     {"dds_format", "dds"},
-                                    {"grid_names", "vdb"}})
+                                    {"grid_names", "vdb"},
+                                    {"vdb_compression", "vdb"}})
     if (out.contains(key) && !writes(format))
       problems.add(src, std::string("/") + key,
                    fmt::format("is only used with \"{}\" in formats", format));

@@ -34,6 +34,8 @@ VdbWriteOptions vdb_options(const Texture& tex, const ProductInfo& info, const O
     options.grid_names[0] = "density";
   }
   if (info.density_volume) options.grid_class = VdbGridClass::fog_volume;
+  options.compression = vdb_compression_from_name(
+      option_string(spec, "vdb_compression", info.default_vdb_compression));
   return options;
 }
 

@@ -59,6 +59,8 @@ struct ProductInfo {
   // exr_compression when the output gives none (docs/decisions.md "EXR
   // compression": chosen per product family by measurement).
   std::string default_exr_compression = "zip";
+  // vdb_compression when the output gives none (same measurements).
+  std::string default_vdb_compression = "blosc";
   BakeFn bake;
   // Rough cost for farm scheduling: single-thread nanoseconds per output
   // texel at default settings (measured with bench/); `plan` sums it into

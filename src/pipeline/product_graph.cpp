@@ -32,11 +32,12 @@ namespace {
 
 // Raised whenever what a file holds for the same texels changes.
 constexpr const char* kFileLayout =
-    "file layout 3: typed metadata, exact atlas, EXR compression per product";
+    "file layout 3: typed metadata, exact atlas, EXR and VDB compression per product";
 
 // Keys of an output object read only by the file writers.
 bool is_writer_key(const std::string& key) {
-  return key == "exr_compression" || key == "dds_header" || key == "grid_names";
+  return key == "exr_compression" || key == "dds_header" || key == "grid_names" ||
+         key == "vdb_compression";
 }
 
 // Keys of an output object that shape files or the manifest's record but not

@@ -6,6 +6,7 @@
 #include "pipeline/output_writer.hpp"
 
 #include <OpenImageIO/imageio.h>
+#include <openvdb/openvdb.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -135,6 +136,45 @@ TEST(OutputWriter, ExrCompressionDefaultsToTheProducts) {
     auto in = OIIO::ImageInput::open(path);
     ASSERT_TRUE(in) << OIIO::geterror();
     EXPECT_EQ(in->spec().get_string_attribute("compression"), compression) << product;
+    expect_same_texels(read_texture_file(path).texture, tex, path);
+  }
+}
+
+// OpenVDB's record of how a file's first grid was compressed ("blosc +
+// active values", "active values", ...), read by OpenVDB itself.
+std::string vdb_file_compression(const std::string& path) {
+  openvdb::initialize();
+  openvdb::io::File file(path);
+  file.open();
+  const openvdb::GridPtrVecPtr grids = file.readAllGridMetadata();
+  file.close();
+  if (!grids || grids->empty()) return "no grid";
+  const auto meta = (*grids)[0]->getMetadata<openvdb::StringMetadata>("file_compression");
+  return meta ? meta->value() : "none recorded";
+}
+
+TEST(OutputWriter, VdbCompressionIsTheOutputsOrTheProducts) {
+  // docs/formats.md "VDB": Blosc for the tables, none for the tileable
+  // noises; an output's vdb_compression wins. The active mask always.
+  const fs::path dir = test::fresh_dir("output_writer_vdb_compression");
+  const Texture tex = rgba_volume();
+  struct Case {
+    const char* product;
+    const char* option;  // "" for the default
+    const char* expected;
+  };
+  for (const Case& c : {Case{"aerial_perspective", "", "blosc + active values"},
+                        Case{"noise_shape", "", "active values"},
+                        Case{"noise_shape", "blosc", "blosc + active values"},
+                        Case{"aerial_perspective", "zip", "zip + active values"},
+                        Case{"aerial_perspective", "none", "active values"}}) {
+    const std::string name = std::string(c.product) + "_" + (*c.option ? c.option : "default");
+    OutputSpec spec = spec_of(name, {"vdb"});
+    spec.product = c.product;
+    if (*c.option) spec.options["vdb_compression"] = c.option;
+    write_outputs(tex, *find_product(c.product), spec, dir);
+    const std::string path = (dir / (name + ".vdb")).string();
+    EXPECT_EQ(vdb_file_compression(path), c.expected) << name;
     expect_same_texels(read_texture_file(path).texture, tex, path);
   }
 }
