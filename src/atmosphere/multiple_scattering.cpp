@@ -73,16 +73,24 @@ Texture bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& s
   tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& range) {
     RayTransfer transfer;
     std::vector<double> slice(3 * size_t(W)), sum(3 * size_t(W));
-    std::vector<ScatteringParams> params(W);
+    // Per texel of the row: its mu_s and nu (nu is constant along the ray,
+    // and so are its slice taps); per node, the texels' mu_s there and
+    // their mu_s taps, computed for the whole row in one branch-free pass.
+    std::vector<double> mu_s_x(W), nu_x(W), mu_s_node(W), tap_w(W);
+    std::vector<int> tap_i0(W);
     std::vector<AxisTap> nu_taps(W);
     for (int row = range.begin(); row != range.end(); ++row) {
       const int z = row / shape.mu_size, y = row % shape.mu_size;
+      ScatteringParams p0;
       for (int x = 0; x < W; ++x) {
-        params[x] = texels.at(x, y, z);
-        nu_taps[x] = scattering_taps(shape, {0.5 * (params[x].nu + 1.0), 0.5, 0.5, 0.5}).nu;
+        const ScatteringParams p = texels.at(x, y, z);
+        if (x == 0) p0 = p;
+        mu_s_x[x] = p.mu_s;
+        nu_x[x] = p.nu;
+        nu_taps[x] = scattering_taps(shape, {0.5 * (p.nu + 1.0), 0.5, 0.5, 0.5}).nu;
       }
-      const double r = params[0].r, mu = params[0].mu;
-      const bool hits = params[0].ray_hits_ground;
+      const double r = p0.r, mu = p0.mu;
+      const bool hits = p0.ray_hits_ground;
       ray_transfer(atm, r, mu, distance_to_nearest_boundary(rb, rt, r, mu, hits), nodes, transfer);
       std::fill(sum.begin(), sum.end(), 0.0);
       for (const TransferNode& q : transfer.nodes) {
@@ -102,17 +110,19 @@ Texture bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& s
         for (size_t i = 0; i < slice.size(); ++i)
           slice[i] =
               w4[0] * rows4[0][i] + w4[1] * rows4[1][i] + w4[2] * rows4[2][i] + w4[3] * rows4[3][i];
+        // clamp_cosine as min / max: the same value, no branch.
+        for (int x = 0; x < W; ++x)
+          mu_s_node[x] = std::min(std::max((r * mu_s_x[x] + q.s * nu_x[x]) / r_i, -1.0), 1.0);
+        mu_s_axis.taps(mu_s_node.data(), W, tap_i0.data(), tap_w.data());
         for (int x = 0; x < W; ++x) {
-          const ScatteringParams& p = params[x];
-          const double mu_s_i = clamp_cosine((r * p.mu_s + q.s * p.nu) / r_i);
-          const AxisTap tl = mu_s_axis.tap(mu_s_i), tn = nu_taps[x];
-          const double* s00 = &slice[3 * size_t(tn.i0 * n_mu_s + tl.i0)];
-          const double* s01 = &slice[3 * size_t(tn.i0 * n_mu_s + tl.i1)];
-          const double* s10 = &slice[3 * size_t(tn.i1 * n_mu_s + tl.i0)];
-          const double* s11 = &slice[3 * size_t(tn.i1 * n_mu_s + tl.i1)];
+          const AxisTap tn = nu_taps[x];
+          const int l0 = tap_i0[x];
+          const double lw = tap_w[x];
+          const double* s00 = &slice[3 * size_t(tn.i0 * n_mu_s + l0)];
+          const double* s10 = &slice[3 * size_t(tn.i1 * n_mu_s + l0)];
           for (int c = 0; c < 3; ++c) {
-            const double L = (1.0 - tn.w) * ((1.0 - tl.w) * s00[c] + tl.w * s01[c]) +
-                             tn.w * ((1.0 - tl.w) * s10[c] + tl.w * s11[c]);
+            const double L = (1.0 - tn.w) * ((1.0 - lw) * s00[c] + lw * s00[3 + c]) +
+                             tn.w * ((1.0 - lw) * s10[c] + lw * s10[3 + c]);
             sum[3 * size_t(x) + c] += wS[c] * L;
           }
         }

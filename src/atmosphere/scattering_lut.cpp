@@ -2,6 +2,10 @@
 // the header for the parameterization (Bruneton 2017 functions.glsl).
 #include "atmosphere/scattering_lut.hpp"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -183,6 +187,43 @@ MuSAxis::MuSAxis(const Atmosphere& atm, const ScatteringShape& shape)
       inv_A_(1.0 / mu_s_parameter(atm, shape.mu_s_min)),
       mu_s_min_(shape.mu_s_min),
       size_(shape.mu_s_size) {}
+
+// _mm_max_pd(b, a) is std::max(a, b) (b > a ? b : a) and _mm_min_pd(b, a)
+// is std::min(a, b), signed zeros included: the values of tap().
+void MuSAxis::taps(const double* mu_s, int n, int* i0, double* w) const {
+  int k = 0;
+#if defined(__SSE2__)
+  const __m128d lo = _mm_set1_pd(mu_s_min_), one = _mm_set1_pd(1.0), zero = _mm_setzero_pd();
+  const __m128d rb = _mm_set1_pd(rb_), rb2 = _mm_set1_pd(rb2_), H2 = _mm_set1_pd(H2_);
+  const __m128d d_min = _mm_set1_pd(d_min_), inv_span = _mm_set1_pd(inv_span_);
+  const __m128d inv_A = _mm_set1_pd(inv_A_), last = _mm_set1_pd(double(size_ - 1));
+  const __m128d top = _mm_set1_pd(double(size_ - 2));
+  for (; k + 2 <= n; k += 2) {
+    __m128d m = _mm_loadu_pd(mu_s + k);
+    m = _mm_min_pd(one, _mm_max_pd(lo, m));
+    const __m128d root =
+        _mm_sqrt_pd(_mm_max_pd(zero, _mm_add_pd(_mm_mul_pd(_mm_mul_pd(rb2, m), m), H2)));
+    const __m128d d = _mm_add_pd(_mm_mul_pd(_mm_sub_pd(zero, rb), m), root);
+    const __m128d a = _mm_mul_pd(_mm_sub_pd(d, d_min), inv_span);
+    __m128d x = _mm_div_pd(_mm_max_pd(zero, _mm_sub_pd(one, _mm_mul_pd(a, inv_A))),
+                           _mm_add_pd(one, a));
+    x = _mm_min_pd(one, _mm_max_pd(zero, x));
+    const __m128d t = _mm_mul_pd(x, last);
+    const __m128i truncated = _mm_cvttpd_epi32(t);
+    const __m128d i = _mm_min_pd(top, _mm_cvtepi32_pd(truncated));
+    _mm_storeu_pd(w + k, _mm_sub_pd(t, i));
+    alignas(16) int lanes[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(lanes), _mm_cvttpd_epi32(i));
+    i0[k] = lanes[0];
+    i0[k + 1] = lanes[1];
+  }
+#endif
+  for (; k < n; ++k) {
+    const AxisTap t = tap(mu_s[k]);
+    i0[k] = t.i0;
+    w[k] = t.w;
+  }
+}
 
 ScatteringParams ScatteringTexelGrid::at(int x, int y, int z) const {
   ScatteringParams p;

@@ -121,13 +121,20 @@ class MuSAxis {
     const int i = std::min(int(t), size_ - 2);
     return {i, i + 1, t - i};
   }
+  // tap() of n cosines at once (i0 and w; i1 = i0 + 1), the same values
+  // (SSE2, two at a time): the hottest loop of the orders >= 2
+  // (multiple_scattering.cpp), where one tap at a time mispredicted its
+  // clamps and could not be vectorized (std::sqrt sets errno).
+  void taps(const double* mu_s, int n, int* i0, double* w) const;
 
  private:
+  // std::min / std::max rather than std::clamp: the same value for every
+  // non-NaN argument, and no branch.
   double x(double mu_s) const {
-    mu_s = std::clamp(mu_s, mu_s_min_, 1.0);
-    const double d = -rb_ * mu_s + safe_sqrt(rb2_ * mu_s * mu_s + H2_);
+    mu_s = std::min(std::max(mu_s, mu_s_min_), 1.0);
+    const double d = -rb_ * mu_s + std::sqrt(std::max(rb2_ * mu_s * mu_s + H2_, 0.0));
     const double a = (d - d_min_) * inv_span_;
-    return std::clamp(std::max(1.0 - a * inv_A_, 0.0) / (1.0 + a), 0.0, 1.0);
+    return std::min(std::max(std::max(1.0 - a * inv_A_, 0.0) / (1.0 + a), 0.0), 1.0);
   }
 
   double rb_, rb2_, H2_, d_min_, inv_span_, inv_A_, mu_s_min_;
