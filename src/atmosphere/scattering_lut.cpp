@@ -2,10 +2,6 @@
 // the header for the parameterization (Bruneton 2017 functions.glsl).
 #include "atmosphere/scattering_lut.hpp"
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -187,43 +183,6 @@ MuSAxis::MuSAxis(const Atmosphere& atm, const ScatteringShape& shape)
       inv_A_(1.0 / mu_s_parameter(atm, shape.mu_s_min)),
       mu_s_min_(shape.mu_s_min),
       size_(shape.mu_s_size) {}
-
-// _mm_max_pd(b, a) is std::max(a, b) (b > a ? b : a) and _mm_min_pd(b, a)
-// is std::min(a, b), signed zeros included: the values of tap().
-void MuSAxis::taps(const double* mu_s, int n, int* i0, double* w) const {
-  int k = 0;
-#if defined(__SSE2__)
-  const __m128d lo = _mm_set1_pd(mu_s_min_), one = _mm_set1_pd(1.0), zero = _mm_setzero_pd();
-  const __m128d rb = _mm_set1_pd(rb_), rb2 = _mm_set1_pd(rb2_), H2 = _mm_set1_pd(H2_);
-  const __m128d d_min = _mm_set1_pd(d_min_), inv_span = _mm_set1_pd(inv_span_);
-  const __m128d inv_A = _mm_set1_pd(inv_A_), last = _mm_set1_pd(double(size_ - 1));
-  const __m128d top = _mm_set1_pd(double(size_ - 2));
-  for (; k + 2 <= n; k += 2) {
-    __m128d m = _mm_loadu_pd(mu_s + k);
-    m = _mm_min_pd(one, _mm_max_pd(lo, m));
-    const __m128d root =
-        _mm_sqrt_pd(_mm_max_pd(zero, _mm_add_pd(_mm_mul_pd(_mm_mul_pd(rb2, m), m), H2)));
-    const __m128d d = _mm_add_pd(_mm_mul_pd(_mm_sub_pd(zero, rb), m), root);
-    const __m128d a = _mm_mul_pd(_mm_sub_pd(d, d_min), inv_span);
-    __m128d x = _mm_div_pd(_mm_max_pd(zero, _mm_sub_pd(one, _mm_mul_pd(a, inv_A))),
-                           _mm_add_pd(one, a));
-    x = _mm_min_pd(one, _mm_max_pd(zero, x));
-    const __m128d t = _mm_mul_pd(x, last);
-    const __m128i truncated = _mm_cvttpd_epi32(t);
-    const __m128d i = _mm_min_pd(top, _mm_cvtepi32_pd(truncated));
-    _mm_storeu_pd(w + k, _mm_sub_pd(t, i));
-    alignas(16) int lanes[4];
-    _mm_store_si128(reinterpret_cast<__m128i*>(lanes), _mm_cvttpd_epi32(i));
-    i0[k] = lanes[0];
-    i0[k + 1] = lanes[1];
-  }
-#endif
-  for (; k < n; ++k) {
-    const AxisTap t = tap(mu_s[k]);
-    i0[k] = t.i0;
-    w[k] = t.w;
-  }
-}
 
 ScatteringParams ScatteringTexelGrid::at(int x, int y, int z) const {
   ScatteringParams p;
@@ -442,6 +401,31 @@ void SingleScatteringRay::at_sun2(const TransmittanceReader& reader, const doubl
   }
 }
 
+void SingleScatteringRay::at_suns(const TransmittanceReader& reader, const double* mu_s,
+                                  const double* nu, int n, glm::dvec3 sun, SingleScattering* out,
+                                  Scratch& scratch) const {
+  for (auto* v : {&scratch.mu_s, &scratch.w, &scratch.visible}) v->resize(n);
+  scratch.i0.resize(n);
+  for (int k = 0; k < n; ++k) out[k] = SingleScattering{};
+  for (const Node& node : nodes) {
+    // clamp_cosine as min / max: the same value, no branch.
+    for (int k = 0; k < n; ++k)
+      scratch.mu_s[k] = std::min(std::max((r * mu_s[k] + node.s * nu[k]) * node.inv_r, -1.0), 1.0);
+    reader.sun_taps(node.sun_row, scratch.mu_s.data(), n, scratch.i0.data(), scratch.w.data(),
+                    scratch.visible.data());
+    for (int k = 0; k < n; ++k) {
+      const glm::dvec3 T_sun =
+          reader.to_sun_at(node.sun_row, scratch.i0[k], scratch.w[k], scratch.visible[k]);
+      out[k].rayleigh += node.a_rayleigh * T_sun;
+      out[k].mie += node.a_mie * T_sun;
+    }
+  }
+  for (int k = 0; k < n; ++k) {
+    out[k].rayleigh *= sun;
+    out[k].mie *= sun;
+  }
+}
+
 SingleScattering compute_single_scattering(const Atmosphere& atm, const Texture& transmittance_lut,
                                            double r, double mu, double mu_s, double nu,
                                            bool ray_hits_ground, int nodes) {
@@ -467,23 +451,25 @@ SingleScatteringTables bake_single_scattering(const Atmosphere& atm,
   ProgressCounter progress(ctx, size_t(rows));
   tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& range) {
     SingleScatteringRay ray;
+    SingleScatteringRay::Scratch scratch;
+    std::vector<double> mu_s(W), nu(W);
+    std::vector<SingleScattering> s(W);
     for (int row = range.begin(); row != range.end(); ++row) {
       const int z = row / shape.mu_size, y = row % shape.mu_size;
       const ScatteringParams p0 = grid.at(0, y, z);
       ray.prepare(atm, reader, p0.r, p0.mu, p0.ray_hits_ground, nodes);
-      for (int x = 0; x < W; x += 2) {  // two texels (suns) at a time
-        const int xs[2] = {x, std::min(x + 1, W - 1)};
-        const ScatteringParams p[2] = {grid.at(xs[0], y, z), grid.at(xs[1], y, z)};
-        const double mu_s[2] = {p[0].mu_s, p[1].mu_s}, nu[2] = {p[0].nu, p[1].nu};
-        SingleScattering s[2];
-        ray.at_sun2(reader, mu_s, nu, atm.sun_illuminance, s);
-        for (int k = 0; k < 2; ++k) {
-          float* rayleigh = out.rayleigh.texel(xs[k], y, z);
-          float* mie = out.mie.texel(xs[k], y, z);
-          for (int c = 0; c < 3; ++c) {
-            rayleigh[c] = float(s[k].rayleigh[c]);
-            mie[c] = float(s[k].mie[c]);
-          }
+      for (int x = 0; x < W; ++x) {  // every texel (sun) of the row at once
+        const ScatteringParams p = grid.at(x, y, z);
+        mu_s[x] = p.mu_s;
+        nu[x] = p.nu;
+      }
+      ray.at_suns(reader, mu_s.data(), nu.data(), W, atm.sun_illuminance, s.data(), scratch);
+      for (int x = 0; x < W; ++x) {
+        float* rayleigh = out.rayleigh.texel(x, y, z);
+        float* mie = out.mie.texel(x, y, z);
+        for (int c = 0; c < 3; ++c) {
+          rayleigh[c] = float(s[x].rayleigh[c]);
+          mie[c] = float(s[x].mie[c]);
         }
       }
       progress.tick();

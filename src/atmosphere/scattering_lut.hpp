@@ -241,6 +241,22 @@ class TransmittanceReader {
     return out;
   }
   glm::dvec3 to_top(double r, double mu) const { return to_top(row(r), mu); }
+  // to_sun of n cosines at once, in two passes that give the same values:
+  // sun_taps (SSE2, two at a time, no branch) the LUT's mu column i0 and
+  // weight w and the sun's visible fraction, then to_sun_at each texel.
+  void sun_taps(const Row& row, const double* mu_s, int n, int* i0, double* w,
+                double* visible) const;
+  glm::dvec3 to_sun_at(const Row& row, int i0, double w, double visible) const {
+    const float* t00 = row.row0 + stride_ * i0;
+    const float* t01 = row.row1 + stride_ * i0;
+    glm::dvec3 out;
+    for (int c = 0; c < 3; ++c) {
+      const double bottom = t00[c] + (t00[stride_ + c] - double(t00[c])) * w;
+      const double top = t01[c] + (t01[stride_ + c] - double(t01[c])) * w;
+      out[c] = visible * (bottom + (top - bottom) * row.wy);
+    }
+    return out;
+  }
   // Between (r, mu) and the point at distance d along the ray.
   glm::dvec3 between(double r, double mu, double d, bool ray_hits_ground) const;
   // To the sun of zenith cosine mu_s, with the fraction of the sun's disk
@@ -293,6 +309,15 @@ struct SingleScatteringRay {
   // overlap); out[k] equals at_sun(mu_s[k], nu[k]).
   void at_sun2(const TransmittanceReader& reader, const double mu_s[2], const double nu[2],
                glm::dvec3 sun, SingleScattering out[2]) const;
+  // n suns in one pass over the nodes, each node's transmittance taps for
+  // all of them at once (TransmittanceReader::sun_taps): out[k] equals
+  // at_sun(mu_s[k], nu[k]). The work arrays are the caller's, reused.
+  struct Scratch {
+    std::vector<double> mu_s, w, visible;
+    std::vector<int> i0;
+  };
+  void at_suns(const TransmittanceReader& reader, const double* mu_s, const double* nu, int n,
+               glm::dvec3 sun, SingleScattering* out, Scratch& scratch) const;
 };
 
 // S_R and S_M of one ray from (r, mu) to the ground or the top, for a sun at

@@ -1,0 +1,105 @@
+// The taps of a whole texel row at once, for the bakers' hottest loops
+// (single scattering's transmittance to the sun, the orders' mu_s taps):
+// SSE2, two doubles at a time, with no branch, where one tap at a time
+// mispredicted its clamps and could not be vectorized (std::sqrt sets errno).
+// Every value equals the one-at-a-time function's: _mm_max_pd(b, a) is
+// std::max(a, b) (b > a ? b : a) and _mm_min_pd(b, a) is std::min(a, b),
+// signed zeros included, and std::clamp(v, lo, hi) is
+// std::min(std::max(v, lo), hi) for every non-NaN v.
+#include "atmosphere/scattering_lut.hpp"
+
+#include <algorithm>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace skybake {
+
+namespace {
+
+#if defined(__SSE2__)
+// Texel-centre taps of x in [0, 1] over n_texels: i0 = min(int(t), n - 2),
+// w = t - i0, t = x (n - 1).
+inline void store_taps(__m128d x, int n_texels, int* i0, double* w) {
+  const __m128d t = _mm_mul_pd(x, _mm_set1_pd(double(n_texels - 1)));
+  const __m128d i = _mm_min_pd(_mm_set1_pd(double(n_texels - 2)), _mm_cvtepi32_pd(_mm_cvttpd_epi32(t)));
+  _mm_storeu_pd(w, _mm_sub_pd(t, i));
+  alignas(16) int lanes[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(lanes), _mm_cvttpd_epi32(i));
+  i0[0] = lanes[0];
+  i0[1] = lanes[1];
+}
+
+inline __m128d clamp_pd(__m128d v, double lo, double hi) {
+  return _mm_min_pd(_mm_set1_pd(hi), _mm_max_pd(_mm_set1_pd(lo), v));
+}
+#endif
+
+}  // namespace
+
+void MuSAxis::taps(const double* mu_s, int n, int* i0, double* w) const {
+  int k = 0;
+#if defined(__SSE2__)
+  const __m128d one = _mm_set1_pd(1.0), zero = _mm_setzero_pd();
+  const __m128d minus_rb = _mm_set1_pd(-rb_), rb2 = _mm_set1_pd(rb2_), H2 = _mm_set1_pd(H2_);
+  const __m128d d_min = _mm_set1_pd(d_min_), inv_span = _mm_set1_pd(inv_span_);
+  const __m128d inv_A = _mm_set1_pd(inv_A_);
+  for (; k + 2 <= n; k += 2) {
+    const __m128d m = clamp_pd(_mm_loadu_pd(mu_s + k), mu_s_min_, 1.0);
+    const __m128d root =
+        _mm_sqrt_pd(_mm_max_pd(zero, _mm_add_pd(_mm_mul_pd(_mm_mul_pd(rb2, m), m), H2)));
+    const __m128d d = _mm_add_pd(_mm_mul_pd(minus_rb, m), root);
+    const __m128d a = _mm_mul_pd(_mm_sub_pd(d, d_min), inv_span);
+    const __m128d x = _mm_div_pd(_mm_max_pd(zero, _mm_sub_pd(one, _mm_mul_pd(a, inv_A))),
+                                 _mm_add_pd(one, a));
+    store_taps(clamp_pd(x, 0.0, 1.0), size_, i0 + k, w + k);
+  }
+#endif
+  for (; k < n; ++k) {
+    const AxisTap t = tap(mu_s[k]);
+    i0[k] = t.i0;
+    w[k] = t.w;
+  }
+}
+
+void TransmittanceReader::sun_taps(const Row& row, const double* mu_s, int n, int* i0, double* w,
+                                   double* visible) const {
+  int k = 0;
+#if defined(__SSE2__)
+  const __m128d one = _mm_set1_pd(1.0), zero = _mm_setzero_pd(), three = _mm_set1_pd(3.0),
+                two = _mm_set1_pd(2.0);
+  const __m128d minus_r = _mm_set1_pd(-row.r);
+  const __m128d rr = _mm_set1_pd(row.r * row.r), tt = _mm_set1_pd(rt_ * rt_);
+  const __m128d d_min = _mm_set1_pd(row.d_min), inv_span = _mm_set1_pd(row.inv_span);
+  const __m128d edge = _mm_set1_pd(row.sun_edge), inv_width = _mm_set1_pd(row.inv_sun_width);
+  for (; k + 2 <= n; k += 2) {
+    const __m128d raw = _mm_loadu_pd(mu_s + k);
+    const __m128d mu = clamp_pd(raw, -1.0, 1.0);
+    // distance_to_top_boundary, then to_top's x_mu.
+    const __m128d discriminant = _mm_add_pd(_mm_mul_pd(rr, _mm_sub_pd(_mm_mul_pd(mu, mu), one)), tt);
+    const __m128d d = _mm_max_pd(_mm_add_pd(_mm_mul_pd(minus_r, mu),
+                                            _mm_sqrt_pd(_mm_max_pd(zero, discriminant))),
+                                 zero);
+    store_taps(clamp_pd(_mm_mul_pd(_mm_sub_pd(d, d_min), inv_span), 0.0, 1.0), lut_.width,
+               i0 + k, w + k);
+    // to_sun's smoothstep: 1 at t >= 1, 0 at t <= 0.
+    const __m128d t = _mm_mul_pd(_mm_sub_pd(raw, edge), inv_width);
+    const __m128d smooth = _mm_mul_pd(_mm_mul_pd(t, t), _mm_sub_pd(three, _mm_mul_pd(two, t)));
+    const __m128d full = _mm_cmpge_pd(t, one), none = _mm_cmple_pd(t, zero);
+    const __m128d v = _mm_or_pd(_mm_and_pd(full, one), _mm_andnot_pd(_mm_or_pd(full, none), smooth));
+    _mm_storeu_pd(visible + k, v);
+  }
+#endif
+  for (; k < n; ++k) {
+    const double mu = clamp_cosine(mu_s[k]);
+    const double d = distance_to_top_boundary(rt_, row.r, mu);
+    const double t = std::clamp((d - row.d_min) * row.inv_span, 0.0, 1.0) * (lut_.width - 1);
+    i0[k] = std::min(int(t), lut_.width - 2);
+    w[k] = t - i0[k];
+    const double s = (mu_s[k] - row.sun_edge) * row.inv_sun_width;
+    visible[k] = s >= 1.0 ? 1.0 : s <= 0.0 ? 0.0 : s * s * (3.0 - 2.0 * s);
+  }
+}
+
+}  // namespace skybake
