@@ -188,6 +188,37 @@ SingleScattering azimuth_mean(const TransmittanceReader& reader, const SingleSca
   return sum;
 }
 
+// azimuth_mean of many suns (mu_s[0..count)) of one ray at once: every
+// sun and azimuth in one pass over the nodes (SingleScatteringRay::at_suns),
+// summed in azimuth_mean's order, so the same values.
+void azimuth_means(const TransmittanceReader& reader, const SingleScatteringRay& ray, double mu,
+                   const double* mu_s, int count, int azimuths, glm::dvec3 sun,
+                   SingleScattering* out, SingleScatteringRay::Scratch& scratch,
+                   std::vector<double>& suns, std::vector<SingleScattering>& each) {
+  const int n = count * azimuths;
+  suns.resize(2 * size_t(n));
+  each.resize(n);
+  for (int z = 0; z < count; ++z) {
+    const double spread = std::sqrt((1.0 - mu * mu) * (1.0 - mu_s[z] * mu_s[z]));
+    for (int a = 0; a < azimuths; ++a) {
+      suns[size_t(z) * azimuths + a] = mu_s[z];
+      suns[n + size_t(z) * azimuths + a] =
+          mu * mu_s[z] + spread * std::cos((a + 0.5) * kPi / azimuths);
+    }
+  }
+  ray.at_suns(reader, suns.data(), suns.data() + n, n, sun, each.data(), scratch);
+  for (int z = 0; z < count; ++z) {
+    SingleScattering sum;
+    for (int a = 0; a < azimuths; ++a) {
+      sum.rayleigh += each[size_t(z) * azimuths + a].rayleigh;
+      sum.mie += each[size_t(z) * azimuths + a].mie;
+    }
+    sum.rayleigh /= double(azimuths);
+    sum.mie /= double(azimuths);
+    out[z] = sum;
+  }
+}
+
 }  // namespace
 
 // ---- Shape and mappings ----
@@ -314,19 +345,21 @@ void bake_single_scattering3d(const Atmosphere& atm, const TransmittanceReader& 
   ProgressCounter progress(ctx, size_t(W * Hv));
   tbb::parallel_for(tbb::blocked_range<int>(0, W * Hv), [&](const tbb::blocked_range<int>& range) {
     SingleScatteringRay ray;
+    SingleScatteringRay::Scratch scratch;
+    std::vector<double> mu_s(D), suns;
+    std::vector<SingleScattering> means(D), each;
+    for (int z = 0; z < D; ++z) mu_s[z] = mu_s_from_scattering3d_u(texel_center(z, D), D);
     for (int row = range.begin(); row != range.end(); ++row) {
       const int x = row % W, y = row / W;
       const Scattering3dParams p = scattering3d_texel_params(atm, shape, x, y, 0);
       ray.prepare(atm, reader, atm.bottom_radius_m + p.h, p.mu, p.ray_hits_ground, spec.ray_nodes);
-      for (int z = 0; z < D; ++z) {
-        const double mu_s = mu_s_from_scattering3d_u(texel_center(z, D), D);
-        const SingleScattering mean =
-            azimuth_mean(reader, ray, p.mu, mu_s, spec.azimuth_samples, atm.sun_illuminance);
+      azimuth_means(reader, ray, p.mu, mu_s.data(), D, spec.azimuth_samples, atm.sun_illuminance,
+                    means.data(), scratch, suns, each);
+      for (int z = 0; z < D; ++z)
         for (int c = 0; c < 3; ++c) {
-          rayleigh.at(x, y, z, 0, c) = float(mean.rayleigh[c]);
-          mie.at(x, y, z, 0, c) = float(mean.mie[c]);
+          rayleigh.at(x, y, z, 0, c) = float(means[z].rayleigh[c]);
+          mie.at(x, y, z, 0, c) = float(means[z].mie[c]);
         }
-      }
       progress.tick();
     }
   });
