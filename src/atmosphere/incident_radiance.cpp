@@ -109,6 +109,58 @@ Texture divide_ground_rows_by_opacity(const Texture& table, const ScatteringShap
   return out;
 }
 
+namespace {
+
+// The previous order along one part of a band (one r, mu, mu_s and ground
+// flag): the table blended over r, mu and mu_s once, one value per nu slice
+// (per group for order 1), so each azimuth lerps two slices instead of a
+// quadrilinear read with its mapping. The same sum as read_channels, its
+// terms grouped by slice.
+struct NuSlices {
+  std::vector<glm::dvec3> first, second;  // radiance, or S_R and S_M for order 1
+
+  void blend(const Texture& table, const ScatteringShape& shape, const ScatteringTaps& t,
+             std::vector<glm::dvec3>& out) const {
+    out.assign(shape.nu_size, glm::dvec3(0.0));
+    const int r_i[2] = {t.r.i0, t.r.i1}, mu_i[2] = {t.mu.i0, t.mu.i1};
+    const int mus_i[2] = {t.mu_s.i0, t.mu_s.i1};
+    const double r_w[2] = {1.0 - t.r.w, t.r.w}, mu_w[2] = {1.0 - t.mu.w, t.mu.w};
+    const double mus_w[2] = {1.0 - t.mu_s.w, t.mu_s.w};
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b)
+        for (int m = 0; m < 2; ++m) {
+          const double w = r_w[a] * mu_w[b] * mus_w[m];
+          if (w == 0.0) continue;
+          const float* row = table.texel(mus_i[m], mu_i[b], r_i[a]);
+          const int stride = table.channel_count() * shape.mu_s_size;
+          for (int n = 0; n < shape.nu_size; ++n)
+            for (int c = 0; c < 3; ++c) out[n][c] += w * row[n * stride + c];
+        }
+  }
+  void read(const ScatteringOrder& order, const ScatteringShape& shape, const ScatteringTaps& t) {
+    if (order.radiance) {
+      blend(*order.radiance, shape, t, first);
+      return;
+    }
+    if (order.phases->has_rayleigh) blend(*order.rayleigh, shape, t, first);
+    if (order.phases->has_mie) blend(*order.mie, shape, t, second);
+  }
+  // ScatteringOrder::radiance_at at nu.
+  glm::dvec3 at(const ScatteringOrder& order, const ScatteringShape& shape, double nu) const {
+    const AxisTap tn = scattering_taps(shape, {0.5 * (clamp_cosine(nu) + 1.0), 0.5, 0.5, 0.5}).nu;
+    auto lerp = [&](const std::vector<glm::dvec3>& s) {
+      return (1.0 - tn.w) * s[tn.i0] + tn.w * s[tn.i1];
+    };
+    if (order.radiance) return lerp(first);
+    glm::dvec3 L(0.0);
+    if (order.phases->has_rayleigh) L += order.phases->rayleigh(nu) * lerp(first);
+    if (order.phases->has_mie) L += order.phases->mie(nu) * lerp(second);
+    return L;
+  }
+};
+
+}  // namespace
+
 std::vector<glm::dvec3> compute_incident_radiance(const Atmosphere& atm,
                                                   const Texture& transmittance_lut,
                                                   const ScatteringShape& shape,
@@ -120,29 +172,41 @@ std::vector<glm::dvec3> compute_incident_radiance(const Atmosphere& atm,
   const glm::dvec3 albedo_over_pi = atm.ground_albedo / kPi;
   const bool ground_reflects = atm.ground_albedo != glm::dvec3(0.0);
   const double d_theta = kPi / grid.bands, d_phi = 2.0 * kPi / grid.azimuths;
-  std::vector<glm::dvec3> L(grid.directions.size());
+  const int half = grid.azimuths / 2;
+  std::vector<glm::dvec3> L(grid.directions.size()), radiance(half);
+  std::vector<double> cos_phi(half), sin_phi(half);
+  for (int m = 0; m < half; ++m) {
+    cos_phi[m] = std::cos((m + 0.5) * d_phi);
+    sin_phi[m] = std::sin((m + 0.5) * d_phi);
+  }
+  NuSlices slices;
   for (int l = 0; l < grid.bands; ++l) {
     const std::vector<BandPart> parts =
         band_parts(atm, r, l * d_theta, (l + 1) * d_theta,
                    ground_reflects || previous.ground_rows_per_opacity);
-    // Azimuths m and azimuths - 1 - m mirror each other about the sun's plane.
-    for (int m = 0; m < grid.azimuths / 2; ++m) {
-      const double phi = (m + 0.5) * d_phi;
-      glm::dvec3 radiance(0.0);
-      for (const BandPart& p : parts) {
-        const glm::dvec3 w(std::sin(p.theta) * std::cos(phi), std::sin(p.theta) * std::sin(phi),
-                           std::cos(p.theta));
+    std::fill(radiance.begin(), radiance.end(), glm::dvec3(0.0));
+    for (const BandPart& p : parts) {
+      const double sin_t = std::sin(p.theta), mu = std::cos(p.theta);
+      // r, mu and mu_s are the part's for every azimuth; only nu turns.
+      slices.read(previous, shape,
+                  scattering_taps(shape, scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r, mu, mu_s,
+                                                                           1.0, p.hits)));
+      // Azimuths m and azimuths - 1 - m mirror each other about the sun's plane.
+      for (int m = 0; m < half; ++m) {
+        const glm::dvec3 w(sin_t * cos_phi[m], sin_t * sin_phi[m], mu);
         const double nu = glm::dot(w, sun);
-        glm::dvec3 part = previous.radiance_at(atm, shape, r, w.z, mu_s, nu, p.hits);
+        glm::dvec3 part = slices.at(previous, shape, nu);
         if (p.hits && previous.ground_rows_per_opacity) part *= 1.0 - p.T_ground;
         if (p.hits && ground_reflects) {
           const double mu_s_ground = clamp_cosine((r * mu_s + p.d * nu) / rb);
           part += p.T_ground * albedo_over_pi * ground.at(atm, transmittance_lut, mu_s_ground);
         }
-        radiance += p.share * part;
+        radiance[m] += p.share * part;
       }
-      L[size_t(l) * grid.azimuths + m] = radiance;
-      L[size_t(l) * grid.azimuths + (grid.azimuths - 1 - m)] = radiance;
+    }
+    for (int m = 0; m < half; ++m) {
+      L[size_t(l) * grid.azimuths + m] = radiance[m];
+      L[size_t(l) * grid.azimuths + (grid.azimuths - 1 - m)] = radiance[m];
     }
   }
   return L;
