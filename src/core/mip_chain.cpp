@@ -84,17 +84,23 @@ int mip_count(int width, int height, int depth) {
   return levels;
 }
 
-std::vector<Texture> build_mip_chain(const Texture& level0, MipEdge edge) {
+std::vector<Texture> build_lower_mips(const Texture& level0, MipEdge edge) {
   assert(level0.data.size() == level0.texel_count() * level0.channels.size());
-  std::vector<Texture> chain{level0};
+  std::vector<Texture> chain;
   const int levels = mip_count(level0.width, level0.height, level0.depth);
   for (int level = 1; level < levels; ++level) {
-    const Texture& prev = chain.back();
+    const Texture& prev = chain.empty() ? level0 : chain.back();
     Texture next = reduce_axis(prev, 0, std::max(1, prev.width / 2), edge);
     next = reduce_axis(next, 1, std::max(1, prev.height / 2), edge);
     next = reduce_axis(next, 2, std::max(1, prev.depth / 2), edge);
     chain.push_back(std::move(next));
   }
+  return chain;
+}
+
+std::vector<Texture> build_mip_chain(const Texture& level0, MipEdge edge) {
+  std::vector<Texture> chain{level0};
+  for (Texture& level : build_lower_mips(level0, edge)) chain.push_back(std::move(level));
   return chain;
 }
 

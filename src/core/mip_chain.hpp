@@ -35,5 +35,7 @@ int mip_count(int width, int height, int depth = 1);
 // per-row work with tbb::parallel_for; the result does not depend on the
 // thread count.
 std::vector<Texture> build_mip_chain(const Texture& level0, MipEdge edge);
+// The same chain without level 0: level 1 first (empty for a 1x1x1 texture).
+std::vector<Texture> build_lower_mips(const Texture& level0, MipEdge edge);
 
 }  // namespace skybake

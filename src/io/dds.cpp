@@ -18,6 +18,8 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "core/error.hpp"
 #include "io/file_bytes.hpp"
@@ -70,10 +72,10 @@ Shape level_shape(Shape top, int level) {
 }
 
 // Refuses anything that would not make a valid DDS file, before any I/O.
-void check_writable(const std::string& path, const std::vector<Texture>& mips,
-                    const FormatInfo& format, DdsHeader header) {
+void check_writable(const std::string& path, const MipLevels& mips, const FormatInfo& format,
+                    DdsHeader header) {
   if (mips.empty()) throw IoError(path + ": expected at least one mip level, got none");
-  const Texture& top = mips[0];
+  const Texture& top = *mips[0];
   if (top.width < 1 || top.height < 1 || top.depth < 1 || top.layers < 1)
     throw IoError(fmt::format("{}: expected a non-empty texture, got {}x{}x{} with {} layers", path,
                               top.width, top.height, top.depth, top.layers));
@@ -98,7 +100,7 @@ void check_writable(const std::string& path, const std::vector<Texture>& mips,
     throw IoError(fmt::format("{}: expected at most {} mip levels for {}, got {}", path, full,
                               top.shape_string(), mips.size()));
   for (size_t i = 0; i < mips.size(); ++i) {
-    const Texture& m = mips[i];
+    const Texture& m = *mips[i];
     const Shape s = level_shape({top.width, top.height, top.depth}, int(i));
     if (m.width != s.width || m.height != s.height || m.depth != s.depth || m.layers != top.layers)
       throw IoError(fmt::format(
@@ -121,9 +123,9 @@ uint32_t alpha_mode(const FormatInfo& format, int channels) {
   return channels == 4 ? dds::kAlphaModeCustom : dds::kAlphaModeOpaque;
 }
 
-std::vector<uint8_t> make_header(const std::vector<Texture>& mips, const FormatInfo& format,
+std::vector<uint8_t> make_header(const MipLevels& mips, const FormatInfo& format,
                                  DdsHeader header) {
-  const Texture& top = mips[0];
+  const Texture& top = *mips[0];
   const bool volume = top.depth > 1;
   const bool has_mips = mips.size() > 1;
   const bool dx10 = header == DdsHeader::dx10;
@@ -163,6 +165,9 @@ std::vector<uint8_t> make_header(const std::vector<Texture>& mips, const FormatI
   return h;
 }
 
+// Texels per task when encoding an uncompressed level.
+constexpr size_t kEncodeGrain = size_t(1) << 14;
+
 // The bytes of one mip level of one array slice: every depth slice, in order.
 std::vector<uint8_t> encode_level(const Texture& m, int layer, const FormatInfo& f) {
   const int nc = m.channel_count();
@@ -180,8 +185,12 @@ std::vector<uint8_t> encode_level(const Texture& m, int layer, const FormatInfo&
   const size_t texels = slice_texels * size_t(m.depth);
   std::vector<uint8_t> out(texels * size_t(f.bytes));
   const float* src = m.texel(0, 0, 0, layer);
-  for (size_t t = 0; t < texels; ++t)
-    encode_dds_texel(f.format, src + t * nc, nc, &out[t * size_t(f.bytes)]);
+  // Each texel's bytes depend on that texel only: any split gives the same bytes.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, texels, kEncodeGrain),
+                    [&](const tbb::blocked_range<size_t>& r) {
+                      for (size_t t = r.begin(); t < r.end(); ++t)
+                        encode_dds_texel(f.format, src + t * nc, nc, &out[t * size_t(f.bytes)]);
+                    });
   return out;
 }
 
@@ -428,6 +437,13 @@ std::string four_cc_string(uint32_t four_cc) {
 
 void write_dds(const std::string& path, const std::vector<Texture>& mips, DdsFormat format,
                DdsHeader header_kind) {
+  MipLevels levels;
+  for (const Texture& m : mips) levels.push_back(&m);
+  write_dds(path, levels, format, header_kind);
+}
+
+void write_dds(const std::string& path, const MipLevels& mips, DdsFormat format,
+               DdsHeader header_kind) {
   const FormatInfo& f = info(format);
   check_writable(path, mips, f, header_kind);
   const std::vector<uint8_t> header = make_header(mips, f, header_kind);
@@ -439,9 +455,9 @@ void write_dds(const std::string& path, const std::vector<Texture>& mips, DdsFor
   // Array slices outermost, then mip levels; a level's depth slices are
   // contiguous in both Texture and DDS order, so one loop serves 2D arrays
   // (slice -> mips) and volumes (mip -> slices, with a single "slice").
-  for (int layer = 0; layer < mips[0].layers && out; ++layer) {
-    for (const Texture& m : mips) {
-      const std::vector<uint8_t> bytes = encode_level(m, layer, f);
+  for (int layer = 0; layer < mips[0]->layers && out; ++layer) {
+    for (const Texture* m : mips) {
+      const std::vector<uint8_t> bytes = encode_level(*m, layer, f);
       out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
     }
   }

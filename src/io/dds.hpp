@@ -91,6 +91,11 @@ bool dds_has_legacy_form(DdsFormat format);
 // are encoded with tbb::parallel_for (bytes independent of the thread count).
 void write_dds(const std::string& path, const std::vector<Texture>& mips, DdsFormat format,
                DdsHeader header = DdsHeader::dx10);
+// The same from levels held elsewhere (level 0 need not be copied next to
+// the levels built from it).
+using MipLevels = std::vector<const Texture*>;
+void write_dds(const std::string& path, const MipLevels& mips, DdsFormat format,
+               DdsHeader header = DdsHeader::dx10);
 
 struct DdsImage {
   std::vector<Texture> mips;  // decoded float values; channels R, G, B, A as the format has

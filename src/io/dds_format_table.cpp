@@ -89,8 +89,12 @@ float get_f32(const uint8_t* p) {
   std::memcpy(&v, &u, 4);
   return v;
 }
+// lround of x in [0, 255] (halves away from zero), without the library
+// call: x - trunc(x) is exact for such floats, so the comparison decides.
 uint8_t unorm8_from_float(float v) {
-  return uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+  const float x = std::clamp(v, 0.0f, 1.0f) * 255.0f;
+  const int i = int(x);
+  return uint8_t(i + (x - float(i) >= 0.5f ? 1 : 0));
 }
 uint16_t half_saturated(float v) {
   return half_from_float(std::clamp(v, -kHalfMax, kHalfMax));

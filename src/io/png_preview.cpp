@@ -164,6 +164,10 @@ void filter_rows(const std::vector<uint8_t>& rgb, int width, int height, std::st
   }
 }
 
+// zlib's level 3: on the shipped previews within -5%..+9% of level 6's size
+// for a third of its time (docs/decisions.md "The cloud-noise set's CPU").
+constexpr int kZlibLevel = 3;
+
 // An RGB8 PNG: signature, IHDR, sRGB, one IDAT (zlib at a fixed level, so the
 // bytes depend only on the pixels), IEND. No time or text chunks.
 void write_png_rgb8(const std::string& path, const std::vector<uint8_t>& rgb, int width,
@@ -177,7 +181,7 @@ void write_png_rgb8(const std::string& path, const std::vector<uint8_t>& rgb, in
   uLongf packed_size = compressBound(uLong(raw.size()));
   std::string idat(packed_size, '\0');
   if (compress2(reinterpret_cast<Bytef*>(idat.data()), &packed_size,
-                reinterpret_cast<const Bytef*>(raw.data()), uLong(raw.size()), 6) != Z_OK)
+                reinterpret_cast<const Bytef*>(raw.data()), uLong(raw.size()), kZlibLevel) != Z_OK)
     throw IoError(fmt::format("{}: cannot compress the PNG pixels", path));
   idat.resize(packed_size);
 

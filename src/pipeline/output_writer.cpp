@@ -52,8 +52,11 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
   if (format == "dds") {
     const DdsFormat dds = output_dds_format(spec, info, tex.channel_count());
     const bool mips = spec.options.value("mips", info.default_mips);
-    write_dds(tmp, mips ? build_mip_chain(tex, MipEdge::wrap) : std::vector<Texture>{tex}, dds,
-              output_dds_header(spec));
+    const std::vector<Texture> lower = mips ? build_lower_mips(tex, MipEdge::wrap)
+                                            : std::vector<Texture>();
+    MipLevels levels{&tex};
+    for (const Texture& level : lower) levels.push_back(&level);
+    write_dds(tmp, levels, dds, output_dds_header(spec));
     return dxgi_format_name(dds);
   }
   if (format == "ktx2") {

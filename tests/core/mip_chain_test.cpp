@@ -228,6 +228,20 @@ TEST(MipChain, ArrayLayersFilteredIndependently) {
   EXPECT_FLOAT_EQ(chain[2].at(0, 0, 0, 2, 1), 21.5f);
 }
 
+TEST(MipChain, LowerMipsAreTheChainBelowLevelZero) {
+  Texture t(12, 7, 5, 1, {"R", "G"});
+  for (size_t i = 0; i < t.data.size(); ++i) t.data[i] = float(i % 13) * 0.25f;
+  const std::vector<Texture> chain = build_mip_chain(t, MipEdge::wrap);
+  const std::vector<Texture> lower = build_lower_mips(t, MipEdge::wrap);
+  ASSERT_EQ(lower.size() + 1, chain.size());
+  EXPECT_EQ(chain[0].data, t.data);
+  for (size_t i = 0; i < lower.size(); ++i) {
+    EXPECT_EQ(lower[i].shape_string(), chain[i + 1].shape_string()) << "level " << i + 1;
+    EXPECT_EQ(lower[i].data, chain[i + 1].data) << "level " << i + 1;
+  }
+  EXPECT_TRUE(build_lower_mips(Texture(1, 1, 1, 1, {"R"}), MipEdge::wrap).empty());
+}
+
 TEST(MipChain, SameBitsForOneAndTwoThreads) {
   // Odd sizes, so that the footprints of 2 + 1/n texels sum in doubles;
   // rows run in tbb::parallel_for, each texel on its own.

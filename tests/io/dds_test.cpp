@@ -23,6 +23,8 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "core/mip_chain.hpp"
+#include "io/dds_format_table.hpp"
 
 namespace skybake {
 namespace {
@@ -344,6 +346,34 @@ TEST(DdsConvert, MissingComponentsAreZeroAndMissingAlphaIsOne) {
   one.data = {2.0f};
   write_dds(dir + "/p.dds", {one}, DdsFormat::R11G11B10_FLOAT);
   EXPECT_EQ(u32_at(file_bytes(dir + "/p.dds"), 148), 16u << 6);  // R = 2.0, G = B = 0
+}
+
+TEST(DdsConvert, Unorm8RoundsHalvesAwayFromZeroLikeLround) {
+  // Around every half step k + 0.5 of v * 255, a few floats either side.
+  std::vector<float> values;
+  for (int k = 0; k < 255; ++k) {
+    float v = float((k + 0.5) / 255.0);
+    for (int i = 0; i < 4; ++i) v = std::nextafter(v, 0.0f);
+    for (int i = 0; i < 9; ++i, v = std::nextafter(v, 1.0f)) values.push_back(v);
+  }
+  for (float v : values) {
+    uint8_t byte = 0;
+    encode_dds_texel(DdsFormat::R8_UNORM, &v, 1, &byte);
+    ASSERT_EQ(long(byte), std::lround(v * 255.0f)) << v;
+  }
+}
+
+TEST(DdsLayout, LevelsHeldElsewhereGiveTheSameBytes) {
+  const std::string dir = scratch_dir();
+  Texture t(16, 8, 4, 1, {"R", "G", "B", "A"});
+  for (size_t i = 0; i < t.data.size(); ++i) t.data[i] = float(i % 97) / 96.0f;
+  const std::vector<Texture> chain = build_mip_chain(t, MipEdge::wrap);
+  const std::vector<Texture> lower = build_lower_mips(t, MipEdge::wrap);
+  MipLevels levels{&t};
+  for (const Texture& m : lower) levels.push_back(&m);
+  write_dds(dir + "/a.dds", chain, DdsFormat::R8G8B8A8_UNORM);
+  write_dds(dir + "/b.dds", levels, DdsFormat::R8G8B8A8_UNORM);
+  EXPECT_EQ(file_bytes(dir + "/a.dds"), file_bytes(dir + "/b.dds"));
 }
 
 TEST(DdsConvert, OutOfRangeValuesClampToTheFormat) {
