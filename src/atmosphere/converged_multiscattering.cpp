@@ -184,17 +184,43 @@ DirectionalSource directional_source(const Atmosphere& atm, const Texture& trans
   return out;
 }
 
+// How much ground viewers look through the point along each zenith band of
+// view directions v (pointing away from the viewer, so the viewer sits
+// toward -v, in the mirrored band): viewers spread evenly over a flat ground
+// and looking evenly around see the point along v in proportion to
+// T / |mu|, T the light's transmittance from the point to the viewer and mu
+// the zenith cosine of -v (|mu| >= 0.02 keeps grazing rays finite), 0 where
+// -v misses the ground. Averaged over the band's parts, which are cut at the
+// horizon: the weight jumps there, and a band's middle alone would give a
+// band astride the horizon all or none of it.
+std::vector<glm::dvec3> ground_viewers(const Atmosphere& atm, double r, const SphereGrid& grid) {
+  const double d_theta = kPi / grid.bands;
+  std::vector<glm::dvec3> viewers(size_t(grid.bands), glm::dvec3(0.0));
+  for (int l = 0; l < grid.bands; ++l) {
+    const int mirrored = grid.bands - 1 - l;
+    for (const BandPart& p : band_parts(atm, r, mirrored * d_theta, (mirrored + 1) * d_theta,
+                                        /*with_transmittance=*/true))
+      if (p.hits) viewers[size_t(l)] += p.share * p.T_ground / std::max(-std::cos(p.theta), 0.02);
+  }
+  return viewers;
+}
+
 // Psi_rel (docs/reference.md "Converged Psi_ms", "The relative estimator"):
 // per channel, the constant whose relative error against the whole source
-// q(v) = s1(v) + j(v) averages to zero over the sphere,
-//   sum_v dOmega_v (Psi_rel - j(v)) / q(v) = 0, i.e.
-//   Psi_rel = sum_v dOmega_v j(v) / q(v) / sum_v dOmega_v / q(v).
+// q(v) = s1(v) + j(v) averages to zero over the views of ground viewers,
+// g(v) their weight (ground_viewers):
+//   sum_v g(v) dOmega_v (Psi_rel - j(v)) / q(v) = 0, i.e.
+//   Psi_rel = sum_v g(v) dOmega_v j(v) / q(v) / sum_v g(v) dOmega_v / q(v).
 // A channel that does not scatter here (sigma_s = 0: the runtime multiplies
 // Psi by 0) or has no source in any direction keeps the mean.
 glm::dvec3 relative_fit(const Atmosphere& atm, const Texture& transmittance_lut,
                         const std::vector<glm::dvec3>& light, const PsiQuadrature& q, double r,
                         double mu_s, glm::dvec3 mean) {
   const DirectionalSource s = directional_source(atm, transmittance_lut, light, q, r, mu_s);
+  const std::vector<glm::dvec3> by_band = ground_viewers(atm, r, q.grid);
+  const size_t per_band = size_t(q.grid.azimuths / 2);
+  std::vector<glm::dvec3> viewers(light.size());
+  for (size_t v = 0; v < light.size(); ++v) viewers[v] = q.solid_angle[v] * by_band[v / per_band];
   glm::dvec3 psi = mean;
   for (int c = 0; c < 3; ++c) {
     double largest = 0.0;
@@ -206,11 +232,11 @@ glm::dvec3 relative_fit(const Atmosphere& atm, const Texture& transmittance_lut,
     const double floor = 1e-9 * largest;
     double num = 0.0, den = 0.0;
     for (size_t v = 0; v < light.size(); ++v) {
-      const double w = q.solid_angle[v] / std::max(s.single[v][c] + s.multiple[v][c], floor);
+      const double w = viewers[v][c] / std::max(s.single[v][c] + s.multiple[v][c], floor);
       num += w * s.multiple[v][c];
       den += w;
     }
-    psi[c] = num / den;
+    if (den > 0.0) psi[c] = num / den;
   }
   return psi;
 }
