@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cassert>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "core/math.hpp"
@@ -36,6 +37,34 @@ std::vector<std::vector<Tap>> axis_taps(int n_in, int n_out, MipEdge edge) {
   return taps;
 }
 
+// Output row (y, z, layer) filtered along x: each texel's taps in order.
+void reduce_row_along_x(const Texture& in, int y, int z, int layer,
+                        const std::vector<std::vector<Tap>>& taps, std::vector<double>& sum) {
+  const size_t nc = in.channels.size();
+  const float* row = in.texel(0, y, z, layer);
+  std::fill(sum.begin(), sum.end(), 0.0);
+  for (size_t x = 0; x < taps.size(); ++x) {
+    double* acc = &sum[x * nc];
+    for (const Tap& tap : taps[x]) {
+      const float* src = row + size_t(tap.index) * nc;
+      for (size_t c = 0; c < nc; ++c) acc[c] += tap.weight * src[c];
+    }
+  }
+}
+
+// Output row (y, z, layer) filtered along y or z: every texel of the row has
+// the same taps, input rows added whole, in tap order.
+void reduce_row_across(const Texture& in, int axis, int y, int z, int layer,
+                       const std::vector<std::vector<Tap>>& taps, std::vector<double>& sum) {
+  std::fill(sum.begin(), sum.end(), 0.0);
+  for (const Tap& tap : taps[axis == 1 ? y : z]) {
+    const float* src =
+        axis == 1 ? in.texel(0, tap.index, z, layer) : in.texel(0, y, tap.index, layer);
+    const double w = tap.weight;
+    for (size_t k = 0; k < sum.size(); ++k) sum[k] += w * src[k];
+  }
+}
+
 // Filters one axis (0 = x, 1 = y, 2 = z) of `in` down to `n_out` texels.
 Texture reduce_axis(const Texture& in, int axis, int n_out, MipEdge edge) {
   int dims[3] = {in.width, in.height, in.depth};
@@ -48,25 +77,21 @@ Texture reduce_axis(const Texture& in, int axis, int n_out, MipEdge edge) {
     return out;
   }
   const auto taps = axis_taps(n_in, n_out, edge);
-  const int nc = in.channel_count();
-  // One task per output row (layer, z, y); each output texel is computed
-  // independently, in a fixed order, so the result is deterministic.
+  // One task per range of output rows (layer, z, y); each output texel sums
+  // its taps in order from 0.0, independently of the others, so the result
+  // does not depend on the split.
   const int rows = out.layers * out.depth * out.height;
-  tbb::parallel_for(0, rows, [&](int row) {
-    const int y = row % out.height, z = (row / out.height) % out.depth;
-    const int layer = row / (out.height * out.depth);
-    std::vector<double> sum(nc);
-    for (int x = 0; x < out.width; ++x) {
-      const int p[3] = {x, y, z};
-      std::fill(sum.begin(), sum.end(), 0.0);
-      for (const Tap& tap : taps[p[axis]]) {
-        int q[3] = {x, y, z};
-        q[axis] = tap.index;
-        const float* src = in.texel(q[0], q[1], q[2], layer);
-        for (int c = 0; c < nc; ++c) sum[c] += tap.weight * src[c];
-      }
-      float* dst = out.texel(x, y, z, layer);
-      for (int c = 0; c < nc; ++c) dst[c] = float(sum[c]);
+  tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& r) {
+    std::vector<double> sum(size_t(out.width) * size_t(in.channel_count()));
+    for (int row = r.begin(); row < r.end(); ++row) {
+      const int y = row % out.height, z = (row / out.height) % out.depth;
+      const int layer = row / (out.height * out.depth);
+      if (axis == 0)
+        reduce_row_along_x(in, y, z, layer, taps, sum);
+      else
+        reduce_row_across(in, axis, y, z, layer, taps, sum);
+      float* dst = out.texel(0, y, z, layer);
+      for (size_t k = 0; k < sum.size(); ++k) dst[k] = float(sum[k]);
     }
   });
   return out;

@@ -204,30 +204,36 @@ openvdb::FloatGrid::Ptr make_grid(const Texture& tex, int c, const std::string& 
   return grid;
 }
 
+bool is_uuid_text(const char* u) {
+  for (size_t i = 0; i < kUuidLength; ++i)
+    if ((i == 8 || i == 13 || i == 18 || i == 23) ? u[i] != '-' : !std::isxdigit(u[i]))
+      return false;
+  return true;
+}
+
 // Replaces the random UUID OpenVDB wrote with one derived from the file's
 // other bytes: same content, same bytes. Two word-at-a-time hashes (seeds
-// apart) of the file with the UUID's bytes zeroed make its 128 bits.
+// apart) of the file with the UUID's bytes zeroed make its 128 bits; the file
+// is read in blocks (a multiple of 8 bytes, so the hash is the whole file's).
 void make_uuid_deterministic(const std::string& path) {
   std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
-  file.seekg(0, std::ios::end);
-  const std::streamoff size = file ? std::streamoff(file.tellg()) : std::streamoff(0);
-  std::string bytes(size_t(std::max<std::streamoff>(size, 0)), '\0');
-  file.seekg(0);
-  file.read(bytes.data(), std::streamsize(bytes.size()));
-  const auto is_uuid = [&](const std::string& u) {
-    for (size_t i = 0; i < kUuidLength; ++i)
-      if ((i == 8 || i == 13 || i == 18 || i == 23) ? u[i] != '-' : !std::isxdigit(u[i]))
-        return false;
-    return true;
-  };
-  if (!file || bytes.size() < kUuidOffset + kUuidLength ||
-      !is_uuid(bytes.substr(kUuidOffset, kUuidLength)))
-    throw Error(
-        fmt::format("{}: expected an OpenVDB header with a UUID at byte {}", path, kUuidOffset));
-  std::fill_n(bytes.begin() + kUuidOffset, kUuidLength, '\0');
-  const std::string hex =
-      fmt::format("{:016x}{:016x}", hash_words(bytes.data(), bytes.size(), kUuidSeeds[0]),
-                  hash_words(bytes.data(), bytes.size(), kUuidSeeds[1]));
+  std::vector<char> block(size_t(1) << 20);
+  uint64_t h[2] = {kUuidSeeds[0], kUuidSeeds[1]}, length = 0;
+  while (file) {
+    file.read(block.data(), std::streamsize(block.size()));
+    const size_t n = size_t(file.gcount());
+    if (length == 0) {
+      if (n < kUuidOffset + kUuidLength || !is_uuid_text(block.data() + kUuidOffset))
+        throw Error(fmt::format("{}: expected an OpenVDB header with a UUID at byte {}", path,
+                                kUuidOffset));
+      std::fill_n(block.begin() + kUuidOffset, kUuidLength, '\0');
+    }
+    for (uint64_t& lane : h) lane = hash_words_mix(lane, block.data(), n);
+    length += n;
+  }
+  if (!file.eof()) throw IoError(fmt::format("{}: cannot read back the VDB file", path));
+  const std::string hex = fmt::format("{:016x}{:016x}", hash_words_finish(h[0], length),
+                                      hash_words_finish(h[1], length));
   const std::string uuid = hex.substr(0, 8) + "-" + hex.substr(8, 4) + "-" + hex.substr(12, 4) +
                            "-" + hex.substr(16, 4) + "-" + hex.substr(20, 12);
   file.clear();
