@@ -188,8 +188,8 @@ std::vector<uint8_t> encode_level(const Texture& m, int layer, const FormatInfo&
   // Each texel's bytes depend on that texel only: any split gives the same bytes.
   tbb::parallel_for(tbb::blocked_range<size_t>(0, texels, kEncodeGrain),
                     [&](const tbb::blocked_range<size_t>& r) {
-                      for (size_t t = r.begin(); t < r.end(); ++t)
-                        encode_dds_texel(f.format, src + t * nc, nc, &out[t * size_t(f.bytes)]);
+                      encode_dds_texels(f.format, src + r.begin() * nc, nc, r.size(),
+                                        &out[r.begin() * size_t(f.bytes)]);
                     });
   return out;
 }

@@ -172,6 +172,20 @@ void encode_dds_texel(DdsFormat format, const float* src, int nc, uint8_t* dst) 
   }
 }
 
+void encode_dds_texels(DdsFormat format, const float* src, int nc, size_t count, uint8_t* dst) {
+  // The 8-bit formats of the cloud textures, channels filling the texel: one
+  // loop over the values, no per-texel dispatch.
+  const bool unorm8 = (format == DdsFormat::R8G8B8A8_UNORM && nc == 4) ||
+                      (format == DdsFormat::R8G8_UNORM && nc == 2) ||
+                      (format == DdsFormat::R8_UNORM && nc == 1);
+  if (unorm8) {
+    for (size_t i = 0; i < count * size_t(nc); ++i) dst[i] = unorm8_from_float(src[i]);
+    return;
+  }
+  const size_t bytes = size_t(dds_format_info(format).bytes);
+  for (size_t t = 0; t < count; ++t) encode_dds_texel(format, src + t * nc, nc, dst + t * bytes);
+}
+
 void decode_dds_texel(DdsFormat format, const uint8_t* src, float* dst) {
   switch (format) {
     case DdsFormat::R32G32B32A32_FLOAT:

@@ -42,6 +42,8 @@ uint64_t dds_level_bytes(const DdsFormatInfo& f, uint64_t w, uint64_t h, uint64_
 // One texel of `nc` channels (nc <= components) into an uncompressed format,
 // and back into all decoded components.
 void encode_dds_texel(DdsFormat format, const float* src, int nc, uint8_t* dst);
+// `count` texels in a row, the same bytes as encode_dds_texel on each.
+void encode_dds_texels(DdsFormat format, const float* src, int nc, size_t count, uint8_t* dst);
 void decode_dds_texel(DdsFormat format, const uint8_t* src, float* dst);
 
 // Pixel-format flags (DDS_PIXELFORMAT.dwFlags).

@@ -363,6 +363,21 @@ TEST(DdsConvert, Unorm8RoundsHalvesAwayFromZeroLikeLround) {
   }
 }
 
+TEST(DdsConvert, ARowOfTexelsIsEachTexelEncoded) {
+  std::vector<float> values(7 * 4);
+  for (size_t i = 0; i < values.size(); ++i) values[i] = float(i) / 9.0f - 0.6f;  // some clamp
+  for (DdsFormat format : {DdsFormat::R8G8B8A8_UNORM, DdsFormat::R8G8_UNORM, DdsFormat::R8_UNORM,
+                           DdsFormat::R16G16B16A16_FLOAT, DdsFormat::R32G32B32A32_FLOAT})
+    for (int nc = 1; nc <= dds_format_info(format).components; ++nc) {
+      const size_t bytes = size_t(dds_format_info(format).bytes);
+      std::vector<uint8_t> row(7 * bytes), each(7 * bytes);
+      encode_dds_texels(format, values.data(), nc, 7, row.data());
+      for (size_t t = 0; t < 7; ++t)
+        encode_dds_texel(format, values.data() + t * size_t(nc), nc, each.data() + t * bytes);
+      EXPECT_EQ(row, each) << dxgi_format_name(format) << " with " << nc << " channels";
+    }
+}
+
 TEST(DdsLayout, LevelsHeldElsewhereGiveTheSameBytes) {
   const std::string dir = scratch_dir();
   Texture t(16, 8, 4, 1, {"R", "G", "B", "A"});
