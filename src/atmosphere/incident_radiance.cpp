@@ -166,17 +166,37 @@ struct NuSlices {
 
 }  // namespace
 
+std::vector<std::vector<BandPart>> grid_band_parts(const Atmosphere& atm, double r,
+                                                   const SphereGrid& grid,
+                                                   const ScatteringOrder& previous) {
+  const bool ground_reflects = atm.ground_albedo != glm::dvec3(0.0);
+  const double d_theta = kPi / grid.bands;
+  std::vector<std::vector<BandPart>> parts(grid.bands);
+  for (int l = 0; l < grid.bands; ++l)
+    parts[l] = band_parts(atm, r, l * d_theta, (l + 1) * d_theta,
+                          ground_reflects || previous.ground_rows_per_opacity);
+  return parts;
+}
+
 std::vector<glm::dvec3> compute_incident_radiance(const Atmosphere& atm,
                                                   const Texture& transmittance_lut,
                                                   const ScatteringShape& shape,
                                                   const ScatteringOrder& previous,
                                                   const GroundIrradiance& ground, double r,
                                                   double mu_s, const SphereGrid& grid) {
+  return compute_incident_radiance(atm, transmittance_lut, shape, previous, ground, r, mu_s, grid,
+                                   grid_band_parts(atm, r, grid, previous));
+}
+
+std::vector<glm::dvec3> compute_incident_radiance(
+    const Atmosphere& atm, const Texture& transmittance_lut, const ScatteringShape& shape,
+    const ScatteringOrder& previous, const GroundIrradiance& ground, double r, double mu_s,
+    const SphereGrid& grid, const std::vector<std::vector<BandPart>>& band_parts_at_r) {
   const double rb = atm.bottom_radius_m;
   const glm::dvec3 sun = sun_direction(mu_s);
   const glm::dvec3 albedo_over_pi = atm.ground_albedo / kPi;
   const bool ground_reflects = atm.ground_albedo != glm::dvec3(0.0);
-  const double d_theta = kPi / grid.bands, d_phi = 2.0 * kPi / grid.azimuths;
+  const double d_phi = 2.0 * kPi / grid.azimuths;
   const int half = grid.azimuths / 2;
   std::vector<glm::dvec3> L(grid.directions.size()), radiance(half);
   std::vector<double> cos_phi(half), sin_phi(half);
@@ -186,9 +206,7 @@ std::vector<glm::dvec3> compute_incident_radiance(const Atmosphere& atm,
   }
   NuSlices slices;
   for (int l = 0; l < grid.bands; ++l) {
-    const std::vector<BandPart> parts =
-        band_parts(atm, r, l * d_theta, (l + 1) * d_theta,
-                   ground_reflects || previous.ground_rows_per_opacity);
+    const std::vector<BandPart>& parts = band_parts_at_r[l];
     std::fill(radiance.begin(), radiance.end(), glm::dvec3(0.0));
     for (const BandPart& p : parts) {
       const double sin_t = std::sin(p.theta), mu = std::cos(p.theta);

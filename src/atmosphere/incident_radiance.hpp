@@ -56,6 +56,13 @@ struct BandPart {
 std::vector<BandPart> band_parts(const Atmosphere& atm, double r, double theta0, double theta1,
                                  bool with_transmittance);
 
+// band_parts of every band of the grid at r (with transmittance when the
+// ground reflects or the order is read per opacity): they depend on r
+// alone, so a baker computes them once per altitude for all its suns.
+std::vector<std::vector<BandPart>> grid_band_parts(const Atmosphere& atm, double r,
+                                                   const SphereGrid& grid,
+                                                   const ScatteringOrder& previous);
+
 // The incident radiance of order k - 1 at (r, mu_s) on the grid (sky plus
 // ground term, see scattering_orders.hpp). Each grid cell holds the
 // solid-angle weighted mean of the field over 4 zenith sub-bands of its band,
@@ -66,6 +73,11 @@ std::vector<glm::dvec3> compute_incident_radiance(const Atmosphere& atm,
                                                   const ScatteringOrder& previous,
                                                   const GroundIrradiance& ground, double r,
                                                   double mu_s, const SphereGrid& grid);
+// The same with the parts of grid_band_parts(atm, r, grid, previous).
+std::vector<glm::dvec3> compute_incident_radiance(
+    const Atmosphere& atm, const Texture& transmittance_lut, const ScatteringShape& shape,
+    const ScatteringOrder& previous, const GroundIrradiance& ground, double r, double mu_s,
+    const SphereGrid& grid, const std::vector<std::vector<BandPart>>& parts);
 
 // Rays that meet the ground: the incident field of the density reads the
 // previous order's radiance toward the ground by interpolating between mu

@@ -25,8 +25,9 @@ Texture density_per_scattering(const Atmosphere& atm, const ScatteringShape& sha
   for (int z = 0; z < shape.r_size; ++z)
     sigma_s[z] = sample_medium(atm, texels.r[z] - atm.bottom_radius_m).scattering;
   Texture out = density;
-  for (int c = 0; c < 3; ++c)
-    for (int z = 0; z < shape.r_size; ++z) {
+  // Each r slice on its own (it reads others, writes only itself).
+  tbb::parallel_for(0, shape.r_size, [&](int z) {
+    for (int c = 0; c < 3; ++c) {
       // Where sigma_s = 0 (a layer that ends at the top texel, r = Rt
       // exactly), J / sigma_s is undefined: take the nearest r texel's.
       int from = z;
@@ -41,6 +42,7 @@ Texture density_per_scattering(const Atmosphere& atm, const ScatteringShape& sha
                                       ? float(density.texel(x, y, from)[c] / sigma_s[from][c])
                                       : 0.0f;
     }
+  });
   return out;
 }
 
@@ -123,8 +125,12 @@ Texture bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& s
   const MuSAxis mu_s_axis(atm, shape);
   const Texture per_sigma_s = density_per_scattering(atm, shape, density);
   std::vector<Rgb4> radiance(per_sigma_s.texel_count());
-  for (size_t t = 0; t < radiance.size(); ++t)
-    for (int c = 0; c < 3; ++c) radiance[t].v[c] = per_sigma_s.data[3 * t + c];
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, radiance.size()),
+                    [&](const tbb::blocked_range<size_t>& ts) {
+                      for (size_t t = ts.begin(); t != ts.end(); ++t)
+                        for (int c = 0; c < 3; ++c)
+                          radiance[t].v[c] = per_sigma_s.data[3 * t + c];
+                    });
   const int W = shape.texture_width(), n_mu_s = shape.mu_s_size;
   auto row_of = [&](int y, int z) { return &radiance[(size_t(z) * shape.mu_size + y) * W]; };
   Texture out(W, shape.mu_size, shape.r_size, 1, {"R", "G", "B"});

@@ -206,6 +206,10 @@ Texture bake_scattering_density(const Atmosphere& atm, const Texture& transmitta
     for (int e = 0; e < 6; ++e) grid_w2[e] += o[e] * grid.solid_angle[j];
   }
   Texture out(shape.texture_width(), shape.mu_size, shape.r_size, 1, {"R", "G", "B"});
+  // The band parts at each r texel, shared by its mu_s texels.
+  std::vector<std::vector<std::vector<BandPart>>> parts(shape.r_size);
+  tbb::parallel_for(0, shape.r_size,
+                    [&](int z) { parts[z] = grid_band_parts(atm, texels.r[z], grid, previous); });
   const int pairs = shape.r_size * shape.mu_s_size;
   ProgressCounter progress(ctx, size_t(pairs));
   tbb::parallel_for(tbb::blocked_range<int>(0, pairs), [&](const tbb::blocked_range<int>& range) {
@@ -213,8 +217,8 @@ Texture bake_scattering_density(const Atmosphere& atm, const Texture& transmitta
     for (int pair = range.begin(); pair != range.end(); ++pair) {
       const int z = pair / shape.mu_s_size, l = pair % shape.mu_s_size;
       const double r = texels.r[z], mu_s = texels.mu_s[l];
-      const std::vector<glm::dvec3> L =
-          compute_incident_radiance(atm, transmittance_lut, shape, previous, ground, r, mu_s, grid);
+      const std::vector<glm::dvec3> L = compute_incident_radiance(
+          atm, transmittance_lut, shape, previous, ground, r, mu_s, grid, parts[z]);
       glm::dvec3 sigma_r, sigma_m;
       scattering_by_group(atm, r - atm.bottom_radius_m, sigma_r, sigma_m);
       const bool rayleigh = phases.has_rayleigh && sigma_r != glm::dvec3(0.0);

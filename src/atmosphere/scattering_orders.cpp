@@ -91,11 +91,14 @@ OrderChange measure_order(const Texture& accumulated, const Texture& single_mie,
 // orders >= 2").
 void add_order(Texture& accumulated, const Texture& delta, const TexelPhases& phase,
                glm::dvec3 factor) {
-  for (size_t t = 0; t < accumulated.texel_count(); ++t)
-    for (int c = 0; c < 3; ++c)
-      accumulated.data[3 * t + c] =
-          float(accumulated.data[3 * t + c] +
-                factor[c] * double(delta.data[3 * t + c]) / phase.rayleigh[t]);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, accumulated.texel_count()),
+                    [&](const tbb::blocked_range<size_t>& ts) {
+                      for (size_t t = ts.begin(); t != ts.end(); ++t)
+                        for (int c = 0; c < 3; ++c)
+                          accumulated.data[3 * t + c] = float(
+                              accumulated.data[3 * t + c] +
+                              factor[c] * double(delta.data[3 * t + c]) / phase.rayleigh[t]);
+                    });
 }
 
 // The orders k >= 2 of one bake (header, "One order k >= 2 from order
