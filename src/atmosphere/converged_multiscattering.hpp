@@ -24,12 +24,13 @@
 namespace skybake {
 
 // How the one value per point is taken from the light around it
-// (docs/reference.md "Converged Psi_ms"): `mean`, the mean incident radiance
-// (the isotropic source carries the scattered power exactly); `relative`,
-// the least-squares fit of the source toward every direction in relative
-// error against the whole source, single scattering included (what the
-// sky's relative error asks for; differs where Mie's forward peak makes the
-// source anisotropic).
+// (docs/reference.md "Converged Psi_ms", "The relative estimator"): `mean`,
+// the mean incident radiance (the isotropic source carries the scattered
+// power exactly); `relative` (the default), the mean of the source over the
+// views ground viewers have of the point, weighted so that its relative
+// error against the whole source, single scattering included, averages to
+// zero (what skies seen from the ground ask for; it differs from the mean
+// where Mie's forward peak makes the source anisotropic).
 enum class PsiEstimator { mean, relative };
 const char* psi_estimator_name(PsiEstimator e);
 
@@ -37,7 +38,7 @@ struct ConvergedMultiscatteringSpec {
   // The 4D iteration: shape (mu_s_min is replaced, below), tolerance, tail.
   BrunetonSpec bruneton = default_converged_bruneton_spec();
   int bands = 16;  // zenith bands of the sphere grid the mean is taken over (x 2 bands azimuths)
-  PsiEstimator estimator = PsiEstimator::mean;
+  PsiEstimator estimator = PsiEstimator::relative;
 
   static BrunetonSpec default_converged_bruneton_spec();
 };

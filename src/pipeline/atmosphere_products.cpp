@@ -95,9 +95,9 @@ ConvergedMultiscatteringSpec converged_multiscattering_spec(const OutputSpec& sp
   }
   c.bruneton.tolerance = option_double(spec, "tolerance", c.bruneton.tolerance);
   c.bands = option_int(spec, "bands", c.bands);
-  c.estimator = spec.options.value("estimator", std::string("mean")) == "relative"
-                    ? PsiEstimator::relative
-                    : PsiEstimator::mean;
+  c.estimator = spec.options.value("estimator", std::string("relative")) == "mean"
+                    ? PsiEstimator::mean
+                    : PsiEstimator::relative;
   return c;
 }
 
@@ -205,8 +205,8 @@ std::vector<ProductProblem> converged_multiscattering_problems(const OutputSpec&
     return {{"/direction_quadrature",
              "applies to model \"hillaire2020\" only (model \"converged\" integrates no "
              "directions of its own)"}};
-  if (!multiscattering_is_converged(spec) &&
-      spec.options.value("estimator", std::string("mean")) != "mean")
+  // (No schema default: the key is there only when the preset sets it.)
+  if (!multiscattering_is_converged(spec) && spec.options.contains("estimator"))
     return {{"/estimator",
              "applies to model \"converged\" only (model \"hillaire2020\" computes its "
              "Psi_ms from L_2nd and f_ms)"}};

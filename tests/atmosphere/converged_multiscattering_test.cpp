@@ -107,7 +107,8 @@ TEST(ConvergedMultiscattering, ThinConservativeSlabIsTheMeanOfSingleScattering) 
   Atmosphere atm = fixtures::uniform_slab_atmosphere({2.5e-9, 5e-9, 1e-8}, glm::dvec3(0.0));
   atm.ground_albedo = glm::dvec3(0.0);
   const Texture t = bake_transmittance_lut(atm, {64, 32, 20}, {});
-  const ConvergedMultiscatteringSpec spec = small_spec();
+  ConvergedMultiscatteringSpec spec = small_spec();
+  spec.estimator = PsiEstimator::mean;
   const ConvergedField field = compute_converged_field(atm, t, spec, {});
   const PsiQuadrature grid = psi_quadrature(spec, field.phases);
   for (double h : {1e3, 50e3}) {

@@ -96,6 +96,7 @@ ModelErrors model_errors(const Atmosphere& atm, const Views& views, bool small_i
     spec.bruneton.tolerance = 1e-2;
   }
   const ConvergedField field = compute_converged_field(atm, t, spec, {});
+  spec.estimator = PsiEstimator::mean;
   e.mean = sky_error(atm, t, converged_multiscattering_table(atm, t, table, spec, field, {}), views);
   spec.estimator = PsiEstimator::relative;
   e.relative =
