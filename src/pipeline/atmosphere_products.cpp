@@ -244,13 +244,13 @@ ProductInfo atmosphere_product(std::string name, std::string summary, std::vecto
 void add_atmosphere_products(std::vector<ProductInfo>& r) {
   r.push_back(atmosphere_product(
       "transmittance", "transmittance to the top of the atmosphere, (mu, r), Hillaire 2020 5.2",
-      {"mu", "r"}, {256, 64}, {4096, 4096}, {}, bake_transmittance, 7000.0,
+      {"mu", "r"}, {256, 64}, {4096, 4096}, {}, bake_transmittance, 2700.0,
       measure_transmittance_error));
   r.back().reads_mie_phase = false;
   ProductInfo ms = atmosphere_product(
       "multiscattering",
       "multiple-scattering transfer Psi_ms, (sun zenith, altitude), Hillaire 2020 5.5",
-      {"mu_s", "h"}, {32, 32}, {1024, 1024}, {"transmittance"}, bake_multiscattering, 130000.0,
+      {"mu_s", "h"}, {32, 32}, {1024, 1024}, {"transmittance"}, bake_multiscattering, 32000.0,
       measure_multiscattering_error);
   ms.check = converged_multiscattering_problems;
   ms.reads_mie_phase = false;  // isotropic (Hillaire 2020 eq. 7); "converged" records it
@@ -258,7 +258,7 @@ void add_atmosphere_products(std::vector<ProductInfo>& r) {
   ProductInfo skyview = atmosphere_product(
       "skyview", "sky-view lat/long LUT, one layer per (altitude, sun zenith), Hillaire 2020 5.3",
       {"azimuth", "latitude"}, {192, 108}, {4096, 4096}, {"transmittance", "multiscattering"},
-      bake_skyview, 1400.0 * 8, measure_skyview_error);
+      bake_skyview, 400.0 * 8, measure_skyview_error);
   skyview.check = converged_multiscattering_problems;
   skyview.sampling.wrap = {"repeat", "clamp"};  // u is the azimuth, all the way round
   r.push_back(std::move(skyview));

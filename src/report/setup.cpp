@@ -12,7 +12,7 @@ ReportLevel ReportLevel::full() {
   l.quadrature_tolerance = 1e-9;
   l.single_scattering_tolerance = 1e-6;
   l.reference_transmittance_size = {1024, 256};
-  l.reference_transmittance_steps = 200;
+  l.reference_transmittance_steps = 48;
   return l;
 }
 
@@ -23,7 +23,7 @@ ReportLevel ReportLevel::quick() {
   l.quadrature_tolerance = 1e-8;
   l.single_scattering_tolerance = 1e-5;
   l.reference_transmittance_size = {512, 128};
-  l.reference_transmittance_steps = 100;
+  l.reference_transmittance_steps = 24;
   return l;
 }
 

@@ -57,7 +57,7 @@ nlohmann::json settings_of(const TransmittanceLutSpec& s) {
 
 TransmittanceSetup TransmittanceSetup::full() {
   TransmittanceSetup s;
-  s.transmittance_steps = {5, 10, 20, 40, 80};
+  s.transmittance_steps = {1, 2, 3, 6, 12};
   s.transmittance_sizes = {{64, 16}, {128, 32}, {256, 64}, {512, 128}};
   s.transmittance_queries = 4096;
   return s;
@@ -65,7 +65,7 @@ TransmittanceSetup TransmittanceSetup::full() {
 
 TransmittanceSetup TransmittanceSetup::quick() {
   TransmittanceSetup s;
-  s.transmittance_steps = {5, 10, 20, 40};
+  s.transmittance_steps = {1, 2, 3, 6};
   s.transmittance_sizes = {{64, 16}, {256, 64}};
   s.transmittance_queries = 512;
   return s;

@@ -343,12 +343,12 @@ TEST(BakeCommand, WithoutVerboseStderrStaysEmpty) {
 // On a terminal the progress line shows the elapsed time and an ETA.
 TEST(BakeCommand, ProgressLineOnATerminalShowsElapsedAndEta) {
   if (std::system("command -v script >/dev/null 2>&1") != 0) GTEST_SKIP() << "no script(1)";
-  // A sky-view table four times the preset's, so the bake lasts long enough
+  // A sky-view table 25 times the preset's, so the bake lasts long enough
   // (a few seconds on one thread) for an ETA.
   const fs::path dir = fresh_dir("bake_progress");
   fs::copy(source_path("presets/atmospheres"), dir / "atmospheres");
   std::string text = read_file(kEarth);
-  text.replace(text.find("[192, 108]"), 10, "[384, 216]");
+  text.replace(text.find("[192, 108]"), 10, "[960, 540]");
   std::ofstream(dir / "earth.json", std::ios::binary) << text;
   const fs::path typescript = dir / "typescript";
   const std::string cmd = skybake::test::skybake_exe() + " bake " + (dir / "earth.json").string() +

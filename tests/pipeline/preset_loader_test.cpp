@@ -198,7 +198,7 @@ TEST(PresetLoader, DefaultsAreFilledIn) {
   EXPECT_EQ(out.size, (std::vector<int>{256, 64}));
   EXPECT_EQ(out.formats, (std::vector<std::string>{"exr", "dds"}));
   EXPECT_EQ(out.precision, "float");
-  EXPECT_EQ(out.options.value("steps", 0), 40);
+  EXPECT_EQ(out.options.value("steps", 0), 6);
   EXPECT_EQ(out.options, s.resolved["outputs"][0]);
   EXPECT_EQ(s.resolved["atmosphere"]["sun"]["angular_radius_rad"], 0.004675);
   EXPECT_EQ(s.resolved["atmosphere"]["mie"]["phase"], "cornette_shanks");
@@ -360,7 +360,7 @@ TEST(PresetLoader, SchemaDirCanBeOverriddenAtRunTime) {
   EXPECT_THROW(load_scene(file), IoError);
   ::unsetenv("SKYBAKE_SCHEMA_DIR");
   EXPECT_EQ(overridden.outputs[0].options.value("steps", 0), 41);
-  EXPECT_EQ(load_scene(file).outputs[0].options.value("steps", 0), 40);
+  EXPECT_EQ(load_scene(file).outputs[0].options.value("steps", 0), 6);
 }
 
 // Editors show help from "description"s: every property of every schema has one.
