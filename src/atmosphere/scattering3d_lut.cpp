@@ -196,14 +196,15 @@ void azimuth_means(const TransmittanceReader& reader, const SingleScatteringRay&
                    SingleScattering* out, SingleScatteringRay::Scratch& scratch,
                    std::vector<double>& suns, std::vector<SingleScattering>& each) {
   const int n = count * azimuths;
-  suns.resize(2 * size_t(n));
+  suns.resize(2 * size_t(n) + azimuths);
   each.resize(n);
+  double* cos_azimuth = suns.data() + 2 * size_t(n);  // the same for every sun
+  for (int a = 0; a < azimuths; ++a) cos_azimuth[a] = std::cos((a + 0.5) * kPi / azimuths);
   for (int z = 0; z < count; ++z) {
     const double spread = std::sqrt((1.0 - mu * mu) * (1.0 - mu_s[z] * mu_s[z]));
     for (int a = 0; a < azimuths; ++a) {
       suns[size_t(z) * azimuths + a] = mu_s[z];
-      suns[n + size_t(z) * azimuths + a] =
-          mu * mu_s[z] + spread * std::cos((a + 0.5) * kPi / azimuths);
+      suns[n + size_t(z) * azimuths + a] = mu * mu_s[z] + spread * cos_azimuth[a];
     }
   }
   ray.at_suns(reader, suns.data(), suns.data() + n, n, sun, each.data(), scratch);
