@@ -19,11 +19,13 @@ namespace {
 // One direction's march from a point, everything but the sun: the texels of
 // a table row share their point and so their marches, and differ in mu_s only.
 struct DirectionMarch {
+  std::vector<double> distances;                 // of the segment midpoints from the point
   std::vector<glm::dvec3> points;                // segment midpoints
   std::vector<double> radii;                     // |point|, at least Rb
   std::vector<TransmittanceAtRadius> sun_reads;  // the sun's lookups at those radii
   std::vector<glm::dvec3> scattered;  // T sigma_s (1 - exp(-sigma_t dt)) / sigma_t per segment
   glm::dvec3 l_f{0.0};                // L_f of eq. 8: the sum of `scattered`
+  double t_exit = 0.0;                // where the ray leaves the atmosphere or meets the ground
   bool ground = false;                // the ray ends on the ground, lit by the sun
   glm::dvec3 ground_up{0.0};          // the ground's normal there
   glm::dvec3 ground_transmittance{1.0};  // T from the point to the ground
@@ -33,6 +35,7 @@ struct DirectionMarch {
 // sampled at their midpoints, without the sun.
 void march_direction(const Atmosphere& atm, const Texture& transmittance_lut, glm::dvec3 position,
                      glm::dvec3 dir, int steps, DirectionMarch& out) {
+  out.distances.clear();
   out.points.clear();
   out.radii.clear();
   out.sun_reads.clear();
@@ -44,13 +47,15 @@ void march_direction(const Atmosphere& atm, const Texture& transmittance_lut, gl
   glm::dvec3 transmittance(1.0);
   const double dt = (span.t_exit - span.t_enter) / steps;
   for (int i = 0; i < steps && dt > 0.0; ++i) {
-    const glm::dvec3 p = position + (span.t_enter + (i + 0.5) * dt) * dir;
+    const double t = span.t_enter + (i + 0.5) * dt;
+    const glm::dvec3 p = position + t * dir;
     const double r = std::max(glm::length(p), atm.bottom_radius_m);
     const MediumSample medium = sample_medium(atm, r - atm.bottom_radius_m);
     if (medium.extinction == glm::dvec3(0.0)) continue;
     // (1 - exp(-sigma_t dt)) / sigma_t: the energy-conserving segment weight.
     const SegmentWeights w = segment_weights(medium.extinction, dt);
     const glm::dvec3 scattered = transmittance * medium.scattering * w.weight;
+    out.distances.push_back(t);
     out.points.push_back(p);
     out.radii.push_back(r);
     out.sun_reads.push_back(transmittance_at_radius(transmittance_lut, atm, r));
@@ -58,6 +63,7 @@ void march_direction(const Atmosphere& atm, const Texture& transmittance_lut, gl
     out.l_f += scattered;
     transmittance *= w.transmittance;
   }
+  out.t_exit = span.t_exit;
   if (span.exits_on_ground) {
     out.ground = true;
     out.ground_up = glm::normalize(position + span.t_exit * dir);
@@ -87,14 +93,32 @@ glm::dvec3 sunlit_direction(const Atmosphere& atm, const Texture& transmittance_
   return l_prime;
 }
 
-// The marches of every direction of `rule` from (0, 0, r).
+// `from` turned about the zenith through (0, 0, r) onto `dir`, a direction of
+// the same zenith cosine: every sample keeps its distance, radius, medium and
+// weights; only the points (and so the sun's angle at them) turn.
+void turn_march(const DirectionMarch& from, glm::dvec3 position, glm::dvec3 dir,
+                DirectionMarch& out) {
+  out = from;
+  for (size_t i = 0; i < out.points.size(); ++i)
+    out.points[i] = position + out.distances[i] * dir;
+  if (out.ground) out.ground_up = glm::normalize(position + out.t_exit * dir);
+}
+
+// The marches of every direction of `rule` from (0, 0, r). A direction with
+// the zenith cosine of the one before it (a ring of the symmetric Gauss rule)
+// reuses that march, turned.
 void march_directions(const Atmosphere& atm, const Texture& transmittance_lut, double r,
                       const SphereRule& rule, int steps, std::vector<DirectionMarch>& marches) {
   marches.resize(rule.dirs.size());
   const glm::dvec3 position(0.0, 0.0, r);
-  for (size_t k = 0; k < rule.dirs.size(); ++k)
-    march_direction(atm, transmittance_lut, position, rule.dirs[k], std::max(steps, 1),
-                    marches[k]);
+  for (size_t k = 0; k < rule.dirs.size(); ++k) {
+    if (k > 0 && rule.dirs[k].z == rule.dirs[k - 1].z) {
+      turn_march(marches[k - 1], position, rule.dirs[k], marches[k]);
+    } else {
+      march_direction(atm, transmittance_lut, position, rule.dirs[k], std::max(steps, 1),
+                      marches[k]);
+    }
+  }
 }
 
 // Eq. 5-10 from the marches of `rule` under a sun of zenith cosine mu_s
@@ -365,6 +389,8 @@ MultiscatteringAtRadius multiscattering_at_radius(const Texture& lut,
   }
   const double x_h = (r - atm.bottom_radius_m) / (atm.top_radius_m - atm.bottom_radius_m);
   at.row = bilinear_row(lut, texel_coord_from_unit(x_h, lut.height), 0, 0);
+  at.u_offset = 0.5 / lut.width;
+  at.u_scale = 1.0 - 1.0 / lut.width;
   return at;
 }
 

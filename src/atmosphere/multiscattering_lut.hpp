@@ -164,6 +164,7 @@ struct MultiscatteringAtRadius {
   MultiscatteringMapping mapping;
   double centre = 0.0, a_lo = 0.0, a_hi = 0.0;  // terminator: c(r) and the atan span
   BilinearRow row;                              // the table's rows around v(r)
+  double u_offset = 0.0, u_scale = 1.0;  // texel_coord_from_unit(x, W) = u_offset + x u_scale
 };
 MultiscatteringAtRadius multiscattering_at_radius(const Texture& lut,
                                                   const MultiscatteringMapping& mapping,
@@ -179,7 +180,7 @@ inline glm::dvec3 lookup_multiscattering(const Texture& lut, const Multiscatteri
     x = std::clamp((std::atan((mu_s - at.centre) / at.mapping.width) - at.a_lo) /
                        (at.a_hi - at.a_lo),
                    0.0, 1.0);
-  return sample_bilinear_rgb(lut, at.row, texel_coord_from_unit(x, lut.width));
+  return sample_bilinear_rgb(lut, at.row, at.u_offset + x * at.u_scale);
 }
 
 // Writes the mapping into a table's metadata (name, constants, formulas).

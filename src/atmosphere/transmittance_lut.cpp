@@ -428,7 +428,8 @@ TransmittanceAtRadius transmittance_at_radius(const Texture& lut, const Atmosphe
   const double H = horizon_distance(atm);
   const double rho = safe_sqrt((r - rb) * (r + rb));
   const double v = texel_coord_from_unit(rho / H, lut.height);
-  return {r, rt, rt - r, rho + H, bilinear_row(lut, v, 0, 0)};
+  return {r,        rt, rt - r, rho + H, bilinear_row(lut, v, 0, 0), 0.5 / lut.width,
+          1.0 - 1.0 / lut.width};
 }
 
 glm::dvec3 lookup_transmittance(const Texture& lut, const Atmosphere& atm, double r, double mu,

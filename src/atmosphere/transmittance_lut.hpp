@@ -110,6 +110,7 @@ struct TransmittanceAtRadius {
   double top_m;         // Rt
   double d_min, d_max;  // the mapping's distance range at r
   BilinearRow row;      // the table's rows around v(r)
+  double u_offset, u_scale;  // texel_coord_from_unit(x, W) = u_offset + x u_scale
 };
 TransmittanceAtRadius transmittance_at_radius(const Texture& lut, const Atmosphere& atm, double r);
 
@@ -118,7 +119,7 @@ inline glm::dvec3 lookup_transmittance_to_top(const Texture& lut, const Transmit
                                               double mu) {
   const double d = distance_to_top_boundary(at.top_m, at.r, clamp_cosine(mu));
   const double x_mu = std::clamp((d - at.d_min) / (at.d_max - at.d_min), 0.0, 1.0);
-  return sample_bilinear_rgb(lut, at.row, texel_coord_from_unit(x_mu, lut.width));
+  return sample_bilinear_rgb(lut, at.row, at.u_offset + x_mu * at.u_scale);
 }
 
 // Transmittance between the point (r, mu) and the point at distance d (m)
