@@ -33,8 +33,10 @@ done
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-python3 - "$RUNS" "$repo" "$work" "${ONLY:-}" "${exes[@]}" <<'EOF'
-import json, os, shutil, statistics, subprocess, sys, time
+PYTHONPATH="$here" python3 - "$RUNS" "$repo" "$work" "${ONLY:-}" "${exes[@]}" <<'EOF'
+import json, os, shutil, statistics, sys
+
+from process_timing import machine, timed
 
 runs, repo, work, only, exes = int(sys.argv[1]), sys.argv[2], sys.argv[3], sys.argv[4].split(), sys.argv[5:]
 
@@ -67,15 +69,6 @@ rows = {
 if only:
     rows = {k: v for k, v in rows.items() if k in only}
 
-def timed(argv):
-    t0 = time.perf_counter()
-    p = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    _, status, ru = os.wait4(p.pid, 0)
-    wall = time.perf_counter() - t0
-    if status != 0:
-        sys.exit(f"commands: {' '.join(argv)} failed ({status})")
-    return ru.ru_utime + ru.ru_stime, wall
-
 cells = {}
 for _ in range(runs):
     for key, argv in rows.items():
@@ -83,10 +76,9 @@ for _ in range(runs):
             out = os.path.join(work, "out")
             shutil.rmtree(out, ignore_errors=True)
             extra = ["-q", "-o", out] if argv[0] == "bake" else []
-            cells.setdefault((key, exe), []).append(timed([exe] + argv + extra))
+            cells.setdefault((key, exe), []).append(timed([exe] + argv + extra, "commands"))
 
-print(f"runs per cell: {runs}; median CPU s (user+sys) / median wall s; {os.cpu_count()} CPUs, "
-      f"load {' '.join(open('/proc/loadavg').read().split()[:3])}")
+print(f"runs per cell: {runs}; median CPU s (user+sys) / median wall s; {machine()}")
 print()
 print("| command | " + " | ".join(exes) + " |")
 print("|---|" + "---|" * len(exes))

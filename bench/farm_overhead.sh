@@ -27,27 +27,18 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 cd "$repo"
 
-python3 - "$exe" "$RUNS" "$work" $PRESETS <<'EOF'
-import os, shutil, statistics, subprocess, sys, time
+PYTHONPATH="$here" python3 - "$exe" "$RUNS" "$work" $PRESETS <<'EOF'
+import os, shutil, statistics, subprocess, sys
+
+from process_timing import machine, timed
 
 exe, runs, work, presets = sys.argv[1], int(sys.argv[2]), sys.argv[3], sys.argv[4:]
-
-def timed(argv):
-    """CPU (user + sys of the whole process tree) and wall seconds of one command."""
-    t0 = time.perf_counter()
-    p = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    _, status, ru = os.wait4(p.pid, 0)
-    wall = time.perf_counter() - t0
-    if status != 0:
-        sys.exit(f"farm_overhead: {' '.join(argv)} failed ({status})")
-    return ru.ru_utime + ru.ru_stime, wall
 
 def fresh(path):
     shutil.rmtree(path, ignore_errors=True)
     return path
 
-print(f"runs per cell: {runs}; median CPU s (user+sys) / median wall s; {os.cpu_count()} CPUs, "
-      f"load {' '.join(open('/proc/loadavg').read().split()[:3])}")
+print(f"runs per cell: {runs}; median CPU s (user+sys) / median wall s; {machine()}")
 print()
 print("| preset | products | one process | ninja -j 1, one process per product | plan --emit ninja "
       "| overhead per product (CPU) | overhead (CPU, % of one process) |")
@@ -61,10 +52,10 @@ for preset in presets:
     products = sum(1 for line in open(build) if line.startswith("build ") and ": bake " in line)
     one, ninja, plan = [], [], []
     for _ in range(runs):
-        one.append(timed([exe, "bake", "-q", preset, "-o", fresh(out_one), "--threads", "1"]))
+        one.append(timed([exe, "bake", "-q", preset, "-o", fresh(out_one), "--threads", "1"], "farm_overhead"))
         fresh(out_ninja)
-        plan.append(timed(emit))
-        ninja.append(timed(["ninja", "-f", build, "-j", "1", "--quiet"]))
+        plan.append(timed(emit, "farm_overhead"))
+        ninja.append(timed(["ninja", "-f", build, "-j", "1", "--quiet"], "farm_overhead"))
     med = lambda cells, k: statistics.median(c[k] for c in cells)
     c1, cn = med(one, 0), med(ninja, 0)
     cell = lambda cells: f"{med(cells, 0):.3f} / {med(cells, 1):.3f}"

@@ -31,8 +31,10 @@ done
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-python3 - "$RUNS" "$repo" "$work" "$THREADS" "$SETS" "${exes[@]}" <<'EOF'
-import json, os, shutil, statistics, subprocess, sys, time
+PYTHONPATH="$here" python3 - "$RUNS" "$repo" "$work" "$THREADS" "$SETS" "${exes[@]}" <<'EOF'
+import json, os, shutil, statistics, sys
+
+from process_timing import machine, timed
 
 runs, repo, work = int(sys.argv[1]), sys.argv[2], sys.argv[3]
 threads, sets, exes = sys.argv[4].split(), sys.argv[5].split(), sys.argv[6:]
@@ -52,19 +54,13 @@ def preset(fmt):
     json.dump(d, open(path, "w"))
     return path
 
-def timed(argv, out):
+def bake(argv, out):
+    """(CPU s, wall s, bytes of the files written) of one bake into a fresh `out`."""
     shutil.rmtree(out, ignore_errors=True)
-    t0 = time.perf_counter()
-    p = subprocess.Popen(argv + ["-o", out], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    _, status, ru = os.wait4(p.pid, 0)
-    wall = time.perf_counter() - t0
-    err = p.stderr.read().decode(errors="replace")
-    p.stderr.close()
-    if os.waitstatus_to_exitcode(status) != 0:
-        sys.exit(f"noise_set_bench: {' '.join(argv)} failed: {err.strip()}")
+    cpu, wall = timed(argv + ["-o", out], "noise_set_bench")
     size = sum(os.path.getsize(os.path.join(r, f)) for r, _, fs in os.walk(out) for f in fs
                if not f.endswith(".json") and not f.startswith("."))
-    return ru.ru_utime + ru.ru_stime, wall, size
+    return cpu, wall, size
 
 presets = {fmt: preset(fmt) for fmt in sets}
 cells = {}
@@ -74,10 +70,10 @@ for _ in range(runs):
             for i, exe in enumerate(exes):
                 argv = [exe, "bake", "-q", "--threads", t, presets[fmt]]
                 out = os.path.join(work, f"out{i}")
-                cells.setdefault((fmt, t, exe), []).append(timed(argv, out))
+                cells.setdefault((fmt, t, exe), []).append(bake(argv, out))
 
 print(f"runs per cell: {runs}; median CPU s (user+sys) / median wall s / MB written; "
-      f"{os.cpu_count()} CPUs, load {' '.join(open('/proc/loadavg').read().split()[:3])}")
+      f"{machine()}")
 print()
 print("| formats | threads | " + " | ".join(exes) + " |")
 print("|---|---|" + "---|" * len(exes))

@@ -26,8 +26,10 @@ done
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-python3 - "$RUNS" "$PRESET" "$work" "${exes[@]}" <<'EOF'
-import os, statistics, subprocess, sys, time
+PYTHONPATH="$here" python3 - "$RUNS" "$PRESET" "$work" "${exes[@]}" <<'EOF'
+import os, statistics, sys
+
+from process_timing import machine, timed
 
 runs, preset, work, exes = int(sys.argv[1]), sys.argv[2], sys.argv[3], sys.argv[4:]
 commands = [
@@ -37,18 +39,6 @@ commands = [
     ("bake --only transmittance", lambda d: ["bake", "-q", preset, "--only", "transmittance", "-o", d]),
 ]
 
-def run(argv):
-    t0 = time.perf_counter()
-    p = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    _, status, ru = os.wait4(p.pid, 0)
-    wall = time.perf_counter() - t0
-    err = p.stderr.read().decode(errors="replace")
-    p.stderr.close()
-    p.returncode = os.waitstatus_to_exitcode(status)
-    if p.returncode != 0:
-        sys.exit(f"startup_bench: {' '.join(argv)} exited {p.returncode}: {err.strip()}")
-    return ru.ru_utime + ru.ru_stime, wall
-
 results = {}
 counter = 0
 for name, args in commands:
@@ -57,10 +47,10 @@ for name, args in commands:
             counter += 1
             out = os.path.join(work, f"out{counter}")
             os.makedirs(out)
-            results.setdefault((name, exe), []).append(run([exe] + args(out)))
+            results.setdefault((name, exe), []).append(timed([exe] + args(out), "startup_bench"))
 
 print(f"runs per cell: {runs}; median CPU ms (user+sys) / median wall ms; {os.cpu_count()} CPUs, "
-      f"load {os.getloadavg()[0]:.2f}\n")
+      f"{machine()}\n")
 print("| command | " + " | ".join(exes) + " |")
 print("|---|" + "---|" * len(exes))
 for name, _ in commands:
