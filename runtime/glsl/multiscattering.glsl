@@ -8,15 +8,19 @@
 // The texture: multiscattering.dds / .exr, RGB linear float, bilinear, clamp
 // to edge, no mips (docs/runtime.md "Multiple scattering"). Its sun axis is
 // linear in mu_s, or the terminator mapping the metadata names
-// (mu_s_mapping, mu_s_mapping_width, mu_s_mapping_offset).
+// (mu_s_mapping, mu_s_mapping_width, mu_s_mapping_offset); its altitude axis
+// linear or quadratic (altitude_mapping).
 
 const int MULTISCATTERING_SUN_LINEAR = 0;
 const int MULTISCATTERING_SUN_TERMINATOR = 1;
+const int MULTISCATTERING_ALTITUDE_LINEAR = 0;
+const int MULTISCATTERING_ALTITUDE_QUADRATIC = 1;
 
 struct MultiscatteringMapping {
   int sun;       // MULTISCATTERING_SUN_LINEAR or MULTISCATTERING_SUN_TERMINATOR
   float width;   // terminator: w, the crowded span in mu_s
   float offset;  // terminator: how far below the horizon's cosine the centre sits
+  int altitude;  // MULTISCATTERING_ALTITUDE_LINEAR or MULTISCATTERING_ALTITUDE_QUADRATIC
 };
 
 // x_mu_s in [0, 1] (before texel centring): 0.5 + 0.5 mu_s, or around the
@@ -50,21 +54,36 @@ float sun_cosine_from_unit(MultiscatteringMapping m, AtmosphereParameters atm, f
   return clamp_cosine(centre + m.width * tan(a_lo + x_mu_s * (a_hi - a_lo)));
 }
 
-// u = coord(x_mu_s, W), v = coord((r - Rb) / (Rt - Rb), H) (Hillaire 2020
-// sec. 5.5.2 on texel centres), r clamped to the shell.
+// x_h in [0, 1] (before texel centring): (r - Rb) / (Rt - Rb), or its
+// square root for the quadratic axis (rows at r = Rb + (Rt - Rb) x_h^2,
+// docs/reference.md "Multiple scattering"); r clamped to the shell.
+float unit_from_radius(MultiscatteringMapping m, AtmosphereParameters atm, float r) {
+  r = clamp(r, atm.bottom_radius, atm.top_radius);
+  float x = (r - atm.bottom_radius) / (atm.top_radius - atm.bottom_radius);
+  return m.altitude == MULTISCATTERING_ALTITUDE_QUADRATIC ? sqrt(x) : x;
+}
+
+// The inverse of the altitude axis: r of x_h in [0, 1].
+float radius_from_unit(MultiscatteringMapping m, AtmosphereParameters atm, float x_h) {
+  x_h = clamp(x_h, 0.0, 1.0);
+  float x = m.altitude == MULTISCATTERING_ALTITUDE_QUADRATIC ? x_h * x_h : x_h;
+  return atm.bottom_radius + x * (atm.top_radius - atm.bottom_radius);
+}
+
+// u = coord(x_mu_s, W), v = coord(x_h, H) (Hillaire 2020 sec. 5.5.2 on
+// texel centres), r clamped to the shell.
 vec2 multiscattering_uv_from_r_mu_s(AtmosphereParameters atm, float r, float mu_s, int width,
                                     int height, MultiscatteringMapping mapping) {
   r = clamp(r, atm.bottom_radius, atm.top_radius);
   float x_mu_s = unit_from_sun_cosine(mapping, atm, r, mu_s);
-  float x_h = (r - atm.bottom_radius) / (atm.top_radius - atm.bottom_radius);
+  float x_h = unit_from_radius(mapping, atm, r);
   return vec2(texel_coord_from_unit(x_mu_s, width), texel_coord_from_unit(x_h, height));
 }
 
 // The exact inverse: (r, mu_s) of texture coordinates uv.
 vec2 r_mu_s_from_multiscattering_uv(AtmosphereParameters atm, vec2 uv, int width, int height,
                                       MultiscatteringMapping mapping) {
-  float x_h = unit_from_texel_coord(uv.y, height);
-  float r = atm.bottom_radius + x_h * (atm.top_radius - atm.bottom_radius);
+  float r = radius_from_unit(mapping, atm, unit_from_texel_coord(uv.y, height));
   return vec2(r, sun_cosine_from_unit(mapping, atm, r, unit_from_texel_coord(uv.x, width)));
 }
 
@@ -79,7 +98,8 @@ vec3 lookup_multiscattering(sampler2D lut, MultiscatteringMapping mapping, Atmos
 
 // The same for a table with the linear sun axis (the default).
 vec3 lookup_multiscattering(sampler2D lut, AtmosphereParameters atm, float r, float mu_s) {
-  return lookup_multiscattering(lut, MultiscatteringMapping(MULTISCATTERING_SUN_LINEAR, 1.0, 0.0),
+  return lookup_multiscattering(lut, MultiscatteringMapping(MULTISCATTERING_SUN_LINEAR, 1.0, 0.0,
+                                                       MULTISCATTERING_ALTITUDE_LINEAR),
                                 atm, r, mu_s);
 }
 
@@ -89,11 +109,13 @@ vec2 multiscattering_uv_from_r_mu_s_terminator(AtmosphereParameters atm, float r
                                                float w, float offset, int width, int height) {
   return multiscattering_uv_from_r_mu_s(
       atm, r, mu_s, width, height,
-      MultiscatteringMapping(MULTISCATTERING_SUN_TERMINATOR, w, offset));
+      MultiscatteringMapping(MULTISCATTERING_SUN_TERMINATOR, w, offset,
+                             MULTISCATTERING_ALTITUDE_LINEAR));
 }
 
 vec3 lookup_multiscattering_terminator(sampler2D lut, AtmosphereParameters atm, float r,
                                        float mu_s, float w, float offset) {
-  return lookup_multiscattering(lut, MultiscatteringMapping(MULTISCATTERING_SUN_TERMINATOR, w, offset),
+  return lookup_multiscattering(lut, MultiscatteringMapping(MULTISCATTERING_SUN_TERMINATOR, w, offset,
+                             MULTISCATTERING_ALTITUDE_LINEAR),
                                 atm, r, mu_s);
 }

@@ -3,15 +3,19 @@
 // runtime/glsl/multiscattering.glsl (Hillaire 2020 sec. 5.5; C++
 // src/atmosphere/multiscattering_lut.hpp). RGB linear float, bilinear,
 // clamp to edge, no mips (docs/runtime.md "Multiple scattering"); the sun
-// axis linear or the terminator mapping of the metadata.
+// axis linear or the terminator mapping of the metadata, the altitude axis
+// linear or quadratic.
 
 static const int MULTISCATTERING_SUN_LINEAR = 0;
 static const int MULTISCATTERING_SUN_TERMINATOR = 1;
+static const int MULTISCATTERING_ALTITUDE_LINEAR = 0;
+static const int MULTISCATTERING_ALTITUDE_QUADRATIC = 1;
 
 struct MultiscatteringMapping {
   int sun;       // MULTISCATTERING_SUN_LINEAR or MULTISCATTERING_SUN_TERMINATOR
   float width;   // terminator: w
   float offset;  // terminator: centre below the horizon's cosine
+  int altitude;  // MULTISCATTERING_ALTITUDE_LINEAR or MULTISCATTERING_ALTITUDE_QUADRATIC
 };
 
 MultiscatteringMapping linear_multiscattering_mapping() {
@@ -19,6 +23,7 @@ MultiscatteringMapping linear_multiscattering_mapping() {
   m.sun = MULTISCATTERING_SUN_LINEAR;
   m.width = 1.0;
   m.offset = 0.0;
+  m.altitude = MULTISCATTERING_ALTITUDE_LINEAR;
   return m;
 }
 
@@ -48,19 +53,34 @@ float sun_cosine_from_unit(MultiscatteringMapping m, AtmosphereParameters atm, f
   return clamp_cosine(centre + m.width * tan(a_lo + x_mu_s * (a_hi - a_lo)));
 }
 
+// x_h in [0, 1] (before texel centring): (r - Rb) / (Rt - Rb), or its
+// square root for the quadratic axis (rows at r = Rb + (Rt - Rb) x_h^2,
+// docs/reference.md "Multiple scattering"); r clamped to the shell.
+float unit_from_radius(MultiscatteringMapping m, AtmosphereParameters atm, float r) {
+  r = clamp(r, atm.bottom_radius, atm.top_radius);
+  float x = (r - atm.bottom_radius) / (atm.top_radius - atm.bottom_radius);
+  return m.altitude == MULTISCATTERING_ALTITUDE_QUADRATIC ? sqrt(x) : x;
+}
+
+// The inverse of the altitude axis: r of x_h in [0, 1].
+float radius_from_unit(MultiscatteringMapping m, AtmosphereParameters atm, float x_h) {
+  x_h = clamp(x_h, 0.0, 1.0);
+  float x = m.altitude == MULTISCATTERING_ALTITUDE_QUADRATIC ? x_h * x_h : x_h;
+  return atm.bottom_radius + x * (atm.top_radius - atm.bottom_radius);
+}
+
 float2 multiscattering_uv_from_r_mu_s(AtmosphereParameters atm, float r, float mu_s, int width,
                                       int height, MultiscatteringMapping mapping) {
   r = clamp(r, atm.bottom_radius, atm.top_radius);
   float x_mu_s = unit_from_sun_cosine(mapping, atm, r, mu_s);
-  float x_h = (r - atm.bottom_radius) / (atm.top_radius - atm.bottom_radius);
+  float x_h = unit_from_radius(mapping, atm, r);
   return float2(texel_coord_from_unit(x_mu_s, width), texel_coord_from_unit(x_h, height));
 }
 
 // The exact inverse: (r, mu_s) of texture coordinates uv.
 float2 r_mu_s_from_multiscattering_uv(AtmosphereParameters atm, float2 uv, int width, int height,
                                       MultiscatteringMapping mapping) {
-  float x_h = unit_from_texel_coord(uv.y, height);
-  float r = atm.bottom_radius + x_h * (atm.top_radius - atm.bottom_radius);
+  float r = radius_from_unit(mapping, atm, unit_from_texel_coord(uv.y, height));
   return float2(r, sun_cosine_from_unit(mapping, atm, r, unit_from_texel_coord(uv.x, width)));
 }
 
@@ -88,6 +108,7 @@ MultiscatteringMapping terminator_multiscattering_mapping(float w, float offset)
   m.sun = MULTISCATTERING_SUN_TERMINATOR;
   m.width = w;
   m.offset = offset;
+  m.altitude = MULTISCATTERING_ALTITUDE_LINEAR;
   return m;
 }
 

@@ -315,9 +315,7 @@ Texture converged_multiscattering_table(const Atmosphere& atm, const Texture& tr
                                         const MultiscatteringLutSpec& table,
                                         const ConvergedMultiscatteringSpec& spec,
                                         const ConvergedField& field, const BakeContext& ctx) {
-  const MultiscatteringMapping mapping = table.sun_mapping == SunMapping::terminator
-                                             ? terminator_mapping(atm)
-                                             : MultiscatteringMapping{};
+  const MultiscatteringMapping mapping = multiscattering_mapping(table, atm);
   const PsiQuadrature quadrature = psi_quadrature(spec, field.phases);
   Texture tex(table.width, table.height, 1, 1, {"R", "G", "B"});
   ProgressCounter progress(ctx, size_t(table.height));

@@ -248,19 +248,38 @@ double sun_cosine_from_unit(const MultiscatteringMapping& m, const Atmosphere& a
   return clamp_cosine(f.centre + m.width * std::tan(f.a_lo + x_mu_s * (f.a_hi - f.a_lo)));
 }
 
+MultiscatteringMapping multiscattering_mapping(const MultiscatteringLutSpec& spec,
+                                               const Atmosphere& atm) {
+  MultiscatteringMapping m =
+      spec.sun_mapping == SunMapping::terminator ? terminator_mapping(atm) : MultiscatteringMapping{};
+  m.altitude = spec.altitude_mapping;
+  return m;
+}
+
+double unit_from_radius(const MultiscatteringMapping& m, const Atmosphere& atm, double r) {
+  r = std::clamp(r, atm.bottom_radius_m, atm.top_radius_m);
+  const double x = (r - atm.bottom_radius_m) / (atm.top_radius_m - atm.bottom_radius_m);
+  return m.altitude == AltitudeMapping::quadratic ? std::sqrt(x) : x;
+}
+
+double radius_from_unit(const MultiscatteringMapping& m, const Atmosphere& atm, double x_h) {
+  x_h = std::clamp(x_h, 0.0, 1.0);
+  const double x = m.altitude == AltitudeMapping::quadratic ? x_h * x_h : x_h;
+  return atm.bottom_radius_m + x * (atm.top_radius_m - atm.bottom_radius_m);
+}
+
 glm::dvec2 multiscattering_uv_from_r_mu_s(const Atmosphere& atm, double r, double mu_s, int width,
                                           int height, const MultiscatteringMapping& mapping) {
   r = std::clamp(r, atm.bottom_radius_m, atm.top_radius_m);
   const double x_mu_s = unit_from_sun_cosine(mapping, atm, r, mu_s);
-  const double x_h = (r - atm.bottom_radius_m) / (atm.top_radius_m - atm.bottom_radius_m);
+  const double x_h = unit_from_radius(mapping, atm, r);
   return {texel_coord_from_unit(x_mu_s, width), texel_coord_from_unit(x_h, height)};
 }
 
 RadiusSunCosine r_mu_s_from_multiscattering_uv(const Atmosphere& atm, glm::dvec2 uv, int width,
                                                int height, const MultiscatteringMapping& mapping) {
   const double x_mu_s = unit_from_texel_coord(uv.x, width);
-  const double x_h = unit_from_texel_coord(uv.y, height);
-  const double r = atm.bottom_radius_m + x_h * (atm.top_radius_m - atm.bottom_radius_m);
+  const double r = radius_from_unit(mapping, atm, unit_from_texel_coord(uv.y, height));
   return {r, sun_cosine_from_unit(mapping, atm, r, x_mu_s)};
 }
 
@@ -272,9 +291,7 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
                     "direction and step, got {}x{}, {} directions, {} steps",
                     spec.width, spec.height, spec.directions, spec.steps));
   Texture tex(spec.width, spec.height, 1, 1, {"R", "G", "B"});
-  const MultiscatteringMapping mapping = spec.sun_mapping == SunMapping::terminator
-                                             ? terminator_mapping(atm)
-                                             : MultiscatteringMapping{};
+  const MultiscatteringMapping mapping = multiscattering_mapping(spec, atm);
   const SphereRule fibonacci = {fibonacci_sphere_directions(spec.directions), {}};
   const bool per_row = spec.quadrature != DirectionQuadrature::fibonacci;
   // Per-row maxima, reduced in row order afterwards: no shared mutable state.
@@ -336,9 +353,17 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
 void set_multiscattering_axes_metadata(Metadata& m, const MultiscatteringMapping& mapping,
                                        const Atmosphere& atm) {
   set_multiscattering_mapping_metadata(m, mapping);
-  set_meta(m, "v",
-           std::string("texel_coord_from_unit((r - bottom_radius_m) / "
-                       "(top_radius_m - bottom_radius_m), height)"));
+  if (mapping.altitude == AltitudeMapping::quadratic) {
+    set_meta(m, "altitude_mapping", std::string("quadratic"));
+    set_meta(m, "v",
+             std::string("texel_coord_from_unit(sqrt((r - bottom_radius_m) / "
+                         "(top_radius_m - bottom_radius_m)), height)"));
+  } else {
+    set_meta(m, "altitude_mapping", std::string("linear"));
+    set_meta(m, "v",
+             std::string("texel_coord_from_unit((r - bottom_radius_m) / "
+                         "(top_radius_m - bottom_radius_m), height)"));
+  }
   set_meta(m, "texel_coord_from_unit", std::string("0.5 / n + x * (1 - 1 / n)"));
   set_meta(m, "bottom_radius_m", atm.bottom_radius_m);
   set_meta(m, "top_radius_m", atm.top_radius_m);
@@ -361,8 +386,22 @@ void set_multiscattering_mapping_metadata(Metadata& m, const MultiscatteringMapp
                        "w = mu_s_mapping_width"));
 }
 
+namespace {
+
+AltitudeMapping altitude_mapping_of(const Texture& lut) {
+  if (!lut.metadata.count("altitude_mapping")) return AltitudeMapping::linear;
+  const std::string name = meta_string(lut.metadata, "altitude_mapping");
+  if (name == "linear") return AltitudeMapping::linear;
+  if (name != "quadratic")
+    throw Error(fmt::format("multiscattering: unknown altitude_mapping '{}'", name));
+  return AltitudeMapping::quadratic;
+}
+
+}  // namespace
+
 MultiscatteringMapping multiscattering_mapping_of(const Texture& lut) {
   MultiscatteringMapping m;
+  m.altitude = altitude_mapping_of(lut);
   if (!lut.metadata.count("mu_s_mapping")) return m;
   const std::string name = meta_string(lut.metadata, "mu_s_mapping");
   if (name == "linear") return m;
@@ -387,8 +426,8 @@ MultiscatteringAtRadius multiscattering_at_radius(const Texture& lut,
     at.a_lo = f.a_lo;
     at.a_hi = f.a_hi;
   }
-  const double x_h = (r - atm.bottom_radius_m) / (atm.top_radius_m - atm.bottom_radius_m);
-  at.row = bilinear_row(lut, texel_coord_from_unit(x_h, lut.height), 0, 0);
+  at.row = bilinear_row(lut, texel_coord_from_unit(unit_from_radius(mapping, atm, r), lut.height),
+                        0, 0);
   at.u_offset = 0.5 / lut.width;
   at.u_scale = 1.0 - 1.0 / lut.width;
   return at;

@@ -7,9 +7,14 @@
 // Axes (texel centres, docs/architecture.md "Texel centres"): the first and
 // last texel of each axis sit exactly on the ends of its range,
 //   u = texel_coord_from_unit(x_mu_s(r, mu_s), width)       mu_s: sun zenith cosine
-//   v = texel_coord_from_unit((r - Rb) / (Rt - Rb), height) r: radius
-// with one of two sun mappings (MultiscatteringMapping, recorded in the
-// metadata; docs/reference.md "Multiple scattering (Hillaire)"):
+//   v = texel_coord_from_unit(x_h(r), height)               r: radius
+// with one of two altitude mappings (MultiscatteringMapping, recorded in the
+// metadata as altitude_mapping; docs/reference.md "Multiple scattering (Hillaire)"):
+//   linear      x_h = (r - Rb) / (Rt - Rb)              (Hillaire 2020 sec. 5.5.2, the default)
+//   quadratic   x_h = sqrt((r - Rb) / (Rt - Rb)), rows at r = Rb + (Rt - Rb) x_h^2:
+//               rows crowd near the ground, where a low sun's Psi_ms falls
+//               fastest with altitude on small planets,
+// and one of two sun mappings (recorded as mu_s_mapping):
 //   linear      x_mu_s = 0.5 + 0.5 mu_s (Hillaire 2020 sec. 5.5.2, the default)
 //   terminator  x_mu_s = (atan((mu_s - c(r)) / w) - a_lo) / (a_hi - a_lo),
 //               c(r) = mu_h(r) - offset, mu_h(r) = -sqrt(1 - (Rb / r)^2) the
@@ -51,10 +56,12 @@
 
 namespace skybake {
 
-// The sun axis's mapping (see the opening comment).
+// The axes' mappings (see the opening comment).
 enum class SunMapping { linear, terminator };
+enum class AltitudeMapping { linear, quadratic };
 struct MultiscatteringMapping {
   SunMapping sun = SunMapping::linear;
+  AltitudeMapping altitude = AltitudeMapping::linear;
   double width = 1.0;   // terminator: w, the crowded span in mu_s (> 0)
   double offset = 0.0;  // terminator: how far below the horizon's cosine the centre sits
 };
@@ -70,7 +77,8 @@ constexpr double kTerminatorOffset = 0.0;
 MultiscatteringMapping terminator_mapping(const Atmosphere& atm);
 
 // The mapping a baked table was made with, from its metadata ("mu_s_mapping",
-// "mu_s_mapping_width", "mu_s_mapping_offset"; linear when absent).
+// "mu_s_mapping_width", "mu_s_mapping_offset", "altitude_mapping"; linear when
+// absent).
 MultiscatteringMapping multiscattering_mapping_of(const Texture& lut);
 
 // x_mu_s in [0, 1] and back: the sun axis before texel centring.
@@ -78,6 +86,11 @@ double unit_from_sun_cosine(const MultiscatteringMapping& m, const Atmosphere& a
                             double mu_s);
 double sun_cosine_from_unit(const MultiscatteringMapping& m, const Atmosphere& atm, double r,
                             double x_mu_s);
+
+// x_h in [0, 1] and back: the altitude axis before texel centring (r clamped
+// to the shell).
+double unit_from_radius(const MultiscatteringMapping& m, const Atmosphere& atm, double r);
+double radius_from_unit(const MultiscatteringMapping& m, const Atmosphere& atm, double x_h);
 
 // The direction rule of eq. 5-8. fibonacci: `directions` equal-weight points
 // of the spherical Fibonacci set (below; the paper's "uniformly distributed
@@ -95,8 +108,13 @@ struct MultiscatteringLutSpec {
   int directions = 64;  // ray directions per texel (Hillaire 2020: 64)
   int steps = 20;       // uniform segments per ray (Hillaire 2020 Table 2: 20)
   SunMapping sun_mapping = SunMapping::linear;  // terminator: terminator_mapping(atm)
+  AltitudeMapping altitude_mapping = AltitudeMapping::linear;
   DirectionQuadrature quadrature = DirectionQuadrature::fibonacci;
 };
+
+// The mapping a table of `spec` is baked with for `atm`.
+MultiscatteringMapping multiscattering_mapping(const MultiscatteringLutSpec& spec,
+                                               const Atmosphere& atm);
 
 // Upper bound applied to f_ms per channel (eq. 9 needs f_ms < 1); F_ms = 1 / (1 - f_ms)
 // then stays <= 1e6.

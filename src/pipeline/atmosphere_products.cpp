@@ -75,6 +75,8 @@ MultiscatteringLutSpec multiscattering_spec(const OutputSpec& spec) {
   lut.steps = option_int(spec, "steps", lut.steps);
   if (spec.options.value("sun_mapping", std::string("linear")) == "terminator")
     lut.sun_mapping = SunMapping::terminator;
+  if (spec.options.value("altitude_mapping", std::string("linear")) == "quadratic")
+    lut.altitude_mapping = AltitudeMapping::quadratic;
   if (spec.options.value("direction_quadrature", std::string("fibonacci")) == "symmetric_gauss")
     lut.quadrature = DirectionQuadrature::symmetric_gauss;
   return lut;

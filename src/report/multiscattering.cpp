@@ -9,7 +9,7 @@
 // their error includes that table's (small) error.
 //
 // Queries: altitude uniform over the shell, sun zenith cosine uniform in
-// [-1, 1] (the table's axes, linear in both).
+// [-1, 1] (the axes of a table whose mappings are both linear).
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 

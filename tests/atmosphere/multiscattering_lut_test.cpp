@@ -13,6 +13,7 @@
 
 #include "support/test_atmospheres.hpp"
 #include "atmosphere/transmittance_lut.hpp"
+#include "core/error.hpp"
 #include "core/math.hpp"
 
 namespace skybake {
@@ -98,15 +99,49 @@ TEST(MultiscatteringMapping, TerminatorRoundTripEdgesAndMonotone) {
   }
 }
 
+// The quadratic altitude axis: rows at r = Rb + H (y / (n - 1))^2 (the
+// closed form of its texel centres), the first and last on the ground and
+// the top, and the mapping pair inverse of each other.
+TEST(MultiscatteringMapping, QuadraticAltitudeRowsAndRoundTrip) {
+  for (const Atmosphere& atm : {earth_atmosphere(), fixtures::tiny_planet_atmosphere()}) {
+    MultiscatteringMapping m = terminator_mapping(atm);
+    m.altitude = AltitudeMapping::quadratic;
+    const double rb = atm.bottom_radius_m, thickness = atm.top_radius_m - rb;
+    const int w = 8, h = 32;
+    for (int y = 0; y < h; ++y) {
+      const double t = double(y) / (h - 1);
+      for (int x = 0; x < w; ++x) {
+        const glm::dvec2 uv(texel_center(x, w), texel_center(y, h));
+        const RadiusSunCosine p = r_mu_s_from_multiscattering_uv(atm, uv, w, h, m);
+        EXPECT_NEAR(p.r, rb + thickness * t * t, 1e-9 * atm.top_radius_m) << y;
+        const glm::dvec2 back = multiscattering_uv_from_r_mu_s(atm, p.r, p.mu_s, w, h, m);
+        EXPECT_NEAR(back.x, uv.x, 1e-9);
+        EXPECT_NEAR(back.y, uv.y, 1e-9);
+      }
+    }
+    for (double x_h : {0.0, 1e-4, 0.03, 0.5, 0.97, 1.0})
+      EXPECT_NEAR(unit_from_radius(m, atm, radius_from_unit(m, atm, x_h)), x_h, 1e-9);
+    // The second row sits (n - 1) times lower than the linear axis's.
+    MultiscatteringMapping linear = m;
+    linear.altitude = AltitudeMapping::linear;
+    EXPECT_NEAR((radius_from_unit(linear, atm, 1.0 / 31) - rb) /
+                    (radius_from_unit(m, atm, 1.0 / 31) - rb),
+                31.0, 1e-6);
+  }
+}
+
 TEST(MultiscatteringMapping, RecordedInTheMetadataAndReadBack) {
   const Atmosphere atm = earth_atmosphere();
   MultiscatteringLutSpec spec{8, 8, 16, 10};
   spec.sun_mapping = SunMapping::terminator;
+  spec.altitude_mapping = AltitudeMapping::quadratic;
   const Texture ms = bake_multiscattering_lut(atm, small_transmittance(atm), spec, {});
   EXPECT_EQ(meta_string(ms.metadata, "mu_s_mapping"), "terminator");
+  EXPECT_EQ(meta_string(ms.metadata, "altitude_mapping"), "quadratic");
   const MultiscatteringMapping m = multiscattering_mapping_of(ms);
   const MultiscatteringMapping expected = terminator_mapping(atm);
   EXPECT_EQ(m.sun, SunMapping::terminator);
+  EXPECT_EQ(m.altitude, AltitudeMapping::quadratic);
   EXPECT_EQ(m.width, expected.width);  // 17 significant digits: exact
   EXPECT_EQ(m.offset, expected.offset);
   // The lookup follows the recorded mapping: texel centres read back exactly.
@@ -120,8 +155,14 @@ TEST(MultiscatteringMapping, RecordedInTheMetadataAndReadBack) {
   // A linear table says so, and a table without the key reads as linear.
   const Texture linear = bake_multiscattering_lut(atm, small_transmittance(atm), {8, 8, 16, 10}, {});
   EXPECT_EQ(meta_string(linear.metadata, "mu_s_mapping"), "linear");
-  EXPECT_EQ(multiscattering_mapping_of(Texture(2, 2, 1, 1, {"R", "G", "B"})).sun,
-            SunMapping::linear);
+  EXPECT_EQ(meta_string(linear.metadata, "altitude_mapping"), "linear");
+  const MultiscatteringMapping absent =
+      multiscattering_mapping_of(Texture(2, 2, 1, 1, {"R", "G", "B"}));
+  EXPECT_EQ(absent.sun, SunMapping::linear);
+  EXPECT_EQ(absent.altitude, AltitudeMapping::linear);
+  Texture unknown(2, 2, 1, 1, {"R", "G", "B"});
+  set_meta(unknown.metadata, "altitude_mapping", std::string("cubic"));
+  EXPECT_THROW(multiscattering_mapping_of(unknown), Error);
 }
 
 void expect_all_zero(const Texture& tex) {
@@ -313,23 +354,26 @@ TEST(MultiscatteringLut, IdenticalForOneAndTwoThreads) {
 }
 
 // The per-radius lookup (multiscattering_at_radius, then many sun cosines)
-// is the lookup, bit for bit, with either sun mapping.
+// is the lookup, bit for bit, with either sun mapping and either altitude
+// mapping.
 TEST(MultiscatteringLut, LookupAtARadiusIsTheLookupBitForBit) {
   const Atmosphere atm = earth_atmosphere();
   const Texture t = small_transmittance(atm);
-  for (bool terminator : {false, true}) {
+  for (int variant = 0; variant < 4; ++variant) {
+    const bool terminator = variant & 1;
     MultiscatteringLutSpec spec{8, 8, 16, 10};
     if (terminator) spec.sun_mapping = SunMapping::terminator;
+    if (variant & 2) spec.altitude_mapping = AltitudeMapping::quadratic;
     const Texture ms = bake_multiscattering_lut(atm, t, spec, {});
     const MultiscatteringMapping mapping = multiscattering_mapping_of(ms);
     const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
-    for (double r : {rb - 5.0, rb, rb + 2e3, rb + 61.7e3, rt, rt + 1e3}) {
+    for (double r : {rb - 5.0, rb, rb + 30.0, rb + 2e3, rb + 61.7e3, rt, rt + 1e3}) {
       const MultiscatteringAtRadius at = multiscattering_at_radius(ms, mapping, atm, r);
       for (double mu_s : {-1.2, -1.0, -0.4, -0.1, -0.02, 0.0, 0.03, 0.5, 1.0, 1.3}) {
         const glm::dvec3 a = lookup_multiscattering(ms, mapping, atm, r, mu_s);
         const glm::dvec3 b = lookup_multiscattering(ms, at, mu_s);
         for (int c = 0; c < 3; ++c)
-          EXPECT_EQ(a[c], b[c]) << "terminator " << terminator << " r " << r << " mu_s " << mu_s;
+          EXPECT_EQ(a[c], b[c]) << "variant " << variant << " r " << r << " mu_s " << mu_s;
       }
     }
   }
@@ -345,6 +389,8 @@ TEST(MultiscatteringLut, TexelsAreTheIntegralAtTheirCentres) {
     MultiscatteringLutSpec spec{6, 5, 24, 8};
     spec.sun_mapping = SunMapping::terminator;
     spec.quadrature = quadrature;
+    if (quadrature == DirectionQuadrature::symmetric_gauss)
+      spec.altitude_mapping = AltitudeMapping::quadratic;
     const Texture ms = bake_multiscattering_lut(atm, t, spec, {});
     const MultiscatteringMapping mapping = multiscattering_mapping_of(ms);
     for (int y = 0; y < ms.height; ++y) {

@@ -146,9 +146,8 @@ void multiscattering_case(const BakedScene& s, const std::string& what) {
       {what, {"multiscattering.glsl"},
        "layout(binding = 0) uniform sampler2D lut;\nuniform MultiscatteringMapping mapping;",
        "vec4(lookup_multiscattering(lut, mapping, atm, q0.x, q0.y), 0.0)", {&tex}, 3,
-       "Texture2D<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);\n"
-       "MultiscatteringMapping load_mapping() {\n  MultiscatteringMapping m;\n"
-       "  m.sun = int(extra(0).x);\n  m.width = extra(0).y;\n  m.offset = extra(0).z;\n  return m;\n}\n",
+       "Texture2D<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);\n" +
+           hlsl_load_mapping(),
        "float4(lookup_multiscattering(lut, lut_sampler, load_mapping(), atm, q0.x, q0.y), 0.0)",
        {mapping_extra(mapping)}},
       s.parameters("multiscattering"),
@@ -163,12 +162,17 @@ void multiscattering_case(const BakedScene& s, const std::string& what) {
 
 TEST(AtmosphereDecode, LookupMultiscattering) {
   ASSERT_EQ(separate_mie_scene().multiscattering_mapping("multiscattering").sun, SunMapping::linear);
+  ASSERT_EQ(separate_mie_scene().multiscattering_mapping("multiscattering").altitude,
+            AltitudeMapping::linear);
   multiscattering_case(separate_mie_scene(), "lookup_multiscattering (linear sun axis)");
 }
 
 TEST(AtmosphereDecode, LookupMultiscatteringTerminatorMapping) {
-  ASSERT_EQ(alpha_mie_scene().multiscattering_mapping("multiscattering").sun, SunMapping::terminator);
-  multiscattering_case(alpha_mie_scene(), "lookup_multiscattering (terminator sun axis)");
+  const MultiscatteringMapping m = alpha_mie_scene().multiscattering_mapping("multiscattering");
+  ASSERT_EQ(m.sun, SunMapping::terminator);
+  ASSERT_EQ(m.altitude, AltitudeMapping::quadratic);
+  multiscattering_case(alpha_mie_scene(),
+                       "lookup_multiscattering (terminator sun axis, quadratic altitude axis)");
 }
 
 // ---- Sky-view and aerial perspective -----------------------------------------------

@@ -55,7 +55,7 @@ std::string alpha_preset() {
   "atmosphere": ")" + earth_atmosphere_path() + R"(",
   "outputs": [
     { "product": "transmittance", "size": [64, 16], "formats": ["dds"] },
-    { "product": "multiscattering", "size": [16, 16], "formats": ["dds"], "sun_mapping": "terminator" },
+    { "product": "multiscattering", "size": [16, 16], "formats": ["dds"], "sun_mapping": "terminator", "altitude_mapping": "quadratic" },
     { "product": "scattering", "size": [8, 32, 8, 4], "formats": ["dds"], "orders": 2, "mie": "alpha", "precision": "half" },
     { "product": "scattering3d", "size": [8, 32, 8], "formats": ["dds"], "orders": 2, "mie": "alpha" }
   ]
@@ -198,6 +198,12 @@ GlAtmosphere BakedScene::parameters(const std::string& output) const {
 MultiscatteringMapping BakedScene::multiscattering_mapping(const std::string& output) const {
   const nlohmann::json& meta = entry(output).at("metadata");
   MultiscatteringMapping m;
+  if (meta.contains("altitude_mapping") && meta.at("altitude_mapping") != "linear") {
+    if (meta.at("altitude_mapping") != "quadratic")
+      throw std::runtime_error(output + ": unknown altitude_mapping " +
+                               meta.at("altitude_mapping").dump());
+    m.altitude = AltitudeMapping::quadratic;
+  }
   if (!meta.contains("mu_s_mapping") || meta.at("mu_s_mapping") == "linear") return m;
   if (meta.at("mu_s_mapping") != "terminator")
     throw std::runtime_error(output + ": unknown mu_s_mapping " + meta.at("mu_s_mapping").dump());
@@ -213,10 +219,18 @@ void set_mapping_uniform(const ComputeProgram& program, const std::string& name,
   program.set(name + ".sun", int(v.x));
   if (program.has_uniform(name + ".width")) program.set(name + ".width", v.y);
   if (program.has_uniform(name + ".offset")) program.set(name + ".offset", v.z);
+  if (program.has_uniform(name + ".altitude")) program.set(name + ".altitude", int(v.w));
 }
 
 glm::vec4 mapping_extra(const MultiscatteringMapping& m) {
-  return {m.sun == SunMapping::terminator ? 1.0f : 0.0f, float(m.width), float(m.offset), 0.0f};
+  return {m.sun == SunMapping::terminator ? 1.0f : 0.0f, float(m.width), float(m.offset),
+          m.altitude == AltitudeMapping::quadratic ? 1.0f : 0.0f};
+}
+
+std::string hlsl_load_mapping() {
+  return "MultiscatteringMapping load_mapping() {\n  MultiscatteringMapping m;\n"
+         "  m.sun = int(extra(0).x);\n  m.width = extra(0).y;\n  m.offset = extra(0).z;\n"
+         "  m.altitude = int(extra(0).w);\n  return m;\n}\n";
 }
 
 SamplerState BakedScene::sampler(const std::string& output, const SamplerState& fallback) const {

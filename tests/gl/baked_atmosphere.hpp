@@ -68,7 +68,7 @@ BakedScene bake_scene(const std::string& name, const std::string& preset);
 // mie "separate": transmittance, multiscattering (linear sun axis), skyview
 // (2 layers), aerial_perspective, scattering + single_mie, irradiance,
 // scattering3d, gathering_sum. mie "alpha": transmittance, multiscattering
-// (terminator sun axis), scattering, scattering3d.
+// (terminator sun axis, quadratic altitude axis), scattering, scattering3d.
 const BakedScene& separate_mie_scene();
 const BakedScene& alpha_mie_scene();
 
@@ -91,10 +91,13 @@ std::string hlsl_load_medium(int first);
 
 // Sets the uniform struct `name` (MultiscatteringMapping of
 // runtime/glsl/multiscattering.glsl), and the same as one extra(k) value
-// (sun, width, offset, 0) for the HLSL twin.
+// (sun, width, offset, altitude) for the HLSL twin, which
+// hlsl_load_mapping()'s `MultiscatteringMapping load_mapping()` unpacks
+// from extra(0).
 void set_mapping_uniform(const ComputeProgram& program, const std::string& name,
                          const MultiscatteringMapping& m);
 glm::vec4 mapping_extra(const MultiscatteringMapping& m);
+std::string hlsl_load_mapping();
 
 // Runs `program` once per query: binding 0 holds the queries (two vec4 each,
 // query i at 2i and 2i + 1), binding 1 receives one vec4 per query; the

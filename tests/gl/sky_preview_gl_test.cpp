@@ -298,9 +298,7 @@ TEST(SkyPreviewGl, RayMarchMatchesTheCpuMarch) {
                         "Texture2D<float4> multiscattering_lut : register(t1);\n"
                         "SamplerState s : register(s0);\n" +
                             hlsl_load_medium(1) +
-                            "MultiscatteringMapping load_mapping() {\n  MultiscatteringMapping m;\n"
-                            "  m.sun = int(extra(0).x);\n  m.width = extra(0).y;\n"
-                            "  m.offset = extra(0).z;\n  return m;\n}\n" +
+                            hlsl_load_mapping() +
                             "float3 march(float4 q0, float4 q1, AtmosphereParameters atm) {\n"
                             "  float3 T;\n"
                             "  return integrate_scattered_luminance(atm, load_medium(),\n"

@@ -1,8 +1,8 @@
 // The multiscattering and sky-view options end to end: the terminator
-// mapping, the converged Psi_ms model and the sky-view with the 4D table's
-// orders >= 2 bake through the command line, record what they are in the
-// manifest with an error measurement, and bad option values are refused at
-// load with the output's JSON pointer.
+// mapping and the quadratic altitude axis, the converged Psi_ms model and
+// the sky-view with the 4D table's orders >= 2 bake through the command
+// line, record what they are in the manifest with an error measurement, and
+// bad option values are refused at load with the output's JSON pointer.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -52,14 +52,15 @@ TEST(MultiscatteringModels, ConvergedTerminatorAndSkyview4dBakeAndRecordThemselv
   const fs::path preset = write_scene(
       dir,
       {{"product", "multiscattering"}, {"size", {8, 8}}, {"formats", {"exr"}},
-       {"model", "converged"}, {"sun_mapping", "terminator"}, {"scattering_shape", {4, 16, 4, 2}},
-       {"tolerance", 0.01}, {"estimator", "mean"}},
+       {"model", "converged"}, {"sun_mapping", "terminator"}, {"altitude_mapping", "quadratic"},
+       {"scattering_shape", {4, 16, 4, 2}}, {"tolerance", 0.01}, {"estimator", "mean"}},
       skyview);
   const auto r = test::run_skybake({"bake", preset.string(), "-o", (dir / "out").string(), "-q"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto ms = manifest_entry(dir / "out", "multiscattering");
   EXPECT_EQ(ms["metadata"]["model"], "converged");
   EXPECT_EQ(ms["metadata"]["mu_s_mapping"], "terminator");
+  EXPECT_EQ(ms["metadata"]["altitude_mapping"], "quadratic");
   EXPECT_EQ(ms["metadata"]["scattering_shape"], "4x16x4x2");
   EXPECT_EQ(ms["metadata"]["estimator"], "mean");
   EXPECT_TRUE(ms["error"].contains("max_rel")) << ms.dump();
@@ -119,6 +120,13 @@ TEST(MultiscatteringModels, BadOptionsAreRefusedWithTheirPointer) {
   r = test::run_skybake({"validate", bad_rule.string()});
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_NE((r.out + r.err).find("/outputs/1/direction_quadrature"), std::string::npos)
+      << r.out << r.err;
+  const fs::path bad_altitude = write_scene(
+      dir, {{"product", "multiscattering"}, {"size", {8, 8}}, {"altitude_mapping", "cubic"}},
+      kSmallSkyview);
+  r = test::run_skybake({"validate", bad_altitude.string()});
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE((r.out + r.err).find("/outputs/1/altitude_mapping"), std::string::npos)
       << r.out << r.err;
   const fs::path converged_rule = write_scene(dir,
                                               {{"product", "multiscattering"},
