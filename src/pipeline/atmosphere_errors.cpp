@@ -32,7 +32,12 @@ constexpr int kMultiscatteringReferenceSteps = 40;
 constexpr int kSkyviewQueries = 128;
 constexpr int kSkyviewReferenceSteps = 300;
 constexpr int kAerialQueries = 256;
+// Steps over the whole depth range; a query marches as many as its distance
+// needs for the same step length (at least kAerialMinSteps), so a short
+// query costs less and no query is marched with longer steps than a
+// full-range one.
 constexpr int kAerialReferenceSteps = 200;
+constexpr int kAerialMinSteps = 8;
 
 }  // namespace
 
@@ -182,18 +187,21 @@ nlohmann::json measure_aerial_perspective_error(const Scene& scene, const Output
     const AerialQueryPoint q = aerial_query(atm, baked, i);
     reads[i].first =
         glm::dvec3(lookup_aerial_perspective(lut, baked.depth_range_m, q.screen_uv, q.distance_m));
-    reads[i].second = integrate_scattered_luminance(
-                          atm, *in.at("transmittance"), in.at("multiscattering"), q.position,
-                          q.view_dir, sun, q.distance_m, kAerialReferenceSteps)
+    const int steps = std::max(
+        kAerialMinSteps, int(std::ceil(kAerialReferenceSteps * q.distance_m / baked.depth_range_m)));
+    reads[i].second = integrate_scattered_luminance(atm, *in.at("transmittance"),
+                                                    in.at("multiscattering"), q.position,
+                                                    q.view_dir, sun, q.distance_m, steps)
                           .luminance;
   });
   return error_record(
       reads,
       fmt::format("lookup_aerial_perspective (trilinear, RGB) at a uniform screen position and "
                   "a distance uniform up to the nearer of the depth range and the ground, "
-                  "against the same march from the camera with {} uniform steps, reading the "
-                  "same transmittance and multiple-scattering tables",
-                  kAerialReferenceSteps));
+                  "against the same march from the camera in uniform steps, {} over the depth "
+                  "range (at least {} a query), reading the same transmittance and "
+                  "multiple-scattering tables",
+                  kAerialReferenceSteps, kAerialMinSteps));
 }
 
 }  // namespace skybake
