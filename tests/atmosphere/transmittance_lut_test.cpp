@@ -213,6 +213,25 @@ double exponential_vertical_tau(double sigma, double H, double h0, double top_h)
   return sigma * H * (std::exp(-h0 / H) - std::exp(-top_h / H));
 }
 
+// Along the vertical from r, each doubling of the steps (the first count
+// must show an error) divides the error by far more than 8 until it meets
+// rounding: both rules converge faster than 3rd order.
+void expect_converges_along_vertical(const Atmosphere& atm, double r, double exact,
+                                     SegmentRule rule, std::vector<int> doublings) {
+  auto error = [&](int steps) {
+    return std::abs(compute_optical_depth_to_top(atm, r, 1.0, steps, rule).r - exact);
+  };
+  double previous = error(doublings.front());
+  EXPECT_GT(previous, 1e-12 * exact) << doublings.front() << " steps should show an error";
+  for (size_t i = 1; i < doublings.size(); ++i) {
+    const double e = error(doublings[i]);
+    if (previous > 1e-11 * exact) {
+      EXPECT_LT(e, previous / 8.0) << "r " << r << " steps " << doublings[i];
+    }
+    previous = e;
+  }
+}
+
 TEST(ComputeOpticalDepth, ExponentialAlongTheVertical) {
   const double sigma = 1e-5;
   for (double H : {1.2e3, 8e3}) {
@@ -225,18 +244,8 @@ TEST(ComputeOpticalDepth, ExponentialAlongTheVertical) {
       // Default steps: within 1e-6 relative.
       EXPECT_NEAR(compute_optical_depth_to_top(atm, r, 1.0, 40).r, exact, 1e-6 * exact)
           << "H " << H << " h0 " << h0;
-      // Convergence: composite 3-point Gauss-Legendre is 6th order, so each
-      // doubling of the steps divides the error by far more than 8 until it
-      // meets rounding.
-      double previous = std::abs(compute_optical_depth_to_top(atm, r, 1.0, 5).r - exact);
-      EXPECT_GT(previous, 1e-12 * exact) << "too few steps should show an error";
-      for (int steps : {10, 20, 40, 80}) {
-        const double error = std::abs(compute_optical_depth_to_top(atm, r, 1.0, steps).r - exact);
-        if (previous > 1e-11 * exact) {
-          EXPECT_LT(error, previous / 8.0) << "H " << H << " h0 " << h0 << " steps " << steps;
-        }
-        previous = error;
-      }
+      // Convergence: composite 3-point Gauss-Legendre is 6th order.
+      expect_converges_along_vertical(atm, r, exact, SegmentRule::gauss3, {5, 10, 20, 40, 80});
     }
   }
 }
@@ -357,17 +366,7 @@ TEST(ComputeOpticalDepth, EightPointRuleConvergesAlongTheVertical) {
       EXPECT_NEAR(compute_optical_depth_to_top(atm, r, 1.0, 6, SegmentRule::gauss8).r, exact,
                   1e-8 * exact)
           << "H " << H << " h0 " << h0;
-      double previous =
-          std::abs(compute_optical_depth_to_top(atm, r, 1.0, 1, SegmentRule::gauss8).r - exact);
-      EXPECT_GT(previous, 1e-12 * exact) << "one segment should show an error";
-      for (int steps : {2, 4, 8}) {
-        const double error = std::abs(
-            compute_optical_depth_to_top(atm, r, 1.0, steps, SegmentRule::gauss8).r - exact);
-        if (previous > 1e-11 * exact) {
-          EXPECT_LT(error, previous / 8.0) << "H " << H << " h0 " << h0 << " steps " << steps;
-        }
-        previous = error;
-      }
+      expect_converges_along_vertical(atm, r, exact, SegmentRule::gauss8, {1, 2, 4, 8});
     }
   }
 }
