@@ -84,8 +84,8 @@ TEST(AtmosphereDecode, LookupTransmittanceToTop) {
   const Texture lut = s.texture("transmittance");
   const GlTexture tex = upload_dds(s.dds_path("transmittance"), s.sampler("transmittance", kClamp));
   const Comparison c = run_case(
-      {"lookup_transmittance_to_top", {"transmittance.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
-       "vec4(lookup_transmittance_to_top(lut, atm, q0.x, q0.y), 0.0)", {&tex}, 3, "Texture2D<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);",
+      {"lookup_transmittance_to_top", {"transmittance.glsl"}, glsl_table2d("lut"),
+       "vec4(lookup_transmittance_to_top(lut, atm, q0.x, q0.y), 0.0)", {&tex}, 3, hlsl_table2d("lut"),
        "float4(lookup_transmittance_to_top(lut, lut_sampler, atm, q0.x, q0.y), 0.0)", {}},
       s.parameters("transmittance"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const RadiusCosine p = transmittance_query(atm, i);
@@ -101,8 +101,8 @@ TEST(AtmosphereDecode, LookupTransmittance) {
   const Texture lut = s.texture("transmittance");
   const GlTexture tex = upload_dds(s.dds_path("transmittance"), s.sampler("transmittance", kClamp));
   const Comparison c = run_case(
-      {"lookup_transmittance", {"transmittance.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
-       "vec4(lookup_transmittance(lut, atm, q0.x, q0.y, q0.z, q0.w > 0.5), 0.0)", {&tex}, 3, "Texture2D<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);",
+      {"lookup_transmittance", {"transmittance.glsl"}, glsl_table2d("lut"),
+       "vec4(lookup_transmittance(lut, atm, q0.x, q0.y, q0.z, q0.w > 0.5), 0.0)", {&tex}, 3, hlsl_table2d("lut"),
        "float4(lookup_transmittance(lut, lut_sampler, atm, q0.x, q0.y, q0.z, q0.w > 0.5), 0.0)", {}},
       s.parameters("transmittance"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         // Any direction: rays toward the ground read the reversed rays.
@@ -123,8 +123,8 @@ TEST(AtmosphereDecode, LookupSunTransmittance) {
   const Texture lut = s.texture("transmittance");
   const GlTexture tex = upload_dds(s.dds_path("transmittance"), s.sampler("transmittance", kClamp));
   const Comparison c = run_case(
-      {"lookup_sun_transmittance", {"transmittance.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
-       "vec4(lookup_sun_transmittance(lut, atm, q0.x, q0.y), 0.0)", {&tex}, 3, "Texture2D<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);",
+      {"lookup_sun_transmittance", {"transmittance.glsl"}, glsl_table2d("lut"),
+       "vec4(lookup_sun_transmittance(lut, atm, q0.x, q0.y), 0.0)", {&tex}, 3, hlsl_table2d("lut"),
        "float4(lookup_sun_transmittance(lut, lut_sampler, atm, q0.x, q0.y), 0.0)", {}},
       s.parameters("transmittance"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const double r = as_float(transmittance_query(atm, i).r);
@@ -299,8 +299,8 @@ TEST(AtmosphereDecode, LookupSunDiskLuminance) {
   const GlTexture tex = upload_dds(s.dds_path("transmittance"), s.sampler("transmittance", kClamp));
   const double alpha = atm.sun_angular_radius_rad;
   const Comparison c = run_case(
-      {"lookup_sun_disk_luminance", {"sky_view.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
-       "vec4(lookup_sun_disk_luminance(atm, lut, vec3(0.0, 0.0, q0.x), q0.yzw, q1.xyz), 0.0)", {&tex}, 3, "Texture2D<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);",
+      {"lookup_sun_disk_luminance", {"sky_view.glsl"}, glsl_table2d("lut"),
+       "vec4(lookup_sun_disk_luminance(atm, lut, vec3(0.0, 0.0, q0.x), q0.yzw, q1.xyz), 0.0)", {&tex}, 3, hlsl_table2d("lut"),
        "float4(lookup_sun_disk_luminance(atm, lut, lut_sampler, float3(0.0, 0.0, q0.x), q0.yzw, q1.xyz), 0.0)", {}},
       s.parameters("transmittance"), [&](size_t i, glm::vec4& q0, glm::vec4& q1) {
         // Viewers from the ground to space; suns from the zenith to below

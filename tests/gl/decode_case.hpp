@@ -125,6 +125,22 @@ inline std::vector<glm::vec4> shape3d_extra(const Texture& t) {
   return {glm::vec4(float(t.width), float(t.height), float(t.depth), 0.0f)};
 }
 
+// The HLSL twin's Scattering3dShape, from the extra(0) of shape3d_extra.
+inline const char* const kHlslLoadShape3d =
+    "Scattering3dShape load_shape3d() {\n  Scattering3dShape s;\n"
+    "  s.height_size = int(extra(0).x);\n  s.view_size = int(extra(0).y);\n"
+    "  s.sun_size = int(extra(0).z);\n  return s;\n}\n";
+
+// One 2D table `name` on unit 0: the GLSL sampler, and the HLSL texture with
+// its sampler `<name>_sampler`.
+inline std::string glsl_table2d(const std::string& name) {
+  return "layout(binding = 0) uniform sampler2D " + name + ";";
+}
+inline std::string hlsl_table2d(const std::string& name) {
+  return "Texture2D<float4> " + name + " : register(t0);\nSamplerState " + name +
+         "_sampler : register(s0);";
+}
+
 inline void set_shape(const ComputeProgram& p, const ScatteringShape& shape) {
   p.set("shape.r_size", shape.r_size);
   p.set("shape.mu_size", shape.mu_size);

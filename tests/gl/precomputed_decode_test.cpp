@@ -251,8 +251,8 @@ TEST(PrecomputedDecode, LookupIrradiance) {
   const GlTexture tex = upload_dds(s.dds_path("irradiance"), s.sampler("irradiance", kClamp));
   const double mu_s_min = s.meta_number("scattering", "mu_s_min");
   const Comparison c = run_case(
-      {"lookup_irradiance", {"bruneton.glsl"}, "layout(binding = 0) uniform sampler2D table;",
-       "vec4(lookup_irradiance(table, atm, q0.x, q0.y), 0.0)", {&tex}, 3, "Texture2D<float4> table : register(t0);\nSamplerState table_sampler : register(s0);",
+      {"lookup_irradiance", {"bruneton.glsl"}, glsl_table2d("table"),
+       "vec4(lookup_irradiance(table, atm, q0.x, q0.y), 0.0)", {&tex}, 3, hlsl_table2d("table"),
        "float4(lookup_irradiance(table, table_sampler, atm, q0.x, q0.y), 0.0)", {}},
       s.parameters("irradiance"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const RadiusCosine p = irradiance_query(atm, i, mu_s_min);
@@ -268,8 +268,8 @@ TEST(PrecomputedDecode, ComputeDirectIrradiance) {
   const Texture lut = s.texture("transmittance");
   const GlTexture tex = upload_dds(s.dds_path("transmittance"), s.sampler("transmittance", kClamp));
   const Comparison c = run_case(
-      {"compute_direct_irradiance", {"bruneton.glsl"}, "layout(binding = 0) uniform sampler2D lut;",
-       "vec4(compute_direct_irradiance(atm, lut, q0.x, q0.y), 0.0)", {&tex}, 3, "Texture2D<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);",
+      {"compute_direct_irradiance", {"bruneton.glsl"}, glsl_table2d("lut"),
+       "vec4(compute_direct_irradiance(atm, lut, q0.x, q0.y), 0.0)", {&tex}, 3, hlsl_table2d("lut"),
        "float4(compute_direct_irradiance(atm, lut, lut_sampler, q0.x, q0.y), 0.0)", {}},
       s.parameters("transmittance"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const double u = unit(i, 120);
@@ -309,7 +309,8 @@ TEST(PrecomputedDecode, LookupScattering3dMieInAlpha) {
        "layout(binding = 0) uniform sampler3D scattering;\nuniform Scattering3dShape shape;",
        "vec4(lookup_scattering3d(scattering, shape, atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
        {&tex}, 3,
-       "Texture3D<float4> scattering : register(t0);\nSamplerState table_sampler : register(s0);\n" "Scattering3dShape load_shape3d() {\n  Scattering3dShape s;\n  s.height_size = int(extra(0).x);\n  s.view_size = int(extra(0).y);\n  s.sun_size = int(extra(0).z);\n  return s;\n}\n",
+       "Texture3D<float4> scattering : register(t0);\nSamplerState table_sampler : register(s0);\n"
+       + std::string(kHlslLoadShape3d),
        "float4(lookup_scattering3d(scattering, table_sampler, load_shape3d(), atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
        shape3d_extra(table)},
       s.parameters("scattering3d"),
@@ -342,7 +343,8 @@ TEST(PrecomputedDecode, LookupScattering3dSeparateMie) {
        "vec4(lookup_scattering3d(scattering, mie, shape, atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
        {&t0, &t1}, 3,
        "Texture3D<float4> scattering : register(t0);\nTexture3D<float4> mie : register(t1);\n"
-       "SamplerState table_sampler : register(s0);\n" "Scattering3dShape load_shape3d() {\n  Scattering3dShape s;\n  s.height_size = int(extra(0).x);\n  s.view_size = int(extra(0).y);\n  s.sun_size = int(extra(0).z);\n  return s;\n}\n",
+       "SamplerState table_sampler : register(s0);\n"
+       + std::string(kHlslLoadShape3d),
        "float4(lookup_scattering3d(scattering, mie, table_sampler, load_shape3d(), atm, q0.x, q0.y, q0.z, q0.w, q1.x > 0.5), 0.0)",
        shape3d_extra(baked.scattering)},
       s.parameters("scattering3d"),
@@ -361,8 +363,8 @@ TEST(PrecomputedDecode, LookupGathering) {
   const Texture table = s.texture("gathering_sum");
   const GlTexture tex = upload_dds(s.dds_path("gathering_sum"), s.sampler("gathering_sum", kClamp));
   const Comparison c = run_case(
-      {"lookup_gathering", {"scattering3d.glsl"}, "layout(binding = 0) uniform sampler2D table;",
-       "vec4(lookup_gathering(table, atm, q0.x, q0.y), 0.0)", {&tex}, 3, "Texture2D<float4> table : register(t0);\nSamplerState table_sampler : register(s0);",
+      {"lookup_gathering", {"scattering3d.glsl"}, glsl_table2d("table"),
+       "vec4(lookup_gathering(table, atm, q0.x, q0.y), 0.0)", {&tex}, 3, hlsl_table2d("table"),
        "float4(lookup_gathering(table, table_sampler, atm, q0.x, q0.y), 0.0)", {}},
       s.parameters("gathering_sum"), [&](size_t i, glm::vec4& q0, glm::vec4&) {
         const AltitudeSunCosine p = gathering_query(atm, i);
