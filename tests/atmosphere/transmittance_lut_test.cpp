@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <mutex>
 #include <vector>
 
@@ -232,22 +233,27 @@ void expect_converges_along_vertical(const Atmosphere& atm, double r, double exa
   }
 }
 
-TEST(ComputeOpticalDepth, ExponentialAlongTheVertical) {
+// Calls f(atm, r, exact optical depth) for vertical rays from three
+// altitudes through one exponential layer of scale height 1.2 or 8 km.
+void for_each_exponential_vertical(
+    const std::function<void(const Atmosphere&, double r, double exact)>& f) {
   const double sigma = 1e-5;
   for (double H : {1.2e3, 8e3}) {
     const Atmosphere atm =
         fixtures::single_component_atmosphere(glm::dvec3(sigma), exponential_profile(H));
     const double top_h = atm.top_radius_m - atm.bottom_radius_m;
-    for (double h0 : {0.0, 1e3, 30e3}) {
-      const double r = atm.bottom_radius_m + h0;
-      const double exact = exponential_vertical_tau(sigma, H, h0, top_h);
-      // Default steps: within 1e-6 relative.
-      EXPECT_NEAR(compute_optical_depth_to_top(atm, r, 1.0, 40).r, exact, 1e-6 * exact)
-          << "H " << H << " h0 " << h0;
-      // Convergence: composite 3-point Gauss-Legendre is 6th order.
-      expect_converges_along_vertical(atm, r, exact, SegmentRule::gauss3, {5, 10, 20, 40, 80});
-    }
+    for (double h0 : {0.0, 1e3, 30e3})
+      f(atm, atm.bottom_radius_m + h0, exponential_vertical_tau(sigma, H, h0, top_h));
   }
+}
+
+TEST(ComputeOpticalDepth, ExponentialAlongTheVertical) {
+  for_each_exponential_vertical([](const Atmosphere& atm, double r, double exact) {
+    // Default steps: within 1e-6 relative.
+    EXPECT_NEAR(compute_optical_depth_to_top(atm, r, 1.0, 40).r, exact, 1e-6 * exact) << "r " << r;
+    // Convergence: composite 3-point Gauss-Legendre is 6th order.
+    expect_converges_along_vertical(atm, r, exact, SegmentRule::gauss3, {5, 10, 20, 40, 80});
+  });
 }
 
 TEST(ComputeOpticalDepth, OzoneTentAlongTheVertical) {
@@ -355,20 +361,12 @@ TEST(ComputeOpticalDepth, TableRuleIsAsExactAsFortyThreePointSteps) {
 // each doubling of the steps divides the error by far more than 8 until it
 // meets rounding.
 TEST(ComputeOpticalDepth, EightPointRuleConvergesAlongTheVertical) {
-  const double sigma = 1e-5;
-  for (double H : {1.2e3, 8e3}) {
-    const Atmosphere atm =
-        fixtures::single_component_atmosphere(glm::dvec3(sigma), exponential_profile(H));
-    const double top_h = atm.top_radius_m - atm.bottom_radius_m;
-    for (double h0 : {0.0, 1e3, 30e3}) {
-      const double r = atm.bottom_radius_m + h0;
-      const double exact = exponential_vertical_tau(sigma, H, h0, top_h);
-      EXPECT_NEAR(compute_optical_depth_to_top(atm, r, 1.0, 6, SegmentRule::gauss8).r, exact,
-                  1e-8 * exact)
-          << "H " << H << " h0 " << h0;
-      expect_converges_along_vertical(atm, r, exact, SegmentRule::gauss8, {1, 2, 4, 8});
-    }
-  }
+  for_each_exponential_vertical([](const Atmosphere& atm, double r, double exact) {
+    EXPECT_NEAR(compute_optical_depth_to_top(atm, r, 1.0, 6, SegmentRule::gauss8).r, exact,
+                1e-8 * exact)
+        << "r " << r;
+    expect_converges_along_vertical(atm, r, exact, SegmentRule::gauss8, {1, 2, 4, 8});
+  });
 }
 
 TEST(ComputeOpticalDepth, SegmentsAddUp) {
