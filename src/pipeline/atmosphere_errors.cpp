@@ -4,6 +4,8 @@
 // transmittance, no table at all. The sky tables' references read the same
 // input tables the bake read (transmittance, multiple scattering), as the
 // report's do, so each table's own error is measured.
+#include <algorithm>
+#include <cmath>
 #include <functional>
 
 #include <tbb/parallel_for.h>
