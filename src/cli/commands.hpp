@@ -40,7 +40,8 @@ struct PlanArgs {
   std::string emit_file;    // file for --emit (default stdout)
   std::string launcher;     // ninja: command prefix for each edge
   int threads = 1;          // --threads of each emitted task
-  int chunk = 1;            // slurm: presets per array task
+  std::string edges = "scene";  // ninja: one edge per "scene" (chunk of scenes) or "product"
+  int chunk = 1;            // presets per slurm array task or ninja scene edge
   int max_parallel = 0;     // slurm: array throttle
   bool strict = false;      // emitted tasks run `bake --strict`
   std::string self;         // path of this executable

@@ -138,7 +138,14 @@ void add_plan_emit_options(CLI::App* cmd, PlanArgs& args) {
   cmd->add_flag("--strict", args.strict,
                "Every emitted task runs `bake --strict`: a warning fails its task")
       ->needs(emit);
-  cmd->add_option("--chunk", args.chunk, "slurm: presets per array task")
+  cmd->add_option("--edges", args.edges,
+                  "ninja: one edge (one process) per scene, baking all its products, or per "
+                  "product")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"scene", "product"}))
+      ->needs(emit);
+  cmd->add_option("--chunk", args.chunk,
+                  "Presets per task: per slurm array task, or per ninja edge of --edges scene")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000))
       ->needs(emit);

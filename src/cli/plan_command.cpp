@@ -18,6 +18,7 @@
 #include "io/bake_log.hpp"
 #include "io/manifest.hpp"
 #include "farm/catalog.hpp"
+#include "farm/emit.hpp"
 #include "farm/farm_graph.hpp"
 #include "pipeline/freshness.hpp"
 #include "pipeline/output_writer.hpp"
@@ -81,6 +82,12 @@ int emit_plan(const std::vector<Scene>& scenes, const PlanArgs& args) {
   if (!args.only.empty()) throw UsageError("--emit plans whole scenes; drop --only");
   if (args.emit == "slurm" && !args.launcher.empty())
     throw UsageError("--launcher applies to --emit ninja only");
+  // A job-array task bakes whole presets: its unit is always the scene.
+  if (args.emit == "slurm" && args.edges == "product")
+    throw UsageError("--edges product applies to --emit ninja only; a slurm array task bakes "
+                     "whole presets (--chunk of them)");
+  if (args.edges == "product" && args.chunk > 1)
+    throw UsageError("--chunk groups scenes; with --edges product every edge is one product");
   const FarmGraph farm = build_farm_graph(scenes, args.out_dir);
   EmitOptions opt;
   opt.skybake = args.self;
@@ -89,6 +96,7 @@ int emit_plan(const std::vector<Scene>& scenes, const PlanArgs& args) {
   opt.chunk = args.chunk;
   opt.max_parallel = args.max_parallel;
   opt.strict = args.strict;
+  opt.edges = args.edges == "product" ? NinjaEdges::kProduct : NinjaEdges::kScene;
   write_or_print(args.emit == "ninja" ? emit_ninja(farm, opt) : emit_slurm(farm, opt),
                  args.emit_file);
   if (!args.emit_file.empty() && args.emit_file != "-")

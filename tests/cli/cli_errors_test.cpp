@@ -41,6 +41,19 @@ TEST(CliErrors, UsageErrorsFromTheParserAreOneLine) {
                "--emit: make not in {ninja,slurm}");
   expect_error(run_skybake({"plan", kEarth, "--emit-file", "x.ninja"}), 2,
                "--emit-file requires --emit");
+  expect_error(run_skybake({"plan", kEarth, "--edges", "scene"}), 2, "--edges requires --emit");
+  expect_error(run_skybake({"plan", kEarth, "--emit", "ninja", "--edges", "step"}), 2,
+               "--edges: step not in {scene,product}");
+}
+
+// A slurm array task bakes whole presets; a product edge cannot hold a chunk of scenes.
+TEST(CliErrors, PlanEdgesAndChunksThatTheEngineCannotRun) {
+  expect_error(run_skybake({"plan", kEarth, "--emit", "slurm", "--edges", "product"}), 2,
+               "--edges product applies to --emit ninja only; a slurm array task bakes whole "
+               "presets (--chunk of them)");
+  expect_error(run_skybake({"plan", kEarth, "--emit", "ninja", "--edges", "product", "--chunk",
+                            "2"}),
+               2, "--chunk groups scenes; with --edges product every edge is one product");
 }
 
 TEST(CliErrors, UnknownOptionIsNamedBeforeWhatItLeavesMissing) {

@@ -47,11 +47,15 @@ TEST(PlanStrict, AWarningFailsTheEmittedTaskOnlyUnderStrict) {
   const fs::path dir = test::fresh_dir("plan_strict");
   const fs::path preset = write_warning_scene(dir);
   ASSERT_EQ(std::system("ninja --version > /dev/null 2>&1"), 0) << "ninja is not installed";
-  EXPECT_EQ(run_emitted_ninja(dir, preset, {}), 0) << test::read_file(dir / "ninja.log");
-  EXPECT_NE(run_emitted_ninja(dir, preset, {"--strict"}), 0)
-      << "the warning must fail the task: " << test::read_file(dir / "ninja.log");
-  EXPECT_NE(test::read_file(dir / "ninja.log").find("error_above_limit"), std::string::npos)
-      << test::read_file(dir / "ninja.log");
+  for (const std::string edges : {"scene", "product"}) {
+    SCOPED_TRACE("--edges " + edges);
+    EXPECT_EQ(run_emitted_ninja(dir, preset, {"--edges", edges}), 0)
+        << test::read_file(dir / "ninja.log");
+    EXPECT_NE(run_emitted_ninja(dir, preset, {"--edges", edges, "--strict"}), 0)
+        << "the warning must fail the task: " << test::read_file(dir / "ninja.log");
+    EXPECT_NE(test::read_file(dir / "ninja.log").find("error_above_limit"), std::string::npos)
+        << test::read_file(dir / "ninja.log");
+  }
 }
 
 TEST(PlanStrict, NeedsEmit) {

@@ -16,6 +16,7 @@
 
 #include "core/error.hpp"
 #include "farm/catalog.hpp"
+#include "farm/emit.hpp"
 #include "farm/stamps.hpp"
 #include "io/atomic_file.hpp"
 #include "io/file_record.hpp"
@@ -213,6 +214,7 @@ TEST_F(FarmGraphTest, NinjaEdgesWaitForTheStampsOfTheirDependencies) {
   const FarmGraph g = graph();
   EmitOptions options;
   options.skybake = "/usr/bin/skybake";
+  options.edges = NinjaEdges::kProduct;
   const std::string ninja = emit_ninja(g, options);
   EXPECT_NE(ninja.find("restat = 1"), std::string::npos);
   const auto stamp = [&](const FarmNode& n) {
@@ -226,6 +228,54 @@ TEST_F(FarmGraphTest, NinjaEdgesWaitForTheStampsOfTheirDependencies) {
     for (const std::string& d : n.deps) EXPECT_NE(line.find(stamp(node(g, d))), std::string::npos);
     for (const std::string& f : n.files)
       EXPECT_NE(line.find(fs::absolute(out_ / f).lexically_normal().string()), std::string::npos);
+  }
+}
+
+// The "build ..." lines of a ninja file.
+std::vector<std::string> build_lines(const std::string& ninja) {
+  std::vector<std::string> lines;
+  for (size_t at = ninja.find("\nbuild "); at != std::string::npos;
+       at = ninja.find("\nbuild ", at + 1))
+    lines.push_back(ninja.substr(at + 1, ninja.find('\n', at + 1) - at - 1));
+  return lines;
+}
+
+// Scene edges: one per scene (or per --chunk of scenes), every stamp of its
+// scenes an explicit output, every file an implicit one, no stamp an input:
+// a scene's dependencies stay inside its process.
+TEST_F(FarmGraphTest, NinjaSceneEdgesOwnEveryStampAndFileOfTheirScenes) {
+  const FarmGraph g = graph();
+  const auto abs = [&](const std::string& p) {
+    return fs::absolute(out_ / p).lexically_normal().string();
+  };
+  for (int chunk : {1, 2}) {
+    SCOPED_TRACE(chunk);
+    EmitOptions options;
+    options.skybake = "/usr/bin/skybake";
+    options.chunk = chunk;
+    const std::string ninja = emit_ninja(g, options);
+    EXPECT_NE(ninja.find("restat = 1"), std::string::npos);
+    EXPECT_EQ(ninja.find("--only"), std::string::npos) << ninja;
+    const std::vector<std::string> lines = build_lines(ninja);
+    // The scene edges, then `build all`.
+    ASSERT_EQ(lines.size(), chunk == 1 ? 3u : 2u) << ninja;
+    for (const FarmNode& n : g.nodes) {
+      SCOPED_TRACE(n.id);
+      const size_t edge = chunk == 1 && n.scene == "b" ? 1 : 0;
+      const std::string& line = lines[edge];
+      const size_t colon = line.find(": bake ");
+      ASSERT_NE(colon, std::string::npos) << line;
+      const std::string outputs = line.substr(0, colon), inputs = line.substr(colon);
+      const size_t bar = outputs.find(" | ");
+      ASSERT_NE(bar, std::string::npos) << line;
+      EXPECT_NE(outputs.substr(0, bar).find(" " + abs(n.stamp)), std::string::npos) << line;
+      for (const std::string& f : n.files)
+        EXPECT_NE(outputs.substr(bar).find(" " + abs(f)), std::string::npos) << line;
+      EXPECT_EQ(inputs.find(abs(n.stamp)), std::string::npos) << "a stamp read by a scene edge";
+      EXPECT_NE(inputs.find(fs::absolute(n.preset).lexically_normal().string()),
+                std::string::npos);
+      EXPECT_NE(lines.back().find(abs(n.stamp)), std::string::npos) << "not in `all`";
+    }
   }
 }
 

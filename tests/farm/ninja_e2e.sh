@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# End to end: a generated catalog baked through `skybake plan --emit ninja`
-# and ninja, against one local `skybake bake` of the same catalog.
+# End to end: a generated catalog baked through `skybake plan --emit ninja
+# --edges product` (one edge per product) and ninja, against one local
+# `skybake bake` of the same catalog. The default scene edges are
+# ninja_scene_e2e.sh's.
 #
 #   tests/farm/ninja_e2e.sh [SKYBAKE]     (default: build/skybake)
 #
@@ -82,7 +84,7 @@ nodes=$scenes  # one node per product: 20 scenes x 1 (+ 3 scenes x 2)
 [ -z "$dep" ] || nodes=$((scenes + 3))
 
 # 1. ninja bakes the catalog like one local bake.
-"$skybake" plan "$cat" --emit ninja -o "$outd" --emit-file "$T/build.ninja"
+"$skybake" plan "$cat" --emit ninja --edges product -o "$outd" --emit-file "$T/build.ninja"
 [ "$(grep -c '^build .*: bake ' "$T/build.ninja")" -eq "$nodes" ] ||
   fail "build.ninja should have $nodes bake edges"
 grep -q 'restat = 1' "$T/build.ninja" || fail "build.ninja: the bake rule has no restat"
@@ -172,7 +174,7 @@ outf="$T/out fail"
 entries=("$cat/*_00[0-5].json")
 fnodes=6
 if [ -n "$dep" ]; then entries+=("$cat/*_02[0-2].json"); fnodes=12; fi
-"$skybake" plan "${entries[@]}" --emit ninja -o "$outf" --emit-file "$T/fail.ninja"
+"$skybake" plan "${entries[@]}" --emit ninja --edges product -o "$outf" --emit-file "$T/fail.ninja"
 [ "$(grep -c '^build .*: bake ' "$T/fail.ninja")" -eq "$fnodes" ] || fail "fail.ninja should have $fnodes edges"
 bad=${dep_scene:-earth_000}
 mkdir -p "$outf/$bad/transmittance.exr"  # the rename onto it fails

@@ -10,7 +10,7 @@
 #
 # Checks:
 #  1. a catalog of 20 presets (23 when a dependent product is registered) baked
-#     through `plan --emit ninja --launcher "srun ..."` and `ninja -j 2` inside
+#     through `plan --emit ninja --edges product --launcher "srun ..."` and `ninja -j 2` inside
 #     `salloc -N2`: exit 0, every edge ran as a job step, outputs, stamps and
 #     manifests byte-identical to a local `skybake bake`;
 #  2. the steps ran on both nodes (a wrapper after srun records
@@ -255,7 +255,7 @@ chmod +x "$T/on_node.sh"
 launcher="srun -N1 -n1 -c1 --exact --quiet $T/on_node.sh"
 
 # 1. ninja + srun inside salloc.
-"$skybake" plan "$cat" --emit ninja --launcher "$launcher" -o "$T/out" --emit-file "$T/build.ninja" 2>/dev/null
+"$skybake" plan "$cat" --emit ninja --edges product --launcher "$launcher" -o "$T/out" --emit-file "$T/build.ninja" 2>/dev/null
 grep -q "^launcher = srun " "$T/build.ninja" || fail "build.ninja has no srun launcher"
 t0=$(date +%s.%N)
 salloc_ninja -f "$T/build.ninja" -j 2
@@ -291,7 +291,7 @@ ok "3. second run: no work to do, no job step"
 entries=("$cat/*_00[0-5].json")
 fnodes=6
 if [ -n "$dep" ]; then entries+=("$cat/*_02[0-2].json"); fnodes=12; fi
-"$skybake" plan "${entries[@]}" --emit ninja --launcher "$launcher" -o "$T/outf" --emit-file "$T/fail.ninja" 2>/dev/null
+"$skybake" plan "${entries[@]}" --emit ninja --edges product --launcher "$launcher" -o "$T/outf" --emit-file "$T/fail.ninja" 2>/dev/null
 bad=${dep_scene:-earth_000}
 mkdir -p "$T/outf/$bad/transmittance.exr"
 salloc_ninja -f "$T/fail.ninja" -j 2 -k 0
