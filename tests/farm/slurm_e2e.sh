@@ -16,6 +16,8 @@
 #  2. the steps ran on both nodes (a wrapper after srun records
 #     $SLURMD_NODENAME for each step);
 #  3. a second run does no work (ninja "no work to do", no new step);
+#     the default scene edges through srun: one step per scene, the same
+#     bytes, no work the second time;
 #  4. a product made to fail (a folder squatting on its output path) fails its
 #     step: ninja exits non-zero through salloc and names it, its dependents
 #     (when a product with dependencies is registered) do not run, and with
@@ -286,6 +288,20 @@ salloc_ninja -f "$T/build.ninja" -j 2
 $nlog"
 [ "$(find "$T/tasks" -type f | wc -l)" -eq "$steps" ] || fail "second run launched job steps"
 ok "3. second run: no work to do, no job step"
+
+# 3b. The default scene edges through srun: one job step per scene.
+"$skybake" plan "$cat" --emit ninja --launcher "$launcher" -o "$T/out_scene" --emit-file "$T/scene.ninja" 2>/dev/null
+steps_before=$(find "$T/tasks" -type f | wc -l)
+salloc_ninja -f "$T/scene.ninja" -j 2
+[ "$rc" -eq 0 ] && [ "$(edges_run "$nlog")" -eq "$scenes" ] || fail "scene edges through srun: exit $rc, expected $scenes edges:
+$nlog"
+scene_steps=$(($(find "$T/tasks" -type f | wc -l) - steps_before))
+[ "$scene_steps" -eq "$scenes" ] || fail "$scene_steps job steps for $scenes scene edges"
+same_outputs "$T/ref" "$T/out_scene"
+salloc_ninja -f "$T/scene.ninja" -j 2
+[ "$rc" -eq 0 ] && grep -q 'no work to do' <<<"$nlog" || fail "second run of scene edges did work:
+$nlog"
+ok "3b. scene edges (the default) through srun: $scene_steps job steps for $scenes scenes, byte-identical to a local bake, then no work"
 
 # 4. A failing product stops its dependents and is reported; -k 0 completes the rest.
 entries=("$cat/*_00[0-5].json")
