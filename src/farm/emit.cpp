@@ -45,7 +45,9 @@ std::string shell_quote(const std::string& s) {
 
 // Absolute paths: the file works from any folder and on any node of a
 // cluster that mounts the same paths.
-std::string absolute(const std::string& p) { return fs::absolute(p).lexically_normal().string(); }
+std::string absolute(const std::string& p) {
+  return fs::absolute(p).lexically_normal().string();
+}
 
 std::string ninja_header(const FarmGraph& graph, const EmitOptions& opt, const char* unit) {
   const std::string out = absolute(graph.out_dir.string());
@@ -99,7 +101,8 @@ std::string product_edges(const FarmGraph& graph, const EmitOptions& opt) {
   for (const FarmNode& n : graph.nodes) {
     all.push_back(stamp[n.id]);
     std::string implicit;
-    for (size_t i = 1; i < n.sources.size(); ++i) implicit += " " + ninja_path(absolute(n.sources[i]));
+    for (size_t i = 1; i < n.sources.size(); ++i)
+      implicit += " " + ninja_path(absolute(n.sources[i]));
     for (const std::string& d : n.deps) implicit += " " + stamp[d];
     implicit += " " + ninja_path(opt.skybake);
     s += fmt::format("build {} |{}: bake {} |{}\n", stamp[n.id], files_of(graph, n),
@@ -126,8 +129,9 @@ std::vector<std::vector<const FarmNode*>> scenes_of(const FarmGraph& graph) {
 // dependencies stay inside its process).
 std::string scene_edges(const FarmGraph& graph, const EmitOptions& opt) {
   std::string s = "rule bake\n";
-  s += fmt::format("  command = $launcher $skybake bake $presets -o $out_dir --threads {} --quiet{}\n",
-                   opt.threads, opt.strict ? " --strict" : "");
+  s += fmt::format(
+      "  command = $launcher $skybake bake $presets -o $out_dir --threads {} --quiet{}\n",
+      opt.threads, opt.strict ? " --strict" : "");
   s += "  description = bake $scenes\n";
   s += "  restat = 1\n\n";
   const auto scenes = scenes_of(graph);
@@ -170,8 +174,7 @@ std::string emit_slurm(const FarmGraph& graph, const EmitOptions& opt) {
   std::vector<std::string> presets;
   for (const FarmNode& n : graph.nodes)
     if (presets.empty() || presets.back() != n.preset) presets.push_back(n.preset);
-  if (presets.empty())
-    throw UsageError("the catalog has no scene presets: no job array to submit");
+  if (presets.empty()) throw UsageError("the catalog has no scene presets: no job array to submit");
   const int chunk = std::max(1, opt.chunk);
   const int tasks = std::max(1, int((presets.size() + chunk - 1) / chunk));
   std::string s = "#!/bin/bash\n";
