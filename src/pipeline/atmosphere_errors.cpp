@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "atmosphere/multiscattering_point.hpp"
 #include "atmosphere/query_points.hpp"
 #include "atmosphere/sky_integrator.hpp"
 #include "pipeline/atmosphere_specs.hpp"
@@ -23,14 +24,18 @@ namespace {
 
 // Query counts: the report's --quick counts (report/*.cpp). References: the
 // fewest steps or directions at which the measured max_rel and rms_rel of
-// the shipped and extreme presets stop moving in their third digit (half
-// of these changes multiscattering's by up to 20%); the report's --quick
-// references take 1-2x as many (tests/report/bake_error_test.cpp compares).
+// the shipped and extreme presets stop moving in their third digit; the
+// report's --quick references take 1-2x as many (tests/report/bake_error_test.cpp
+// compares). Multiple scattering's has a quadrature of its own
+// (atmosphere/multiscattering_point.hpp).
 constexpr int kTransmittanceQueries = 512;
 constexpr int kTransmittanceReferenceSteps = 100;  // the bake's default is 40
 constexpr int kMultiscatteringQueries = 24;
-constexpr int kMultiscatteringReferenceDirections = 256;
-constexpr int kMultiscatteringReferenceSteps = 40;
+// 8 + 34 zenith cosines x 6 azimuths (x 2 mirrored), 48 graded segments:
+// within 1.3e-3 of 4x the zenith cosines, azimuths and steps on the shipped
+// and extreme presets (tests/atmosphere/multiscattering_point_test.cpp,
+// docs/decisions.md "Multiple-scattering error record").
+constexpr PointQuadrature kMultiscatteringReference = {8, 34, 6, 48};
 constexpr int kSkyviewQueries = 128;
 constexpr int kSkyviewReferenceSteps = 300;
 constexpr int kAerialQueries = 256;
@@ -95,23 +100,24 @@ nlohmann::json measure_multiscattering_error(const Scene& scene, const OutputSpe
   if (multiscattering_is_converged(spec))
     return measure_converged_multiscattering_error(scene, spec, in, lut);
   const Atmosphere& atm = scene.atmosphere;
+  const PointRule rule = point_rule(kMultiscatteringReference);
   QueryReads reads(kMultiscatteringQueries);
   tbb::parallel_for(size_t(0), reads.size(), [&](size_t i) {
     const RadiusCosine q = multiscattering_query(atm, i);
     reads[i].first = lookup_multiscattering(lut, atm, q.r, q.mu);
     reads[i].second =
-        compute_multiscattering(atm, *in.at("transmittance"), q.r, q.mu,
-                                multiscattering_rule(DirectionQuadrature::symmetric_gauss,
-                                                     kMultiscatteringReferenceDirections, atm, q.r),
-                                kMultiscatteringReferenceSteps)
-            .psi_ms;
+        multiscattering_at_point(atm, *in.at("transmittance"), q.r, q.mu, rule).psi_ms;
   });
+  const PointQuadrature& quadrature = kMultiscatteringReference;
   return error_record(
-      reads, fmt::format("lookup_multiscattering (bilinear) at points uniform in altitude and sun "
-                         "zenith cosine against the same integral (Hillaire 2020 eq. 5-10) with {} "
-                         "directions of the symmetric Gauss rule and {} steps, reading the same "
-                         "transmittance table",
-                         kMultiscatteringReferenceDirections, kMultiscatteringReferenceSteps));
+      reads,
+      fmt::format("lookup_multiscattering (bilinear) at points uniform in altitude and sun "
+                  "zenith cosine against the same integral (Hillaire 2020 eq. 5-10) at the "
+                  "points themselves: {} + {} zenith cosines split at the horizon, Gauss-Legendre "
+                  "in s where mu = mu_h -+ c s^2, x {} azimuths mirrored, {} segments per ray "
+                  "graded toward the densest air (multiscattering_at_point), reading the same "
+                  "transmittance table",
+                  quadrature.below, quadrature.above, 2 * quadrature.azimuths, quadrature.steps));
 }
 
 namespace {

@@ -1,0 +1,187 @@
+#include "atmosphere/multiscattering_point.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "atmosphere/geometry.hpp"
+#include "atmosphere/phase.hpp"
+#include "atmosphere/sky_integrator.hpp"
+#include "atmosphere/transmittance_lut.hpp"
+#include "core/math.hpp"
+
+namespace skybake {
+namespace {
+
+// One zenith cosine's march from the point, everything but the sun.
+struct RingMarch {
+  std::vector<double> distances;                 // where each segment is lit (weight_centroid)
+  std::vector<double> inverse_radii;             // 1 / the radius there (at least Rb)
+  std::vector<glm::dvec3> scattered;             // T sigma_s (1 - exp(-sigma_t dt)) / sigma_t
+  std::vector<TransmittanceAtRadius> sun_reads;  // the sun's lookups at those radii
+  glm::dvec3 l_f{0.0};                           // eq. 8: the sum of `scattered`
+  bool ground = false;                           // the ray ends on the ground
+  double length = 0.0;                           // to the ground or the top
+  glm::dvec3 ground_transmittance{1.0};          // T from the point to the ground
+};
+
+// Zenith cosines and the fraction of 4 pi each ring stands for: mu = mu_h -+
+// c s^2 on each side of the horizon, dmu = 2 c s ds, a ring's solid angle
+// 2 pi dmu; s the Gauss-Legendre nodes on [0, 1].
+void zenith_rule(const PointRule& rule, double mu_h, std::vector<double>& mus,
+                 std::vector<double>& weights) {
+  mus.clear();
+  weights.clear();
+  const auto side = [&](const std::vector<double>& x, const std::vector<double>& w, double width,
+                        double sign) {
+    for (size_t i = 0; i < x.size(); ++i) {
+      const double s = 0.5 + 0.5 * x[i], ws = 0.5 * w[i];
+      mus.push_back(mu_h + sign * width * s * s);
+      weights.push_back(ws * width * s);
+    }
+  };
+  side(rule.below_nodes, rule.below_weights, mu_h + 1.0, -1.0);
+  side(rule.above_nodes, rule.above_weights, 1.0 - mu_h, 1.0);
+}
+
+// Segment ends on [0, length] of the ray (r, mu): cut at the perigee, each
+// piece's segments (in proportion to its length, at least one) graded s^2
+// toward its lower end.
+void segment_ends(double r, double mu, double length, int steps, std::vector<double>& ends) {
+  ends.assign(1, 0.0);
+  const double perigee = -r * mu;
+  const bool split = perigee > 1e-9 * length && perigee < (1.0 - 1e-9) * length;
+  const int first = split ? std::clamp(int(std::lround(steps * perigee / length)), 1, steps - 1)
+                          : steps;
+  const auto piece = [&](double a, double b, int n) {
+    // Descending to the perigee (or to the ground): the low end is b.
+    const bool descending = b <= perigee;
+    for (int k = 1; k <= n; ++k) {
+      const double g = double(k) / n;
+      ends.push_back(descending ? b - (b - a) * (1.0 - g) * (1.0 - g) : a + (b - a) * g * g);
+    }
+  };
+  if (split && steps >= 2) {
+    piece(0.0, perigee, first);
+    piece(perigee, length, steps - first);
+  } else {
+    piece(0.0, length, steps);
+  }
+  ends.back() = length;
+}
+
+// Where in a segment of length dt the light it scatters comes from: the
+// centroid of exp(-sigma s) on [0, dt], 1 / sigma - dt / expm1(sigma dt),
+// with sigma the channels' mean extinction. dt / 2 in thin air; about
+// 1 / sigma from the segment's start where the segment is optically thick,
+// so the sun is read where the light scatters, not at a midpoint it never
+// reaches (the stiff extreme presets).
+double weight_centroid(glm::dvec3 extinction, double dt) {
+  const double x = (extinction.x + extinction.y + extinction.z) / 3.0 * dt;
+  const double fraction = x < 1e-4 ? 0.5 - x / 12.0 : 1.0 / x - 1.0 / std::expm1(x);
+  return fraction * dt;
+}
+
+void march_ring(const Atmosphere& atm, const Texture& transmittance_lut, double r, double mu,
+                int steps, std::vector<double>& ends, RingMarch& out) {
+  out.distances.clear();
+  out.inverse_radii.clear();
+  out.scattered.clear();
+  out.sun_reads.clear();
+  out.l_f = glm::dvec3(0.0);
+  const double rb = atm.bottom_radius_m;
+  out.ground = ray_intersects_ground(rb, r, mu);
+  out.length = distance_to_nearest_boundary(rb, atm.top_radius_m, r, mu, out.ground);
+  glm::dvec3 transmittance(1.0);
+  segment_ends(r, mu, out.length, std::max(steps, 1), ends);
+  for (size_t i = 0; i + 1 < ends.size(); ++i) {
+    const double dt = ends[i + 1] - ends[i];
+    if (!(dt > 0.0)) continue;
+    // The medium at the segment's midpoint, as the table's march samples it.
+    const double radius = std::max(radius_after(r, mu, 0.5 * (ends[i] + ends[i + 1])), rb);
+    const MediumSample medium = sample_medium(atm, radius - rb);
+    if (medium.extinction == glm::dvec3(0.0)) continue;
+    const SegmentWeights w = segment_weights(medium.extinction, dt);
+    const glm::dvec3 scattered = transmittance * medium.scattering * w.weight;
+    const double lit_at = ends[i] + weight_centroid(medium.extinction, dt);
+    const double lit_radius = std::max(radius_after(r, mu, lit_at), rb);
+    out.distances.push_back(lit_at);
+    out.inverse_radii.push_back(1.0 / lit_radius);
+    out.scattered.push_back(scattered);
+    out.sun_reads.push_back(transmittance_at_radius(transmittance_lut, atm, lit_radius));
+    out.l_f += scattered;
+    transmittance *= w.transmittance;
+  }
+  out.ground_transmittance = transmittance;
+}
+
+// The ring's L' of eq. 6 (E_I = 1) summed over its azimuths, each a
+// direction whose cosine with the sun is cosines[j]: a sample at distance t
+// sees the sun at zenith cosine (r mu_s + t c) / r_t, since the point is
+// (0, 0, r). Per sample the azimuths' sun transmittances are summed first
+// and scaled by the sun-independent `scattered` once.
+glm::dvec3 lit_ring(const Atmosphere& atm, const Texture& transmittance_lut, const RingMarch& m,
+                    double r, double mu_s, const std::vector<double>& cosines) {
+  const double rb = atm.bottom_radius_m;
+  const double height = r * mu_s;
+  glm::dvec3 l_prime(0.0);
+  for (size_t i = 0; i < m.distances.size(); ++i) {
+    glm::dvec3 sun(0.0);
+    for (double c : cosines)
+      sun += lookup_sun_transmittance(transmittance_lut, m.sun_reads[i], rb,
+                                      (height + m.distances[i] * c) * m.inverse_radii[i]);
+    l_prime += m.scattered[i] * sun;
+  }
+  l_prime *= isotropic_phase();
+  if (!m.ground) return l_prime;
+  for (double c : cosines) {
+    const double mu_ground = clamp_cosine((height + m.length * c) / rb);
+    if (mu_ground > 0.0)
+      l_prime += m.ground_transmittance *
+                 lookup_sun_transmittance(transmittance_lut, atm, rb, mu_ground) * mu_ground *
+                 atm.ground_albedo / kPi;
+  }
+  return l_prime;
+}
+
+}  // namespace
+
+PointRule point_rule(const PointQuadrature& quadrature) {
+  PointRule rule;
+  rule.quadrature = quadrature;
+  rule.quadrature.azimuths = std::max(quadrature.azimuths, 1);
+  rule.quadrature.steps = std::max(quadrature.steps, 1);
+  if (quadrature.below > 0) gauss_legendre(quadrature.below, rule.below_nodes, rule.below_weights);
+  if (quadrature.above > 0) gauss_legendre(quadrature.above, rule.above_nodes, rule.above_weights);
+  return rule;
+}
+
+MultiscatteringSample multiscattering_at_point(const Atmosphere& atm,
+                                               const Texture& transmittance_lut, double r,
+                                               double mu_s, const PointRule& rule) {
+  r = std::clamp(r, atm.bottom_radius_m, atm.top_radius_m);
+  mu_s = clamp_cosine(mu_s);
+  const double ratio = atm.bottom_radius_m / r;
+  std::vector<double> mus, ring_weights, ends, cosines;
+  zenith_rule(rule, -safe_sqrt(1.0 - ratio * ratio), mus, ring_weights);
+  const int azimuths = rule.quadrature.azimuths;
+  const double sun_x = safe_sqrt(1.0 - mu_s * mu_s);
+  MultiscatteringSample out;
+  RingMarch march;
+  for (size_t k = 0; k < mus.size(); ++k) {
+    march_ring(atm, transmittance_lut, r, mus[k], rule.quadrature.steps, ends, march);
+    const double sin_zenith = safe_sqrt(1.0 - mus[k] * mus[k]);
+    cosines.clear();
+    for (int j = 0; j < azimuths; ++j)
+      cosines.push_back(sin_zenith * std::cos(kPi * (j + 0.5) / azimuths) * sun_x +
+                        mus[k] * mu_s);
+    out.l2 += ring_weights[k] / azimuths *
+              lit_ring(atm, transmittance_lut, march, r, mu_s, cosines);
+    out.f_ms += ring_weights[k] * march.l_f;
+  }
+  const glm::dvec3 f = glm::min(out.f_ms, glm::dvec3(kMaxMultiscatteringTransfer));
+  out.psi_ms = out.l2 / (1.0 - f);  // eq. 9-10
+  return out;
+}
+
+}  // namespace skybake
