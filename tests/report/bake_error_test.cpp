@@ -72,11 +72,11 @@ TEST(BakeErrorReferences, TransmittanceFromScratchMeetsQuadrature) {
   ErrorTally tally;
   for (size_t i = 0; i < 512; ++i) {
     const RadiusCosine q = transmittance_query(atm, i);
-    const glm::dvec3 t = compute_transmittance_to_top(atm, q.r, q.mu, 100);
+    const glm::dvec3 t = compute_transmittance_to_top(atm, q.r, q.mu, 40);
     const glm::dvec3 ref = reference_transmittance_to_top(atm, q.r, q.mu, 1e-10).value;
     for (int c = 0; c < 3; ++c) tally.add(t[c], ref[c]);
   }
-  EXPECT_LT(tally.stats().max_rel, 1e-8);  // measured 1.2e-9; the table's own: 2e-2
+  EXPECT_LT(tally.stats().max_rel, 2e-6);  // measured 3.7e-7 (1.2e-9 at 100 steps); the table's own: 2e-2
 }
 
 // A shipped preset baked once, its manifest's error per output.
