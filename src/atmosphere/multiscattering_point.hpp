@@ -39,10 +39,10 @@
 namespace skybake {
 
 struct PointQuadrature {
-  int below = 8;     // zenith cosines below the horizon (rays that meet the ground)
-  int above = 34;    // zenith cosines above it
+  int below = 6;     // zenith cosines below the horizon (rays that meet the ground)
+  int above = 24;    // zenith cosines above it
   int azimuths = 6;  // per zenith cosine on the half circle (2x on the whole circle)
-  int steps = 48;    // segments per ray
+  int steps = 40;    // segments per ray
 };
 
 // A PointQuadrature with its Gauss-Legendre nodes worked out, for many points.

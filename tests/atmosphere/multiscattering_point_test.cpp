@@ -18,7 +18,7 @@ namespace skybake {
 namespace {
 
 // The record's rule (pipeline/atmosphere_errors.cpp).
-constexpr PointQuadrature kRecord = {8, 34, 6, 48};
+constexpr PointQuadrature kRecord = {6, 24, 6, 40};
 constexpr size_t kRecordQueries = 24;
 
 TEST(MultiscatteringAtPoint, LitGroundAloneAtGroundLevel) {
@@ -66,11 +66,12 @@ ErrorStats against_finer(const Atmosphere& atm) {
 }
 
 TEST(MultiscatteringAtPoint, RecordRuleConvergedOnEarthAndTheTinyPlanetPreset) {
-  // Measured 1.1e-3 / 2.0e-4 on Earth, whose table's own error at these
-  // points is max_rel ~1.1, rms_rel ~0.19.
+  // Measured 2.3e-3 / 3.8e-4 on Earth, whose table's own error at these
+  // points is max_rel ~1.1, rms_rel ~0.19 (the table's integrator at 256 rays
+  // x 40 steps, the record's rule before, is 6e-3 / 1.3e-3 off).
   const ErrorStats earth = against_finer(fixtures::earth_atmosphere());
-  EXPECT_LT(earth.max_rel, 2e-3);
-  EXPECT_LT(earth.rms_rel, 5e-4);
+  EXPECT_LT(earth.max_rel, 4e-3);
+  EXPECT_LT(earth.rms_rel, 8e-4);
   // presets/tiny_planet.json: a 0.5 km Mie layer on a 50 km planet, the
   // shipped preset that needs the most steps.
   Atmosphere tiny;
@@ -82,9 +83,9 @@ TEST(MultiscatteringAtPoint, RecordRuleConvergedOnEarthAndTheTinyPlanetPreset) {
                                exponential_profile(3e3), PhaseKind::rayleigh),
       fixtures::make_component("mie", glm::dvec3(39.96e-6), glm::dvec3(4.44e-6),
                                exponential_profile(0.5e3), PhaseKind::cornette_shanks, 0.75)};
-  const ErrorStats t = against_finer(tiny);
-  EXPECT_LT(t.max_rel, 3e-3);
-  EXPECT_LT(t.rms_rel, 1e-3);
+  const ErrorStats t = against_finer(tiny);  // measured 2.0e-3 / 5.9e-4
+  EXPECT_LT(t.max_rel, 4e-3);
+  EXPECT_LT(t.rms_rel, 1.2e-3);
 }
 
 TEST(MultiscatteringAtPoint, RecordRuleConvergedOnStiffMedia) {
@@ -93,19 +94,19 @@ TEST(MultiscatteringAtPoint, RecordRuleConvergedOnStiffMedia) {
   Atmosphere dense = fixtures::earth_atmosphere();
   for (MediumComponent& c : dense.components)
     if (c.name == "rayleigh") c.scattering_per_m *= 100.0;
-  // Measured 5.4e-3 / 1.6e-3 and 1.2e-3 / 3.0e-4.
+  // Measured 7.5e-3 / 2.3e-3 and 3.5e-3 / 5.9e-4.
   const ErrorStats d = against_finer(dense);
-  EXPECT_LT(d.max_rel, 1e-2);
-  EXPECT_LT(d.rms_rel, 3e-3);
+  EXPECT_LT(d.max_rel, 1.5e-2);
+  EXPECT_LT(d.rms_rel, 5e-3);
   const ErrorStats tiny = against_finer(fixtures::tiny_planet_atmosphere());
-  EXPECT_LT(tiny.max_rel, 3e-3);
-  EXPECT_LT(tiny.rms_rel, 1e-3);
+  EXPECT_LT(tiny.max_rel, 7e-3);
+  EXPECT_LT(tiny.rms_rel, 1.2e-3);
 }
 
 TEST(MultiscatteringAtPoint, AgreesWithTheTableIntegratorAtManyRays) {
   // compute_multiscattering with 1024 rays of the symmetric Gauss rule
   // (linear in mu) and 160 uniform midpoint segments: the same integral by
-  // another quadrature, converged to ~4e-4 on Earth. Measured 8.4e-4 / 1.7e-4.
+  // another quadrature, converged to ~4e-4 on Earth. Measured 2.5e-3 / 4.0e-4.
   const Atmosphere atm = fixtures::earth_atmosphere();
   const Texture t = bake_transmittance_lut(atm, TransmittanceLutSpec{}, {});
   std::vector<glm::dvec3> table_rule;
@@ -119,8 +120,8 @@ TEST(MultiscatteringAtPoint, AgreesWithTheTableIntegratorAtManyRays) {
             .psi_ms);
   }
   const ErrorStats s = compare(at_queries(atm, t, kRecord), table_rule);
-  EXPECT_LT(s.max_rel, 2e-3);
-  EXPECT_LT(s.rms_rel, 5e-4);
+  EXPECT_LT(s.max_rel, 4e-3);
+  EXPECT_LT(s.rms_rel, 8e-4);
 }
 
 }  // namespace
