@@ -45,8 +45,9 @@ constexpr int kAerialQueries = 256;
 // Steps over the whole depth range; a query marches as many as its distance
 // needs for the same step length (at least kAerialMinSteps), so a short
 // query costs less and no query is marched with longer steps than a
-// full-range one.
-constexpr int kAerialReferenceSteps = 200;
+// full-range one. 100: the shipped presets' records are those of 1600 to 3
+// digits (docs/decisions.md "Multiple-scattering error record").
+constexpr int kAerialReferenceSteps = 100;
 constexpr int kAerialMinSteps = 8;
 
 }  // namespace
