@@ -51,8 +51,8 @@ void segment_ends(double r, double mu, double length, int steps, std::vector<dou
   ends.assign(1, 0.0);
   const double perigee = -r * mu;
   const bool split = perigee > 1e-9 * length && perigee < (1.0 - 1e-9) * length;
-  const int first = split ? std::clamp(int(std::lround(steps * perigee / length)), 1, steps - 1)
-                          : steps;
+  const int first =
+      split ? std::clamp(int(std::lround(steps * perigee / length)), 1, steps - 1) : steps;
   const auto piece = [&](double a, double b, int n) {
     // Descending to the perigee (or to the ground): the low end is b.
     const bool descending = b <= perigee;
@@ -173,10 +173,9 @@ MultiscatteringSample multiscattering_at_point(const Atmosphere& atm,
     const double sin_zenith = safe_sqrt(1.0 - mus[k] * mus[k]);
     cosines.clear();
     for (int j = 0; j < azimuths; ++j)
-      cosines.push_back(sin_zenith * std::cos(kPi * (j + 0.5) / azimuths) * sun_x +
-                        mus[k] * mu_s);
-    out.l2 += ring_weights[k] / azimuths *
-              lit_ring(atm, transmittance_lut, march, r, mu_s, cosines);
+      cosines.push_back(sin_zenith * std::cos(kPi * (j + 0.5) / azimuths) * sun_x + mus[k] * mu_s);
+    out.l2 +=
+        ring_weights[k] / azimuths * lit_ring(atm, transmittance_lut, march, r, mu_s, cosines);
     out.f_ms += ring_weights[k] * march.l_f;
   }
   const glm::dvec3 f = glm::min(out.f_ms, glm::dvec3(kMaxMultiscatteringTransfer));

@@ -28,7 +28,8 @@ TEST(MultiscatteringAtPoint, LitGroundAloneAtGroundLevel) {
   atm.ground_albedo = glm::dvec3(0.1, 0.3, 0.5);
   const Texture t = bake_transmittance_lut(atm, {64, 16, 4}, {});
   for (double mu_s : {1.0, 0.4, 0.01}) {
-    const MultiscatteringSample s = multiscattering_at_point(atm, t, atm.bottom_radius_m, mu_s, point_rule(kRecord));
+    const MultiscatteringSample s =
+        multiscattering_at_point(atm, t, atm.bottom_radius_m, mu_s, point_rule(kRecord));
     for (int c = 0; c < 3; ++c)
       EXPECT_NEAR(s.psi_ms[c], atm.ground_albedo[c] * mu_s / (2.0 * kPi), 1e-14) << mu_s;
     EXPECT_EQ(s.f_ms, glm::dvec3(0.0));
@@ -113,10 +114,9 @@ TEST(MultiscatteringAtPoint, AgreesWithTheTableIntegratorAtManyRays) {
   for (size_t i = 0; i < kRecordQueries; ++i) {
     const RadiusCosine q = multiscattering_query(atm, i);
     table_rule.push_back(
-        compute_multiscattering(atm, t, q.r, q.mu,
-                                multiscattering_rule(DirectionQuadrature::symmetric_gauss, 1024,
-                                                     atm, q.r),
-                                160)
+        compute_multiscattering(
+            atm, t, q.r, q.mu,
+            multiscattering_rule(DirectionQuadrature::symmetric_gauss, 1024, atm, q.r), 160)
             .psi_ms);
   }
   const ErrorStats s = compare(at_queries(atm, t, kRecord), table_rule);
