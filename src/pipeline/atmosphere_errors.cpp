@@ -118,10 +118,9 @@ nlohmann::json measure_multiscattering_error(const Scene& scene, const OutputSpe
       fmt::format("lookup_multiscattering (bilinear) at points uniform in altitude and sun "
                   "zenith cosine against the same integral (Hillaire 2020 eq. 5-10) at the "
                   "points themselves: {} + {} zenith cosines split at the horizon, Gauss-Legendre "
-                  "in s where mu = mu_h -+ c s^2, x {} azimuths ({} lit, each with its mirror image across "
-                  "the sun's plane), {} segments per ray "
-                  "graded toward the densest air (multiscattering_at_point), reading the same "
-                  "transmittance table",
+                  "in s where mu = mu_h -+ c s^2, x {} azimuths ({} lit, each with its mirror "
+                  "image across the sun's plane), {} segments per ray graded toward the densest "
+                  "air (multiscattering_at_point), reading the same transmittance table",
                   quadrature.below, quadrature.above, 2 * quadrature.azimuths, quadrature.azimuths,
                   quadrature.steps));
 }
