@@ -74,13 +74,17 @@ bool packed(const OutputSpec& spec) {
 Texture bake_shape(const Scene&, const OutputSpec& spec, const ProductInputs&,
                    const BakeContext& ctx) {
   Texture tex = bake_noise_shape(shape_spec(spec), ctx);
-  return packed(spec) ? pack_single_channel(tex, shape_pack_weights()) : tex;
+  // Not a conditional expression: its unpacked branch would copy the volume
+  // (one serial pass over a fresh buffer); `return tex` moves it.
+  if (packed(spec)) return pack_single_channel(tex, shape_pack_weights());
+  return tex;
 }
 
 Texture bake_detail(const Scene&, const OutputSpec& spec, const ProductInputs&,
                     const BakeContext& ctx) {
   Texture tex = bake_noise_detail(detail_spec(spec), ctx);
-  return packed(spec) ? pack_single_channel(tex, detail_pack_weights()) : tex;
+  if (packed(spec)) return pack_single_channel(tex, detail_pack_weights());
+  return tex;
 }
 
 Texture bake_curl_noise(const Scene&, const OutputSpec& spec, const ProductInputs&,
