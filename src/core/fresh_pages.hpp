@@ -1,0 +1,27 @@
+// Faulting in the pages of a fresh allocation on every thread.
+//
+// A large buffer from malloc is fresh anonymous memory: its first write costs
+// a page fault per 4 KB page, in which the kernel zeroes the page and charges
+// it to the process. For a 32 MB volume that is 8192 faults, 15-20 ms of CPU
+// on the development machine, more than zeroing the memory itself; done by
+// the thread that allocates, it is a serial prefix of every parallel bake
+// (docs/decisions.md "Threads: the serial parts of a bake").
+#pragma once
+
+#include <cstddef>
+
+namespace skybake {
+
+// Asks the kernel to fault in every whole page of [p, p + bytes) for
+// writing, split into chunks run by TBB's threads (madvise
+// MADV_POPULATE_WRITE, Linux 5.14). It writes nothing a program can see: a
+// fresh page still reads as zeros and a present one keeps its contents.
+// Where the call is not available or fails, it does nothing, and the pages
+// fault when first written, as before.
+void populate_pages(void* p, size_t bytes);
+
+// Below this size a buffer is zeroed by the allocating thread alone: the
+// faults cost less than waking the workers.
+constexpr size_t kPopulateMinBytes = size_t(1) << 20;
+
+}  // namespace skybake
