@@ -8,12 +8,30 @@
 #include <emmintrin.h>
 #endif
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "core/math.hpp"
 #include "noise/perlin.hpp"
 #include "noise/worley.hpp"
 
 namespace skybake {
 namespace {
+
+// f(z) for every plane z of a period^3 table, planes side by side: a table
+// is one hash per cell, and the largest (64^3 cells for the default shape
+// volume, a few ms) would otherwise stand alone before the bake's loop.
+// Each cell is written once from its own coordinates: the same table for
+// any thread count. Below 4096 cells a task, the planes stay together.
+template <typename F>
+void for_each_plane(int period, const F& f) {
+  const size_t plane = size_t(period) * size_t(period);
+  const int grain = int(std::max<size_t>(1, 4096 / plane));
+  tbb::parallel_for(tbb::blocked_range<int>(0, period, grain),
+                    [&](const tbb::blocked_range<int>& zs) {
+                      for (int z = zs.begin(); z < zs.end(); ++z) f(z);
+                    });
+}
 
 // value[l] = 1 - sqrt(min(1, min_k (f[l] - (shift_k + ox[k]))^2 + q[k])) for 4
 // voxels of one cell at cell-local positions f, where the candidates k of
@@ -62,7 +80,7 @@ WorleyRows::WorleyRows(int size, int period, uint32_t seed)
   assert(size > 0 && period > 0);
   const size_t cells = size_t(period) * period * period;
   for (auto* a : {&offset_x_, &offset_y_, &offset_z_}) a->resize(cells);
-  for (int z = 0; z < period; ++z)
+  for_each_plane(period, [&](int z) {
     for (int y = 0; y < period; ++y)
       for (int x = 0; x < period; ++x) {
         const size_t i = (size_t(z) * period + y) * period + x;
@@ -71,6 +89,7 @@ WorleyRows::WorleyRows(int size, int period, uint32_t seed)
         offset_y_[i] = o.y;
         offset_z_[i] = o.z;
       }
+  });
   // cell_begin_[c] = first voxel whose centre lies in cell c (coordinates increase).
   int c = 0;
   for (int i = 0; i < size + 3; ++i) {
@@ -144,10 +163,11 @@ PerlinRows::PerlinRows(int size, int period, uint32_t seed)
     : size_(size), period_(period), frac_(size), fade_(size), cell_(size) {
   assert(size > 0 && period > 0);
   gradients_.resize(size_t(period) * period * period);
-  for (int z = 0; z < period; ++z)
+  for_each_plane(period, [&](int z) {
     for (int y = 0; y < period; ++y)
       for (int x = 0; x < period; ++x)
         gradients_[(size_t(z) * period + y) * period + x] = perlin3_lattice_gradient(x, y, z, seed);
+  });
   for (int i = 0; i < size; ++i) {
     const float u = cell_coord_from_texel(i, size, period);
     const float fl = std::floor(u);
