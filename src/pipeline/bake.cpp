@@ -1,5 +1,6 @@
 #include "pipeline/bake.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <exception>
 #include <optional>
@@ -9,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/metadata_json.hpp"
+#include "core/worker_start.hpp"
 #include "io/atomic_file.hpp"
 #include "io/bake_log.hpp"
 #include "io/file_record.hpp"
@@ -66,6 +68,9 @@ class SceneBake {
     before_ = read_manifest(manifest_path());
     log_ = read_bake_log(log_path());
     mark_stale();
+    // Something to compute or read back: TBB's workers start while this
+    // thread reads the inputs and sets up the first bake (core/worker_start.hpp).
+    if (std::find(needed_.begin(), needed_.end(), 1) != needed_.end()) start_workers();
     std::exception_ptr failure;  // what was recorded before a failure stays recorded
     for (size_t i = 0; i < graph_.nodes.size() && !failure; ++i) try {
         visit(i);
