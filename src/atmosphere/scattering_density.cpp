@@ -1,7 +1,7 @@
 // The scattering density J_k of the 4D table: the direct quadrature and the
 // fast path (Rayleigh from the incident field's moments, Mie over the
-// directions in SSE). See scattering_orders.hpp for the equations and for
-// how the work is shared between texels.
+// directions in SIMD, mie_batch.hpp). See scattering_orders.hpp for the
+// equations and for how the work is shared between texels.
 #include "atmosphere/scattering_density.hpp"
 
 #include <algorithm>
@@ -10,10 +10,8 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
+#include "atmosphere/mie_batch.hpp"
 #include "atmosphere/phase.hpp"
 #include "core/math.hpp"
 
@@ -44,121 +42,6 @@ inline double quadratic_form(const double m[6], const glm::dvec3& v) {
   return m[0] * v.x * v.x + m[1] * v.y * v.y + m[2] * v.z * v.z +
          2.0 * (m[3] * v.x * v.y + m[4] * v.x * v.z + m[5] * v.y * v.z);
 }
-
-// The part of the Mie phase that does not cancel in the normalized
-// quadrature: Cornette-Shanks (1 + c^2) / w^1.5, Henyey-Greenstein 1 / w^1.5,
-// w = 1 + g^2 - 2 g c (phase.hpp up to constant factors), written
-// w = (1 - g)^2 + 2 g (1 - c) so that it stays > 0 in single precision for
-// g -> 1 (g = 0.999: w = 1e-6 in the forward direction, where 1 + g^2 - 2 g c
-// would cancel to rounding noise or below zero).
-struct MieKernel {
-  double a = 1.0, b = 0.0;  // (1 - g)^2, 2 g
-  bool cornette_shanks = true;
-  explicit MieKernel(const ScatteringPhases& p)
-      : a((1.0 - p.mie_g) * (1.0 - p.mie_g)),
-        b(2.0 * p.mie_g),
-        cornette_shanks(p.mie_phase == PhaseKind::cornette_shanks) {}
-};
-
-// The grid and one incident field as float arrays for the per-texel Mie
-// loop: the one loop of the bake that runs (texels x directions) times, 0.5 G
-// at default sizes, so it runs in SSE single precision (lanes accumulate
-// ~64 terms each: relative rounding ~1e-6, well below the quadrature's
-// error). The field is symmetric about the sun's vertical plane (azimuths m
-// and azimuths - 1 - m hold the same radiance, compute_incident_radiance),
-// so a direction and its mirror (x, -y, z) are one pair: one load of the
-// field, and their two phases over one division,
-//   k+ + k- = (n+ q- + n- q+) / (q+ q-),  k = n / q,  q = w^1.5.
-// Pairs padded to a multiple of 4 with zero weights.
-struct MieBatch {
-  size_t n = 0;
-  std::vector<size_t> first;  // grid index of each pair's direction with y > 0
-  std::vector<float> x, y, z, dw, lr, lg, lb;
-
-  explicit MieBatch(const SphereGrid& grid) {
-    const int half = grid.azimuths / 2;
-    for (int l = 0; l < grid.bands; ++l)
-      for (int m = 0; m < half; ++m) first.push_back(size_t(l) * grid.azimuths + m);
-    n = (first.size() + 3) / 4 * 4;
-    for (auto* v : {&x, &y, &z, &dw, &lr, &lg, &lb}) v->assign(n, 0.0f);
-    for (size_t k = 0; k < first.size(); ++k) {
-      const glm::dvec3& w = grid.directions[first[k]];
-      x[k] = float(w.x);
-      y[k] = float(w.y);
-      z[k] = float(w.z);
-      dw[k] = float(grid.solid_angle[first[k]]);
-    }
-    grid_azimuths = grid.azimuths;
-  }
-  // The pair's mean radiance (the two are equal for the density's fields).
-  void set_field(const std::vector<glm::dvec3>& L) {
-    for (size_t k = 0; k < first.size(); ++k) {
-      const size_t j = first[k], mirror = j + grid_azimuths - 1 - 2 * (j % grid_azimuths);
-      const glm::dvec3 mean = 0.5 * (L[j] + L[mirror]);
-      lr[k] = float(mean.r * dw[k]);
-      lg[k] = float(mean.g * dw[k]);
-      lb[k] = float(mean.b * dw[k]);
-    }
-  }
-  // sum_j k(v . w_j) L_j dw_j (RGB) and sum_j k(v . w_j) dw_j (out[3]),
-  // over both directions of every pair.
-  void sums(const MieKernel& k, const glm::dvec3& v, double out[4]) const {
-    float lanes[4][4];
-#if defined(__SSE2__)
-    const __m128 vx = _mm_set1_ps(float(v.x)), vy = _mm_set1_ps(float(v.y)),
-                 vz = _mm_set1_ps(float(v.z));
-    const __m128 a = _mm_set1_ps(float(k.a)), b = _mm_set1_ps(float(k.b));
-    const __m128 one = _mm_set1_ps(1.0f), zero = _mm_setzero_ps();
-    const __m128 cs = _mm_set1_ps(k.cornette_shanks ? 1.0f : 0.0f);
-    __m128 sr = _mm_setzero_ps(), sg = sr, sb = sr, sw = sr;
-    for (size_t j = 0; j < n; j += 4) {
-      const __m128 in_plane =
-          _mm_add_ps(_mm_mul_ps(vx, _mm_loadu_ps(&x[j])), _mm_mul_ps(vz, _mm_loadu_ps(&z[j])));
-      const __m128 across = _mm_mul_ps(vy, _mm_loadu_ps(&y[j]));
-      const __m128 cp = _mm_add_ps(in_plane, across), cm = _mm_sub_ps(in_plane, across);
-      const __m128 wp = _mm_add_ps(a, _mm_mul_ps(b, _mm_max_ps(_mm_sub_ps(one, cp), zero)));
-      const __m128 wm = _mm_add_ps(a, _mm_mul_ps(b, _mm_max_ps(_mm_sub_ps(one, cm), zero)));
-      const __m128 qp = _mm_mul_ps(wp, _mm_sqrt_ps(wp)), qm = _mm_mul_ps(wm, _mm_sqrt_ps(wm));
-      const __m128 np = _mm_add_ps(one, _mm_mul_ps(cs, _mm_mul_ps(cp, cp)));
-      const __m128 nm = _mm_add_ps(one, _mm_mul_ps(cs, _mm_mul_ps(cm, cm)));
-      const __m128 p = _mm_div_ps(_mm_add_ps(_mm_mul_ps(np, qm), _mm_mul_ps(nm, qp)),
-                                  _mm_mul_ps(qp, qm));
-      sr = _mm_add_ps(sr, _mm_mul_ps(p, _mm_loadu_ps(&lr[j])));
-      sg = _mm_add_ps(sg, _mm_mul_ps(p, _mm_loadu_ps(&lg[j])));
-      sb = _mm_add_ps(sb, _mm_mul_ps(p, _mm_loadu_ps(&lb[j])));
-      sw = _mm_add_ps(sw, _mm_mul_ps(p, _mm_loadu_ps(&dw[j])));
-    }
-    _mm_storeu_ps(lanes[0], sr);
-    _mm_storeu_ps(lanes[1], sg);
-    _mm_storeu_ps(lanes[2], sb);
-    _mm_storeu_ps(lanes[3], sw);
-#else
-    for (auto& lane : lanes)
-      for (float& f : lane) f = 0.0f;
-    const float fa = float(k.a), fb = float(k.b), fcs = k.cornette_shanks ? 1.0f : 0.0f;
-    for (size_t j = 0; j < n; j += 4)
-      for (int l = 0; l < 4; ++l) {
-        const float in_plane = float(v.x) * x[j + l] + float(v.z) * z[j + l];
-        const float across = float(v.y) * y[j + l];
-        const float cp = in_plane + across, cm = in_plane - across;
-        const float wp = fa + fb * std::max(1.0f - cp, 0.0f);
-        const float wm = fa + fb * std::max(1.0f - cm, 0.0f);
-        const float qp = wp * std::sqrt(wp), qm = wm * std::sqrt(wm);
-        const float p =
-            ((1.0f + fcs * (cp * cp)) * qm + (1.0f + fcs * (cm * cm)) * qp) / (qp * qm);
-        lanes[0][l] += p * lr[j + l];
-        lanes[1][l] += p * lg[j + l];
-        lanes[2][l] += p * lb[j + l];
-        lanes[3][l] += p * dw[j + l];
-      }
-#endif
-    for (int c = 0; c < 4; ++c)
-      out[c] = (double(lanes[c][0]) + lanes[c][1]) + (double(lanes[c][2]) + lanes[c][3]);
-  }
-
- private:
-  size_t grid_azimuths = 0;
-};
 
 }  // namespace
 

@@ -1,0 +1,172 @@
+// The density's Mie loop in SSE2 and AVX2 (one the twin of the other, same
+// bits: core/wide_vectors.hpp) and its plain C++ fallback. See the header.
+#include "atmosphere/mie_batch.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/wide_vectors.hpp"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+#if SKYBAKE_HAS_AVX2
+#include <immintrin.h>
+#endif
+
+namespace skybake {
+
+namespace {
+
+// The arguments of one sums() call: the view, the kernel and the arrays.
+struct MieLoop {
+  float vx, vy, vz, a, b, cs;  // cs: 1 for Cornette-Shanks, 0 for Henyey-Greenstein
+  const float *x, *y, *z, *dw, *lr, *lg, *lb;
+  size_t n;
+};
+
+// lanes[c][l]: channel c (R, G, B, weight), lane l.
+using MieLanes = float[4][MieBatch::kLanes];
+
+#if defined(__SSE2__)
+// Four pairs from j into four lanes (acc: R, G, B, weight).
+inline void mie_step_sse2(const MieLoop& q, size_t j, __m128 acc[4]) {
+  const __m128 one = _mm_set1_ps(1.0f), zero = _mm_setzero_ps();
+  const __m128 a = _mm_set1_ps(q.a), b = _mm_set1_ps(q.b), cs = _mm_set1_ps(q.cs);
+  const __m128 in_plane = _mm_add_ps(_mm_mul_ps(_mm_set1_ps(q.vx), _mm_loadu_ps(q.x + j)),
+                                     _mm_mul_ps(_mm_set1_ps(q.vz), _mm_loadu_ps(q.z + j)));
+  const __m128 across = _mm_mul_ps(_mm_set1_ps(q.vy), _mm_loadu_ps(q.y + j));
+  const __m128 cp = _mm_add_ps(in_plane, across), cm = _mm_sub_ps(in_plane, across);
+  const __m128 wp = _mm_add_ps(a, _mm_mul_ps(b, _mm_max_ps(_mm_sub_ps(one, cp), zero)));
+  const __m128 wm = _mm_add_ps(a, _mm_mul_ps(b, _mm_max_ps(_mm_sub_ps(one, cm), zero)));
+  const __m128 qp = _mm_mul_ps(wp, _mm_sqrt_ps(wp)), qm = _mm_mul_ps(wm, _mm_sqrt_ps(wm));
+  const __m128 np = _mm_add_ps(one, _mm_mul_ps(cs, _mm_mul_ps(cp, cp)));
+  const __m128 nm = _mm_add_ps(one, _mm_mul_ps(cs, _mm_mul_ps(cm, cm)));
+  const __m128 p =
+      _mm_div_ps(_mm_add_ps(_mm_mul_ps(np, qm), _mm_mul_ps(nm, qp)), _mm_mul_ps(qp, qm));
+  acc[0] = _mm_add_ps(acc[0], _mm_mul_ps(p, _mm_loadu_ps(q.lr + j)));
+  acc[1] = _mm_add_ps(acc[1], _mm_mul_ps(p, _mm_loadu_ps(q.lg + j)));
+  acc[2] = _mm_add_ps(acc[2], _mm_mul_ps(p, _mm_loadu_ps(q.lb + j)));
+  acc[3] = _mm_add_ps(acc[3], _mm_mul_ps(p, _mm_loadu_ps(q.dw + j)));
+}
+
+// Lanes 0-3 take the first four pairs of every eight, lanes 4-7 the others.
+void mie_sums_sse2(const MieLoop& q, MieLanes lanes) {
+  __m128 low[4], high[4];
+  for (int c = 0; c < 4; ++c) low[c] = high[c] = _mm_setzero_ps();
+  for (size_t j = 0; j < q.n; j += 8) {
+    mie_step_sse2(q, j, low);
+    mie_step_sse2(q, j + 4, high);
+  }
+  for (int c = 0; c < 4; ++c) {
+    _mm_storeu_ps(lanes[c], low[c]);
+    _mm_storeu_ps(lanes[c] + 4, high[c]);
+  }
+}
+#endif
+
+#if SKYBAKE_HAS_AVX2
+// mie_sums_sse2 with its two halves in one register.
+SKYBAKE_AVX2 void mie_sums_avx2(const MieLoop& q, MieLanes lanes) {
+  const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
+  const __m256 a = _mm256_set1_ps(q.a), b = _mm256_set1_ps(q.b), cs = _mm256_set1_ps(q.cs);
+  const __m256 vx = _mm256_set1_ps(q.vx), vy = _mm256_set1_ps(q.vy), vz = _mm256_set1_ps(q.vz);
+  __m256 sr = _mm256_setzero_ps(), sg = sr, sb = sr, sw = sr;
+  for (size_t j = 0; j < q.n; j += 8) {
+    const __m256 in_plane = _mm256_add_ps(_mm256_mul_ps(vx, _mm256_loadu_ps(q.x + j)),
+                                          _mm256_mul_ps(vz, _mm256_loadu_ps(q.z + j)));
+    const __m256 across = _mm256_mul_ps(vy, _mm256_loadu_ps(q.y + j));
+    const __m256 cp = _mm256_add_ps(in_plane, across), cm = _mm256_sub_ps(in_plane, across);
+    const __m256 wp =
+        _mm256_add_ps(a, _mm256_mul_ps(b, _mm256_max_ps(_mm256_sub_ps(one, cp), zero)));
+    const __m256 wm =
+        _mm256_add_ps(a, _mm256_mul_ps(b, _mm256_max_ps(_mm256_sub_ps(one, cm), zero)));
+    const __m256 qp = _mm256_mul_ps(wp, _mm256_sqrt_ps(wp));
+    const __m256 qm = _mm256_mul_ps(wm, _mm256_sqrt_ps(wm));
+    const __m256 np = _mm256_add_ps(one, _mm256_mul_ps(cs, _mm256_mul_ps(cp, cp)));
+    const __m256 nm = _mm256_add_ps(one, _mm256_mul_ps(cs, _mm256_mul_ps(cm, cm)));
+    const __m256 p = _mm256_div_ps(_mm256_add_ps(_mm256_mul_ps(np, qm), _mm256_mul_ps(nm, qp)),
+                                   _mm256_mul_ps(qp, qm));
+    sr = _mm256_add_ps(sr, _mm256_mul_ps(p, _mm256_loadu_ps(q.lr + j)));
+    sg = _mm256_add_ps(sg, _mm256_mul_ps(p, _mm256_loadu_ps(q.lg + j)));
+    sb = _mm256_add_ps(sb, _mm256_mul_ps(p, _mm256_loadu_ps(q.lb + j)));
+    sw = _mm256_add_ps(sw, _mm256_mul_ps(p, _mm256_loadu_ps(q.dw + j)));
+  }
+  _mm256_storeu_ps(lanes[0], sr);
+  _mm256_storeu_ps(lanes[1], sg);
+  _mm256_storeu_ps(lanes[2], sb);
+  _mm256_storeu_ps(lanes[3], sw);
+}
+#endif
+
+// The same operations one lane at a time, for CPUs without SSE2.
+[[maybe_unused]] void mie_sums_plain(const MieLoop& q, MieLanes lanes) {
+  for (int c = 0; c < 4; ++c)
+    for (size_t l = 0; l < MieBatch::kLanes; ++l) lanes[c][l] = 0.0f;
+  for (size_t j = 0; j < q.n; ++j) {
+    const size_t l = j % MieBatch::kLanes;
+    const float in_plane = q.vx * q.x[j] + q.vz * q.z[j];
+    const float across = q.vy * q.y[j];
+    const float cp = in_plane + across, cm = in_plane - across;
+    const float wp = q.a + q.b * std::max(1.0f - cp, 0.0f);
+    const float wm = q.a + q.b * std::max(1.0f - cm, 0.0f);
+    const float qp = wp * std::sqrt(wp), qm = wm * std::sqrt(wm);
+    const float p = ((1.0f + q.cs * (cp * cp)) * qm + (1.0f + q.cs * (cm * cm)) * qp) / (qp * qm);
+    lanes[0][l] += p * q.lr[j];
+    lanes[1][l] += p * q.lg[j];
+    lanes[2][l] += p * q.lb[j];
+    lanes[3][l] += p * q.dw[j];
+  }
+}
+
+}  // namespace
+
+MieBatch::MieBatch(const SphereGrid& grid) {
+  const int half = grid.azimuths / 2;
+  for (int l = 0; l < grid.bands; ++l)
+    for (int m = 0; m < half; ++m) first.push_back(size_t(l) * grid.azimuths + m);
+  n = (first.size() + kLanes - 1) / kLanes * kLanes;
+  for (auto* v : {&x, &y, &z, &dw, &lr, &lg, &lb}) v->assign(n, 0.0f);
+  for (size_t k = 0; k < first.size(); ++k) {
+    const glm::dvec3& w = grid.directions[first[k]];
+    x[k] = float(w.x);
+    y[k] = float(w.y);
+    z[k] = float(w.z);
+    dw[k] = float(grid.solid_angle[first[k]]);
+  }
+  grid_azimuths = grid.azimuths;
+}
+
+void MieBatch::set_field(const std::vector<glm::dvec3>& L) {
+  for (size_t k = 0; k < first.size(); ++k) {
+    const size_t j = first[k], mirror = j + grid_azimuths - 1 - 2 * (j % grid_azimuths);
+    const glm::dvec3 mean = 0.5 * (L[j] + L[mirror]);
+    lr[k] = float(mean.r * dw[k]);
+    lg[k] = float(mean.g * dw[k]);
+    lb[k] = float(mean.b * dw[k]);
+  }
+}
+
+void MieBatch::sums(const MieKernel& k, const glm::dvec3& v, double out[4]) const {
+  const MieLoop q{float(v.x),  float(v.y),  float(v.z),  float(k.a),  float(k.b),
+                  k.cornette_shanks ? 1.0f : 0.0f,      x.data(),    y.data(),
+                  z.data(),    dw.data(),   lr.data(),  lg.data(),  lb.data(), n};
+  MieLanes lanes;
+#if SKYBAKE_HAS_AVX2
+  if (wide_vectors())
+    mie_sums_avx2(q, lanes);
+  else
+    mie_sums_sse2(q, lanes);
+#elif defined(__SSE2__)
+  mie_sums_sse2(q, lanes);
+#else
+  mie_sums_plain(q, lanes);
+#endif
+  for (int c = 0; c < 4; ++c) {
+    const float* s = lanes[c];
+    out[c] = ((double(s[0]) + s[1]) + (double(s[2]) + s[3])) +
+             ((double(s[4]) + s[5]) + (double(s[6]) + s[7]));
+  }
+}
+
+}  // namespace skybake
