@@ -2,7 +2,9 @@
 // (single scattering's transmittance to the sun, the orders' mu_s taps):
 // SSE2, two doubles at a time, with no branch, where one tap at a time
 // mispredicted its clamps and could not be vectorized (std::sqrt sets errno).
-// Every value equals the one-at-a-time function's: _mm_max_pd(b, a) is
+// MuSAxis::taps also has an AVX2 twin, four doubles at a time, used where the
+// CPU has it (core/wide_vectors.hpp): the same operations per lane, so the
+// same values. Every value equals the one-at-a-time function's: _mm_max_pd(b, a) is
 // std::max(a, b) (b > a ? b : a) and _mm_min_pd(b, a) is std::min(a, b),
 // signed zeros included, and std::clamp(v, lo, hi) is
 // std::min(std::max(v, lo), hi) for every non-NaN v.
@@ -10,8 +12,13 @@
 
 #include <algorithm>
 
+#include "core/wide_vectors.hpp"
+
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#endif
+#if SKYBAKE_HAS_AVX2
+#include <immintrin.h>
 #endif
 
 namespace skybake {
@@ -36,10 +43,48 @@ inline __m128d clamp_pd(__m128d v, double lo, double hi) {
 }
 #endif
 
+#if SKYBAKE_HAS_AVX2
+SKYBAKE_AVX2 inline __m256d clamp_pd4(__m256d v, double lo, double hi) {
+  return _mm256_min_pd(_mm256_set1_pd(hi), _mm256_max_pd(_mm256_set1_pd(lo), v));
+}
+
+// MuSAxis::taps' loop, four cosines at a time; returns how many it did.
+SKYBAKE_AVX2 int mu_s_taps_avx2(const double* mu_s, int n, int* i0, double* w, double mu_s_min,
+                                double rb, double rb2, double H2, double d_min, double inv_span,
+                                double inv_A, int size) {
+  const __m256d one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
+  const __m256d minus_rb = _mm256_set1_pd(-rb), rb2_4 = _mm256_set1_pd(rb2);
+  const __m256d H2_4 = _mm256_set1_pd(H2), d_min4 = _mm256_set1_pd(d_min);
+  const __m256d inv_span4 = _mm256_set1_pd(inv_span), inv_A4 = _mm256_set1_pd(inv_A);
+  const __m256d last = _mm256_set1_pd(double(size - 1)), below_last = _mm256_set1_pd(double(size - 2));
+  int k = 0;
+  for (; k + 4 <= n; k += 4) {
+    const __m256d m = clamp_pd4(_mm256_loadu_pd(mu_s + k), mu_s_min, 1.0);
+    const __m256d root = _mm256_sqrt_pd(
+        _mm256_max_pd(zero, _mm256_add_pd(_mm256_mul_pd(_mm256_mul_pd(rb2_4, m), m), H2_4)));
+    const __m256d d = _mm256_add_pd(_mm256_mul_pd(minus_rb, m), root);
+    const __m256d a = _mm256_mul_pd(_mm256_sub_pd(d, d_min4), inv_span4);
+    const __m256d x = _mm256_div_pd(
+        _mm256_max_pd(zero, _mm256_sub_pd(one, _mm256_mul_pd(a, inv_A4))), _mm256_add_pd(one, a));
+    // store_taps
+    const __m256d t = _mm256_mul_pd(clamp_pd4(x, 0.0, 1.0), last);
+    const __m256d i = _mm256_min_pd(below_last, _mm256_cvtepi32_pd(_mm256_cvttpd_epi32(t)));
+    _mm256_storeu_pd(w + k, _mm256_sub_pd(t, i));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(i0 + k), _mm256_cvttpd_epi32(i));
+  }
+  return k;
+}
+#endif
+
 }  // namespace
 
 void MuSAxis::taps(const double* mu_s, int n, int* i0, double* w) const {
   int k = 0;
+#if SKYBAKE_HAS_AVX2
+  if (wide_vectors())
+    k = mu_s_taps_avx2(mu_s, n, i0, w, mu_s_min_, rb_, rb2_, H2_, d_min_, inv_span_, inv_A_,
+                       size_);
+#endif
 #if defined(__SSE2__)
   const __m128d one = _mm_set1_pd(1.0), zero = _mm_setzero_pd();
   const __m128d minus_rb = _mm_set1_pd(-rb_), rb2 = _mm_set1_pd(rb2_), H2 = _mm_set1_pd(H2_);

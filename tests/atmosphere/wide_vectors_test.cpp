@@ -1,0 +1,64 @@
+// The AVX2 loops of the 4D orders (the density's Mie loop, the mu_s taps
+// and the row blends of the multiple-scattering pass) against their SSE2
+// twins: the same bits (core/wide_vectors.hpp). Sizes that leave remainders
+// for every loop: 15 texels per row (nu 3 x mu_s 5) and 25 direction pairs
+// (5 zenith bands), padded to 32.
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include "atmosphere/scattering_orders.hpp"
+#include "atmosphere/transmittance_lut.hpp"
+#include "core/wide_vectors.hpp"
+#include "support/test_atmospheres.hpp"
+#include "support/test_scattering_specs.hpp"
+
+namespace skybake {
+namespace {
+
+// Restores the switch however the test ends.
+struct WideVectorsAs {
+  bool before = wide_vectors();
+  explicit WideVectorsAs(bool on) { set_wide_vectors(on); }
+  ~WideVectorsAs() { set_wide_vectors(before); }
+};
+
+BrunetonTextures bake(const Atmosphere& atm, const Texture& lut, bool wide) {
+  const WideVectorsAs as(wide);
+  BrunetonSpec spec = fixtures::small_bruneton_spec({6, 16, 5, 3, kBrunetonMuSMin}, 3);
+  spec.density_directions = 5;
+  return bake_bruneton(atm, lut, spec, BakeContext{});
+}
+
+bool same_bits(const Texture& a, const Texture& b) {
+  return a.data.size() == b.data.size() &&
+         std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(float)) == 0;
+}
+
+TEST(WideVectors, OrdersHaveTheSameBitsInAvx2AndSse2) {
+  {
+    const WideVectorsAs probe(true);
+    if (!wide_vectors()) GTEST_SKIP() << "this CPU has no AVX2: only the SSE2 loops run";
+  }
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const Texture lut = bake_transmittance_lut(atm, {64, 16, 40}, BakeContext{});
+  const BrunetonTextures sse2 = bake(atm, lut, false), avx2 = bake(atm, lut, true);
+  EXPECT_TRUE(same_bits(sse2.scattering, avx2.scattering));
+  EXPECT_TRUE(same_bits(sse2.single_mie, avx2.single_mie));
+  EXPECT_TRUE(same_bits(sse2.irradiance, avx2.irradiance));
+  EXPECT_EQ(sse2.residuals, avx2.residuals);
+}
+
+TEST(WideVectors, OffStaysOffAndOnFollowsTheCpu) {
+  const WideVectorsAs off(false);
+  EXPECT_FALSE(wide_vectors());
+  set_wide_vectors(true);
+  const bool on = wide_vectors();
+  set_wide_vectors(false);
+  EXPECT_FALSE(wide_vectors());
+  set_wide_vectors(true);
+  EXPECT_EQ(wide_vectors(), on);
+}
+
+}  // namespace
+}  // namespace skybake
