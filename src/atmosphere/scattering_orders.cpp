@@ -66,24 +66,36 @@ struct OrderChange {
 };
 
 // Residual (header): peak of L_{<=k}, then the largest relative change.
+// In parallel over runs of texels (an r slice each), the totals added run
+// by run in order: the same values for any thread count.
 OrderChange measure_order(const Texture& accumulated, const Texture& single_mie,
                           const TexelPhases& phase, const Texture& delta) {
-  const size_t texel_count = accumulated.texel_count();
+  const size_t runs = size_t(std::max(accumulated.depth, 1));
+  const size_t per_run = accumulated.texel_count() / runs;
   auto radiance = [&](size_t t, int c) {
     return double(phase.rayleigh[t]) * accumulated.data[3 * t + c] +
            double(phase.mie[t]) * single_mie.data[3 * t + c] + double(delta.data[3 * t + c]);
   };
-  double peak = 0.0;
-  for (size_t t = 0; t < texel_count; ++t)
-    for (int c = 0; c < 3; ++c) peak = std::max(peak, radiance(t, c));
+  std::vector<double> peaks(runs, 0.0), residuals(runs, 0.0);
+  std::vector<glm::dvec3> sums(runs, glm::dvec3(0.0));
+  tbb::parallel_for(size_t(0), runs, [&](size_t run) {
+    for (size_t t = run * per_run; t < (run + 1) * per_run; ++t)
+      for (int c = 0; c < 3; ++c) {
+        peaks[run] = std::max(peaks[run], radiance(t, c));
+        sums[run][c] += delta.data[3 * t + c];
+      }
+  });
+  const double peak = *std::max_element(peaks.begin(), peaks.end());
   const double floor = std::max(1e-6 * peak, std::numeric_limits<double>::min());
+  tbb::parallel_for(size_t(0), runs, [&](size_t run) {
+    for (size_t t = run * per_run; t < (run + 1) * per_run; ++t)
+      for (int c = 0; c < 3; ++c)
+        residuals[run] = std::max(residuals[run], double(delta.data[3 * t + c]) /
+                                                      std::max(radiance(t, c), floor));
+  });
   OrderChange change;
-  for (size_t t = 0; t < texel_count; ++t)
-    for (int c = 0; c < 3; ++c) change.sum[c] += delta.data[3 * t + c];
-  for (size_t t = 0; t < texel_count; ++t)
-    for (int c = 0; c < 3; ++c)
-      change.residual = std::max(change.residual,
-                                 double(delta.data[3 * t + c]) / std::max(radiance(t, c), floor));
+  for (size_t run = 0; run < runs; ++run) change.sum += sums[run];
+  change.residual = *std::max_element(residuals.begin(), residuals.end());
   return change;
 }
 
