@@ -9,17 +9,9 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "core/wide_vectors.hpp"
-
-#if defined(__SSE2__)
-#include <xmmintrin.h>
-#endif
-#if SKYBAKE_HAS_AVX2
-#include <immintrin.h>
-#endif
-
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/ray_transfer.hpp"
+#include "atmosphere/row_blend.hpp"
 #include "core/math.hpp"
 
 namespace skybake {
@@ -71,77 +63,6 @@ glm::dvec3 compute_multiple_scattering(const Atmosphere& atm, const ScatteringSh
   return sum;
 }
 
-namespace {
-
-// Four floats: R G B and a zero pad, so a texel is one SSE register.
-struct alignas(16) Rgb4 {
-  float v[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-};
-
-#if SKYBAKE_HAS_AVX2
-// blend_rows two texels at a time (the same operations per lane); returns
-// how many texels it did.
-SKYBAKE_AVX2 int blend_rows_avx2(const Rgb4* const rows[4], const float w[4], int n, Rgb4* out) {
-  const __m256 w0 = _mm256_set1_ps(w[0]), w1 = _mm256_set1_ps(w[1]), w2 = _mm256_set1_ps(w[2]),
-               w3 = _mm256_set1_ps(w[3]);
-  int i = 0;
-  for (; i + 2 <= n; i += 2) {
-    const __m256 a = _mm256_mul_ps(w0, _mm256_loadu_ps(rows[0][i].v));
-    const __m256 b = _mm256_mul_ps(w1, _mm256_loadu_ps(rows[1][i].v));
-    const __m256 c = _mm256_mul_ps(w2, _mm256_loadu_ps(rows[2][i].v));
-    const __m256 d = _mm256_mul_ps(w3, _mm256_loadu_ps(rows[3][i].v));
-    _mm256_storeu_ps(out[i].v, _mm256_add_ps(_mm256_add_ps(a, b), _mm256_add_ps(c, d)));
-  }
-  return i;
-}
-#endif
-
-// out = w0 a + w1 b + w2 c + w3 d over n texels.
-void blend_rows(const Rgb4* const rows[4], const float w[4], int n, Rgb4* out) {
-  int first = 0;
-#if SKYBAKE_HAS_AVX2
-  if (wide_vectors()) first = blend_rows_avx2(rows, w, n, out);
-#endif
-#if defined(__SSE2__)
-  const __m128 w0 = _mm_set1_ps(w[0]), w1 = _mm_set1_ps(w[1]), w2 = _mm_set1_ps(w[2]),
-               w3 = _mm_set1_ps(w[3]);
-  for (int i = first; i < n; ++i) {
-    const __m128 s = _mm_add_ps(_mm_add_ps(_mm_mul_ps(w0, _mm_load_ps(rows[0][i].v)),
-                                           _mm_mul_ps(w1, _mm_load_ps(rows[1][i].v))),
-                                _mm_add_ps(_mm_mul_ps(w2, _mm_load_ps(rows[2][i].v)),
-                                           _mm_mul_ps(w3, _mm_load_ps(rows[3][i].v))));
-    _mm_store_ps(out[i].v, s);
-  }
-#else
-  for (int i = first; i < n; ++i)
-    for (int c = 0; c < 4; ++c)
-      out[i].v[c] = (w[0] * rows[0][i].v[c] + w[1] * rows[1][i].v[c]) +
-                    (w[2] * rows[2][i].v[c] + w[3] * rows[3][i].v[c]);
-#endif
-}
-
-// sum += wS lerp(lerp(s00, s01, lw), lerp(s10, s11, lw), nw), s01 = s00 + 1
-// texel along mu_s.
-inline void add_bilinear(const Rgb4* s0, const Rgb4* s1, float lw, float nw, const Rgb4& wS,
-                         Rgb4& sum) {
-#if defined(__SSE2__)
-  const __m128 l1 = _mm_set1_ps(lw), l0 = _mm_set1_ps(1.0f - lw);
-  const __m128 n1 = _mm_set1_ps(nw), n0 = _mm_set1_ps(1.0f - nw);
-  const __m128 a = _mm_add_ps(_mm_mul_ps(l0, _mm_load_ps(s0[0].v)), _mm_mul_ps(l1, _mm_load_ps(s0[1].v)));
-  const __m128 b = _mm_add_ps(_mm_mul_ps(l0, _mm_load_ps(s1[0].v)), _mm_mul_ps(l1, _mm_load_ps(s1[1].v)));
-  const __m128 L = _mm_add_ps(_mm_mul_ps(n0, a), _mm_mul_ps(n1, b));
-  _mm_store_ps(sum.v, _mm_add_ps(_mm_load_ps(sum.v), _mm_mul_ps(_mm_load_ps(wS.v), L)));
-#else
-  for (int c = 0; c < 4; ++c) {
-    const float a = (1.0f - lw) * s0[0].v[c] + lw * s0[1].v[c];
-    const float b = (1.0f - lw) * s1[0].v[c] + lw * s1[1].v[c];
-    sum.v[c] += wS.v[c] * ((1.0f - nw) * a + nw * b);
-  }
-#endif
-}
-
-}  // namespace
-
 // In single precision, three channels (and a pad) at a time: the table is
 // float32 and a texel sums ~51 terms of one sign (relative rounding ~1e-6,
 // far below the quadrature's error); the geometry (taps, weights) stays in
@@ -173,6 +94,7 @@ Texture bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& s
     std::vector<double> mu_s_x(W), nu_x(W), mu_s_node(W), tap_w(W);
     std::vector<int> tap_i0(W), nu_i0(W), nu_i1(W);
     std::vector<float> nu_w(W);
+    const BilinearTaps taps{nu_i0.data(), nu_i1.data(), tap_i0.data(), tap_w.data(), nu_w.data()};
     for (int row = range.begin(); row != range.end(); ++row) {
       const int z = row / shape.mu_size, y = row % shape.mu_size;
       ScatteringParams p0;
@@ -206,13 +128,9 @@ Texture bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& s
         const float w4[4] = {float((1.0 - tr.w) * (1.0 - tm.w)), float((1.0 - tr.w) * tm.w),
                              float(tr.w * (1.0 - tm.w)), float(tr.w * tm.w)};
         blend_rows(rows4, w4, W, slice.data());
-        // clamp_cosine as min / max: the same value, no branch.
-        for (int x = 0; x < W; ++x)
-          mu_s_node[x] = std::min(std::max((r * mu_s_x[x] + q.s * nu_x[x]) / r_i, -1.0), 1.0);
+        mu_s_at_node(r, q.s, r_i, mu_s_x.data(), nu_x.data(), W, mu_s_node.data());
         mu_s_axis.taps(mu_s_node.data(), W, tap_i0.data(), tap_w.data());
-        for (int x = 0; x < W; ++x)
-          add_bilinear(&slice[nu_i0[x] + tap_i0[x]], &slice[nu_i1[x] + tap_i0[x]],
-                       float(tap_w[x]), nu_w[x], wS4, sum[x]);
+        add_bilinear_row(slice.data(), taps, wS4, W, sum.data());
       }
       float* texels_out = out.texel(0, y, z);
       for (int x = 0; x < W; ++x)
