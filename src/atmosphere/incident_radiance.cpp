@@ -95,6 +95,12 @@ std::vector<glm::dvec3> ground_row_opacity(const Atmosphere& atm, const Scatteri
 Texture divide_ground_rows_by_opacity(const Texture& table, const ScatteringShape& shape,
                                       const std::vector<glm::dvec3>& opacity) {
   Texture out = table;
+  divide_ground_rows_by_opacity_in_place(out, shape, opacity);
+  return out;
+}
+
+void divide_ground_rows_by_opacity_in_place(Texture& out, const ScatteringShape& shape,
+                                            const std::vector<glm::dvec3>& opacity) {
   const int channels = std::min(out.channel_count(), 3);
   tbb::parallel_for(0, shape.r_size, [&](int z) {
     for (int y = 0; y < shape.mu_size; ++y) {
@@ -106,7 +112,6 @@ Texture divide_ground_rows_by_opacity(const Texture& table, const ScatteringShap
       }
     }
   });
-  return out;
 }
 
 namespace {

@@ -95,6 +95,9 @@ std::vector<glm::dvec3> compute_incident_radiance(
 std::vector<glm::dvec3> ground_row_opacity(const Atmosphere& atm, const ScatteringShape& shape);
 Texture divide_ground_rows_by_opacity(const Texture& table, const ScatteringShape& shape,
                                       const std::vector<glm::dvec3>& opacity);
+// The same on a table in place (the orders reuse one buffer for it).
+void divide_ground_rows_by_opacity_in_place(Texture& table, const ScatteringShape& shape,
+                                            const std::vector<glm::dvec3>& opacity);
 
 // Nodes of the ray from a point to the ground it sees, for the light the
 // ground reflects into the incident field (compute_incident_radiance).

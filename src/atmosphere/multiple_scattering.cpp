@@ -16,13 +16,18 @@
 
 namespace skybake {
 
-Texture density_per_scattering(const Atmosphere& atm, const ScatteringShape& shape,
-                               const Texture& density) {
+namespace {
+
+// J / sigma_s of every texel (density_per_scattering), each value handed to
+// store(texel index, channel, value): a Texture or the padded texels of the
+// fast path, without a copy in between.
+template <class Store>
+void for_each_density_per_scattering(const Atmosphere& atm, const ScatteringShape& shape,
+                                     const Texture& density, Store&& store) {
   const ScatteringTexelGrid texels = scattering_texel_grid(atm, shape);
   std::vector<glm::dvec3> sigma_s(shape.r_size);
   for (int z = 0; z < shape.r_size; ++z)
     sigma_s[z] = sample_medium(atm, texels.r[z] - atm.bottom_radius_m).scattering;
-  Texture out = density;
   // Each r slice on its own (it reads others, writes only itself).
   tbb::parallel_for(0, shape.r_size, [&](int z) {
     for (int c = 0; c < 3; ++c) {
@@ -36,11 +41,20 @@ Texture density_per_scattering(const Atmosphere& atm, const ScatteringShape& sha
             from = candidate;
       for (int y = 0; y < density.height; ++y)
         for (int x = 0; x < density.width; ++x)
-          out.texel(x, y, z)[c] = sigma_s[from][c] > 0.0
-                                      ? float(density.texel(x, y, from)[c] / sigma_s[from][c])
-                                      : 0.0f;
+          store(density.index(x, y, z) / density.channel_count(), c,
+                sigma_s[from][c] > 0.0 ? float(density.texel(x, y, from)[c] / sigma_s[from][c])
+                                       : 0.0f);
     }
   });
+}
+
+}  // namespace
+
+Texture density_per_scattering(const Atmosphere& atm, const ScatteringShape& shape,
+                               const Texture& density) {
+  Texture out = density;
+  for_each_density_per_scattering(atm, shape, density,
+                                  [&](size_t t, int c, float v) { out.data[t * out.channel_count() + c] = v; });
   return out;
 }
 
@@ -72,14 +86,9 @@ Texture bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& s
   const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
   const ScatteringTexelGrid texels = scattering_texel_grid(atm, shape);
   const MuSAxis mu_s_axis(atm, shape);
-  const Texture per_sigma_s = density_per_scattering(atm, shape, density);
-  std::vector<Rgb4> radiance(per_sigma_s.texel_count());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, radiance.size()),
-                    [&](const tbb::blocked_range<size_t>& ts) {
-                      for (size_t t = ts.begin(); t != ts.end(); ++t)
-                        for (int c = 0; c < 3; ++c)
-                          radiance[t].v[c] = per_sigma_s.data[3 * t + c];
-                    });
+  std::vector<Rgb4> radiance(density.texel_count());
+  for_each_density_per_scattering(atm, shape, density,
+                                  [&](size_t t, int c, float v) { radiance[t].v[c] = v; });
   const int W = shape.texture_width(), n_mu_s = shape.mu_s_size;
   auto row_of = [&](int y, int z) { return &radiance[(size_t(z) * shape.mu_size + y) * W]; };
   Texture out(W, shape.mu_size, shape.r_size, 1, {"R", "G", "B"});

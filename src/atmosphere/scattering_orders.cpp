@@ -188,7 +188,9 @@ class BrunetonIteration {
     if (k < 3)
       return ScatteringOrder{&single_r_per_opacity_, &single_m_per_opacity_, nullptr, &phases_,
                              true};
-    previous_per_opacity_ = divide_ground_rows_by_opacity(previous_radiance_, shape_, opacity_);
+    // Copied into the buffer of the order before: no fresh pages to fault in.
+    previous_per_opacity_ = previous_radiance_;
+    divide_ground_rows_by_opacity_in_place(previous_per_opacity_, shape_, opacity_);
     return ScatteringOrder{nullptr, nullptr, &previous_per_opacity_, &phases_, true};
   }
 
