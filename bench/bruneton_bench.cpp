@@ -4,7 +4,9 @@
 // (their input) is baked once outside the timed loop.
 //   BM_BakeBrunetonEarth     4D scattering 32x128x32x8 + irradiance 64x16
 //   BM_BakeScattering3dEarth azimuth-free 32x128x32 + gathering 32x32
-//   BM_Bruneton*Stage        one stage at default sizes (where the time goes)
+//   BM_Bruneton*Stage        one stage at default sizes (where the time goes),
+//                            with the AVX2 loops (wide:1, where the CPU has
+//                            them) and without (wide:0, SSE2)
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
@@ -12,6 +14,7 @@
 #include "atmosphere/scattering3d_lut.hpp"
 #include "atmosphere/scattering_orders.hpp"
 #include "atmosphere/transmittance_lut.hpp"
+#include "core/wide_vectors.hpp"
 
 namespace skybake {
 namespace {
@@ -62,6 +65,8 @@ BENCHMARK(BM_BakeScattering3dEarth)
 // bake), then per order the density and the multiple-scattering pass.
 void BM_BrunetonStage(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
+  const bool wide_before = wide_vectors();
+  set_wide_vectors(state.range(1) != 0);
   const Atmosphere atm = fixtures::earth_atmosphere();
   const Texture& lut = earth_transmittance();
   const ScatteringShape shape;
@@ -84,10 +89,11 @@ void BM_BrunetonStage(benchmark::State& state) {
         break;
     }
   }
+  set_wide_vectors(wide_before);
 }
 BENCHMARK(BM_BrunetonStage)
-    ->ArgName("stage")  // 0 single, 1 density, 2 multiple
-    ->DenseRange(0, 2)
+    ->ArgNames({"stage", "wide"})  // stage 0 single, 1 density, 2 multiple
+    ->ArgsProduct({{0, 1, 2}, {1, 0}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(2);

@@ -122,9 +122,10 @@ class MuSAxis {
     return {i, i + 1, t - i};
   }
   // tap() of n cosines at once (i0 and w; i1 = i0 + 1), the same values
-  // (SSE2, two at a time): the hottest loop of the orders >= 2
-  // (multiple_scattering.cpp), where one tap at a time mispredicted its
-  // clamps and could not be vectorized (std::sqrt sets errno).
+  // (SSE2, two at a time, or AVX2, four: core/wide_vectors.hpp): the hottest
+  // loop of the orders >= 2 (multiple_scattering.cpp), where one tap at a
+  // time mispredicted its clamps and could not be vectorized (std::sqrt sets
+  // errno).
   void taps(const double* mu_s, int n, int* i0, double* w) const;
 
  private:
