@@ -297,6 +297,23 @@ glm::dvec3 compute_converged_multiscattering(const Atmosphere& atm,
   return relative_fit(atm, transmittance_lut, light, q, r, mu_s, mean);
 }
 
+SourceRange converged_source_range(const Atmosphere& atm, const Texture& transmittance_lut,
+                                   const ConvergedField& field, double r, double mu_s,
+                                   const PsiQuadrature& q) {
+  if (q.kernel_rayleigh.empty()) throw Error("converged_source_range: needs the phase kernels");
+  r = std::clamp(r, atm.bottom_radius_m, atm.top_radius_m);
+  mu_s = clamp_cosine(mu_s);
+  if (mu_s < field.shape.mu_s_min) return {};
+  const std::vector<glm::dvec3> light = incident_light(atm, field, r, mu_s, q.grid);
+  const DirectionalSource s = directional_source(atm, transmittance_lut, light, q, r, mu_s);
+  SourceRange range{glm::dvec3(INFINITY), glm::dvec3(0.0)};
+  for (const glm::dvec3& j : s.multiple) {
+    range.min = glm::min(range.min, j);
+    range.max = glm::max(range.max, j);
+  }
+  return range;
+}
+
 Texture bake_converged_multiscattering_lut(const Atmosphere& atm, const Texture& transmittance_lut,
                                            const MultiscatteringLutSpec& table,
                                            const ConvergedMultiscatteringSpec& spec,

@@ -86,6 +86,21 @@ glm::dvec3 compute_converged_multiscattering(const Atmosphere& atm,
                                              const ConvergedField& field, double r, double mu_s,
                                              const PsiQuadrature& quadrature);
 
+// The range over view directions of the source of orders >= 2 at (r, mu_s),
+// j(v) per unit of sigma_s E (docs/reference.md "The relative estimator"),
+// per channel: min and max over the grid's half cells. Every Psi that is a
+// mean of j over directions with weights >= 0 lies in it (both estimators;
+// the mean too, each phase integrating to one): a bound on what any such
+// estimator can give (docs/decisions.md "Multiple-scattering table: an
+// oracle for Psi(r, mu_s)"). q needs the relative estimator's kernels.
+// Both 0 below the field's mu_s_min. Thread-safe.
+struct SourceRange {
+  glm::dvec3 min{0.0}, max{0.0};
+};
+SourceRange converged_source_range(const Atmosphere& atm, const Texture& transmittance_lut,
+                                   const ConvergedField& field, double r, double mu_s,
+                                   const PsiQuadrature& q);
+
 // The table; rows in parallel, each texel independent (same data for any
 // thread count). Metadata as bake_multiscattering_lut's, model "converged",
 // with the iteration's orders and last residual.

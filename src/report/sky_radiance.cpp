@@ -41,17 +41,6 @@ std::vector<glm::dvec3> view_directions(const SkyRadianceSetup& setup) {
   return dirs;
 }
 
-// Scattering orders the path tracer follows. A medium of optical depth tau
-// with little absorption needs ~tau^2 orders (path_tracer.hpp); 4 tau^2
-// leaves a margin, 64 covers Earth-like skies, 4096 bounds the cost.
-int max_bounces_for(const Atmosphere& atm) {
-  const glm::dvec3 tau = reference_optical_depth(atm, atm.bottom_radius_m, 1.0,
-                                                 atm.top_radius_m - atm.bottom_radius_m, 1e-6)
-                             .value;
-  const double t = std::max({tau.x, tau.y, tau.z});
-  return int(std::clamp(std::ceil(4.0 * t * t), 64.0, 4096.0));
-}
-
 // Hillaire's Psi_ms without its series of higher orders: the second order
 // L_2 alone (eq. 5-6), in the multiple-scattering table's layout. With it the
 // sky-view march gives orders 1 and 2, which the path tracer gives with
@@ -113,7 +102,7 @@ struct PathSpecs {
 PathSpecs path_specs(const Atmosphere& atm, const SkyRadianceSetup& setup) {
   PathSpecs p;
   p.all.samples = setup.path_samples;
-  p.all.max_bounces = max_bounces_for(atm);
+  p.all.max_bounces = sky_radiance_max_bounces(atm);
   p.second = p.all;
   p.second.samples = setup.path_samples_single;
   p.second.max_bounces = 2;
@@ -155,6 +144,50 @@ nlohmann::json multiple_scattering_share(const std::vector<ViewResult>& views) {
 }
 
 }  // namespace
+
+// A medium of optical depth tau with little absorption needs ~tau^2 orders
+// (path_tracer.hpp); 4 tau^2 leaves a margin, 64 covers Earth-like skies,
+// 4096 bounds the cost.
+int sky_radiance_max_bounces(const Atmosphere& atm) {
+  const glm::dvec3 tau = reference_optical_depth(atm, atm.bottom_radius_m, 1.0,
+                                                 atm.top_radius_m - atm.bottom_radius_m, 1e-6)
+                             .value;
+  const double t = std::max({tau.x, tau.y, tau.z});
+  return int(std::clamp(std::ceil(4.0 * t * t), 64.0, 4096.0));
+}
+
+SkyRadianceCamera sky_radiance_camera(const Scene& scene, const SkyRadianceSetup& setup) {
+  const Atmosphere& atm = scene.atmosphere;
+  SkyRadianceCamera c;
+  c.altitude_m = std::min(200.0, 0.5 * (atm.top_radius_m - atm.bottom_radius_m));
+  c.position = glm::dvec3(0.0, 0.0, atm.bottom_radius_m + c.altitude_m);
+  c.dirs = view_directions(setup);
+  c.sky = skyview_spec(operating_spec(scene, "skyview"));
+  return c;
+}
+
+glm::dvec3 sky_radiance_sun(double sun_elevation_deg) {
+  const double e = sun_elevation_deg * kDeg;
+  return {std::cos(e), 0.0, std::sin(e)};
+}
+
+std::vector<glm::dvec3> render_sky_views(const Atmosphere& atm, const Texture& transmittance,
+                                         const Texture& multiscattering,
+                                         const SkyRadianceCamera& camera,
+                                         double sun_elevation_deg) {
+  SkyviewLutSpec sky = camera.sky;
+  sky.views = {{camera.altitude_m, kPi / 2 - sun_elevation_deg * kDeg}};
+  const Texture layer = bake_skyview_lut(atm, transmittance, multiscattering, sky, BakeContext{});
+  SkyRenderOptions render;
+  render.sun_disk = false;
+  render.ground = false;
+  const SkyLuts luts{&transmittance, &multiscattering, &layer, 0};
+  std::vector<glm::dvec3> out;
+  for (const glm::dvec3& dir : camera.dirs)
+    out.push_back(render_sky_luminance(atm, luts, camera.position, dir,
+                                       sky_radiance_sun(sun_elevation_deg), render));
+  return out;
+}
 
 nlohmann::json target_json(const nlohmann::json& multiple) {
   const double raw = multiple["worst"]["rel_rmse"];
@@ -222,10 +255,7 @@ namespace {
 // What every sun elevation reads: the camera, its views, the sky-view spec
 // and the multiple-scattering tables with Psi_ms replaced.
 struct SkyRadianceScene {
-  double altitude_m = 0.0;
-  glm::dvec3 position{0.0};
-  std::vector<glm::dvec3> dirs;
-  SkyviewLutSpec sky;
+  SkyRadianceCamera camera;
   Texture no_multiscattering, second_order;
   // Both Psi_ms models at the operating point's size and mapping, each
   // baked once more and timed (docs/report.md "Two Psi_ms models").
@@ -263,10 +293,7 @@ void bake_both_models(const ReportInputs& in, SkyRadianceScene& s) {
 SkyRadianceScene sky_radiance_scene(const ReportInputs& in, const SkyRadianceSetup& setup) {
   const Atmosphere& atm = in.scene.atmosphere;
   SkyRadianceScene s;
-  s.altitude_m = std::min(200.0, 0.5 * (atm.top_radius_m - atm.bottom_radius_m));
-  s.position = glm::dvec3(0.0, 0.0, atm.bottom_radius_m + s.altitude_m);
-  s.dirs = view_directions(setup);
-  s.sky = skyview_spec(operating_spec(in.scene, "skyview"));
+  s.camera = sky_radiance_camera(in.scene, setup);
   s.no_multiscattering = in.multiscattering;
   std::fill(s.no_multiscattering.data.begin(), s.no_multiscattering.data.end(), 0.0f);
   s.second_order = second_order_table(
@@ -281,45 +308,44 @@ void measure_sun(const ReportInputs& in, const SkyRadianceSetup& setup, SkyRadia
                  const SkyPathTracer& tracer, PathSpecs& paths, double sun_elevation,
                  std::vector<ViewResult>& views) {
   const Atmosphere& atm = in.scene.atmosphere;
-  const double e = sun_elevation * kDeg;
-  const glm::dvec3 sun_dir(std::cos(e), 0.0, std::sin(e));
-  s.sky.views = {{s.altitude_m, kPi / 2 - e}};
-  auto layer = [&](const Texture& ms) {
-    return bake_skyview_lut(atm, in.transmittance, ms, s.sky, BakeContext{});
+  const SkyRadianceCamera& cam = s.camera;
+  const glm::dvec3 sun_dir = sky_radiance_sun(sun_elevation);
+  auto render = [&](const Texture& ms) {
+    return render_sky_views(atm, in.transmittance, ms, cam, sun_elevation);
   };
-  const Texture full = layer(in.multiscattering), second = layer(s.second_order),
-                single = layer(s.no_multiscattering), converged = layer(s.converged),
-                converged_relative = layer(s.converged_relative);
+  const std::vector<glm::dvec3> full = render(in.multiscattering), second = render(s.second_order),
+                                single = render(s.no_multiscattering),
+                                converged = render(s.converged),
+                                converged_relative = render(s.converged_relative);
+  SkyviewLutSpec sky = cam.sky;
+  sky.views = {{cam.altitude_m, kPi / 2 - sun_elevation * kDeg}};
   const Texture multiple4d =
-      bake_skyview_lut_multiple4d(atm, in.transmittance, s.field, s.sky, BakeContext{});
-  SkyRenderOptions render;
-  render.sun_disk = false;
-  render.ground = false;
-  auto render_with = [&](const Texture& ms, const Texture& skyview, glm::dvec3 dir) {
-    const SkyLuts luts{&in.transmittance, &ms, &skyview, 0};
-    return render_sky_luminance(atm, luts, s.position, dir, sun_dir, render);
-  };
-  for (size_t v = 0; v < s.dirs.size(); ++v) {
-    const glm::dvec3 dir = s.dirs[v];
+      bake_skyview_lut_multiple4d(atm, in.transmittance, s.field, sky, BakeContext{});
+  SkyRenderOptions no_disk;
+  no_disk.sun_disk = false;
+  no_disk.ground = false;
+  const SkyLuts luts4d{&in.transmittance, &s.no_multiscattering, &multiple4d, 0};
+  for (size_t v = 0; v < cam.dirs.size(); ++v) {
+    const glm::dvec3 dir = cam.dirs[v];
     ViewResult r;
     r.sun_elevation_deg = sun_elevation;
     r.view_elevation_deg = std::asin(dir.z) / kDeg;
     r.view_azimuth_deg = 360.0 * double(v % size_t(setup.view_azimuths)) / setup.view_azimuths;
-    r.lut = render_with(in.multiscattering, full, dir);
-    r.lut_converged = render_with(s.converged, converged, dir);
-    r.lut_converged_relative = render_with(s.converged_relative, converged_relative, dir);
-    r.lut_multiple4d = render_with(s.no_multiscattering, multiple4d, dir);
-    r.lut_second = render_with(s.second_order, second, dir);
-    r.lut_single = render_with(s.no_multiscattering, single, dir);
-    r.quadrature_single = reference_single_scattering(atm, s.position, dir, sun_dir,
+    r.lut = full[v];
+    r.lut_converged = converged[v];
+    r.lut_converged_relative = converged_relative[v];
+    r.lut_multiple4d = render_sky_luminance(atm, luts4d, cam.position, dir, sun_dir, no_disk);
+    r.lut_second = second[v];
+    r.lut_single = single[v];
+    r.quadrature_single = reference_single_scattering(atm, cam.position, dir, sun_dir,
                                                       in.level.single_scattering_tolerance)
                               .value;
     // Every view and mode draws its own paths.
     const uint64_t seed = 3 * views.size();
     paths.all.seed = seed + 1, paths.second.seed = seed + 2, paths.single.seed = seed + 3;
-    r.all = tracer.trace(s.position, dir, sun_dir, paths.all);
-    r.second = tracer.trace(s.position, dir, sun_dir, paths.second);
-    r.single = tracer.trace(s.position, dir, sun_dir, paths.single);
+    r.all = tracer.trace(cam.position, dir, sun_dir, paths.all);
+    r.second = tracer.trace(cam.position, dir, sun_dir, paths.second);
+    r.single = tracer.trace(cam.position, dir, sun_dir, paths.single);
     views.push_back(r);
   }
 }
@@ -397,7 +423,7 @@ nlohmann::json sky_radiance_report(const ReportInputs& in, const SkyRadianceSetu
   nlohmann::json by_sun = nlohmann::json::array();
   for (double sun_elevation : setup.sun_elevations_deg) {
     in.stage(fmt::format("sky radiance: sun at {:g} deg, {} views, {} paths", sun_elevation,
-                         scene.dirs.size(), setup.path_samples));
+                         scene.camera.dirs.size(), setup.path_samples));
     const size_t first = views.size();
     measure_sun(in, setup, scene, tracer, paths, sun_elevation, views);
     const std::vector<ViewResult> these(views.begin() + long(first), views.end());
@@ -426,11 +452,11 @@ nlohmann::json sky_radiance_report(const ReportInputs& in, const SkyRadianceSetu
         {"scattering_shape", meta_string(scene.converged.metadata, "scattering_shape")},
         {"tolerance", meta_double(scene.converged.metadata, "tolerance")}}}};
   out.update(
-      {{"camera_altitude_m", scene.altitude_m},
+      {{"camera_altitude_m", scene.camera.altitude_m},
        {"sun_elevations_deg", setup.sun_elevations_deg},
        {"view_elevations_deg", setup.view_elevations_deg},
        {"view_azimuths", setup.view_azimuths},
-       {"skyview", {{"size", {scene.sky.width, scene.sky.height}}, {"steps", scene.sky.steps}}},
+       {"skyview", {{"size", {scene.camera.sky.width, scene.camera.sky.height}}, {"steps", scene.camera.sky.steps}}},
        {"path_tracer",
         {{"samples", setup.path_samples},
          {"samples_single_and_second_order", setup.path_samples_single},

@@ -52,6 +52,9 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "atmosphere/medium.hpp"
+#include "atmosphere/skyview_lut.hpp"
+#include "core/texture.hpp"
 #include "report/setup.hpp"
 
 namespace skybake {
@@ -71,6 +74,34 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SkyRadianceSetup, sun_elevations_deg, view_el
                                    view_azimuths, path_samples, path_samples_single)
 
 nlohmann::json sky_radiance_report(const ReportInputs& in, const SkyRadianceSetup& setup);
+
+// The camera of the views above: its altitude and position (planet-centred,
+// on the z axis), the view directions of one sun elevation in its local frame
+// (z up, the sun at azimuth 0; elevations outer, azimuths inner) and the
+// sky-view settings its layers are baked with (`views` set per sun).
+struct SkyRadianceCamera {
+  double altitude_m = 0.0;
+  glm::dvec3 position{0.0};
+  std::vector<glm::dvec3> dirs;
+  SkyviewLutSpec sky;
+};
+SkyRadianceCamera sky_radiance_camera(const Scene& scene, const SkyRadianceSetup& setup);
+
+// The sun of one sun elevation in the camera's frame.
+glm::dvec3 sky_radiance_sun(double sun_elevation_deg);
+
+// The LUT side of the views of one sun elevation, rendered from a
+// multiple-scattering table as the report renders them: one sky-view layer
+// baked for the camera from `transmittance` and `multiscattering`, read
+// through render_sky_luminance without sun disk and ground. Linear in the
+// table's texels (docs/decisions.md "Multiple-scattering table: an oracle").
+std::vector<glm::dvec3> render_sky_views(const Atmosphere& atm, const Texture& transmittance,
+                                         const Texture& multiscattering,
+                                         const SkyRadianceCamera& camera,
+                                         double sun_elevation_deg);
+
+// Scattering orders the path tracer follows for the views' references.
+int sky_radiance_max_bounces(const Atmosphere& atm);
 
 // One view's values: the LUTs', and a reference with its 95% half-width (0
 // for the quadrature). `scale` is the view's path-traced radiance with every

@@ -15,6 +15,7 @@
 #include "support/test_atmospheres.hpp"
 #include "atmosphere/direct_single_scattering.hpp"
 #include "atmosphere/query_points.hpp"
+#include "core/error.hpp"
 #include "core/error_stats.hpp"
 #include "atmosphere/phase.hpp"
 #include "atmosphere/transmittance_lut.hpp"
@@ -207,6 +208,35 @@ TEST(ConvergedMultiscattering, ThinConservativeSlabRelativeEstimatorIsOrderOnesF
       }
     }
   }
+}
+
+// Both estimators are means of the source over directions with weights >= 0,
+// so they lie within its range there; the dust's forward lobe makes that
+// range wide.
+TEST(ConvergedMultiscattering, EstimatorsLieInTheSourcesRangeOverDirections) {
+  const Atmosphere atm = thin_dust_slab();
+  const Texture t = bake_transmittance_lut(atm, {64, 32, 20}, {});
+  ConvergedMultiscatteringSpec spec = small_spec();
+  spec.estimator = PsiEstimator::relative;
+  const ConvergedField field = compute_converged_field(atm, t, spec, {});
+  const PsiQuadrature relative = psi_quadrature(spec, field.phases);
+  spec.estimator = PsiEstimator::mean;
+  const PsiQuadrature mean = psi_quadrature(spec, field.phases);
+  EXPECT_THROW(converged_source_range(atm, t, field, atm.bottom_radius_m, 0.5, mean), Error);
+  for (double h : {1e3, 50e3})
+    for (double mu_s : {0.2, 0.8}) {
+      const double r = atm.bottom_radius_m + h;
+      const SourceRange range = converged_source_range(atm, t, field, r, mu_s, relative);
+      for (const PsiQuadrature* q : {&relative, &mean}) {
+        const glm::dvec3 psi = compute_converged_multiscattering(atm, t, field, r, mu_s, *q);
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_GT(range.min[c], 0.0);
+          EXPECT_GT(range.max[c], 2.0 * range.min[c]) << h << " " << mu_s << " " << c;
+          EXPECT_GE(psi[c], range.min[c] * (1 - 1e-9)) << h << " " << mu_s << " " << c;
+          EXPECT_LE(psi[c], range.max[c] * (1 + 1e-9)) << h << " " << mu_s << " " << c;
+        }
+      }
+    }
 }
 
 TEST(ConvergedMultiscattering, TableReadsBackItsOwnMeanAtTexelCentres) {

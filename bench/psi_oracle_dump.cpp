@@ -1,0 +1,163 @@
+// Research tool, not part of the product: dumps the report's sky views as a
+// linear function of a multiple-scattering table (report/psi_weights.hpp),
+// with the path-traced references, for bench/psi_oracle.py, which finds the
+// best table any Psi(r, mu_s) could be (docs/decisions.md
+// "Multiple-scattering table: an oracle for Psi(r, mu_s)").
+//
+//   build/bench/psi_oracle_dump PRESET OUT.json [WIDTHxHEIGHT] [PATHS] [SEED_SETS]
+//        WIDTHxHEIGHT: the table's size (default: the preset's operating point)
+//        PATHS: path tracer paths per channel and view (default 16384)
+//        SEED_SETS: independent references (default 2); set 0 uses the
+//        report's seeds, so its references are the report's bit for bit.
+//        A 6th argument `heldout` replaces the report's views with others
+//        (elevations 10, 35, 50 degrees, azimuths offset by half a step),
+//        to check a table fitted to the report's views on views it was not.
+//
+// Views, camera, sky-view settings, sun elevations and path tracer settings
+// are the report's (`skybake report PRESET --only skyview --quick --paths
+// PATHS`); the tables are the operating point's Hillaire table and the
+// converged model's two estimators at the requested size.
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <tbb/parallel_for.h>
+
+#include "atmosphere/converged_multiscattering.hpp"
+#include "atmosphere/multiscattering_lut.hpp"
+#include "atmosphere/transmittance_lut.hpp"
+#include "core/math.hpp"
+#include "pipeline/atmosphere_specs.hpp"
+#include "pipeline/preset_loader.hpp"
+#include "reference/path_tracer.hpp"
+#include "report/psi_weights.hpp"
+#include "report/setup.hpp"
+
+using namespace skybake;
+
+namespace {
+
+nlohmann::json channel_arrays(const std::vector<glm::dvec3>& v) {
+  nlohmann::json out = nlohmann::json::array();
+  for (int c = 0; c < 3; ++c) {
+    std::vector<double> a;
+    for (const glm::dvec3& x : v) a.push_back(x[c]);
+    out.push_back(a);
+  }
+  return out;
+}
+
+nlohmann::json table_json(const Texture& t) {
+  std::vector<glm::dvec3> v;
+  for (int y = 0; y < t.height; ++y)
+    for (int x = 0; x < t.width; ++x) v.push_back({t.at(x, y, 0, 0, 0), t.at(x, y, 0, 0, 1),
+                                                   t.at(x, y, 0, 0, 2)});
+  return channel_arrays(v);
+}
+
+// The references of every view, seeds as the report's plus `set` x a large odd offset.
+nlohmann::json references(const Atmosphere& atm, const SkyRadianceCamera& cam,
+                          const std::vector<double>& suns, int paths, int set) {
+  const SkyPathTracer tracer(atm);
+  PathTracerSpec spec;
+  spec.samples = paths;
+  spec.max_bounces = sky_radiance_max_bounces(atm);
+  std::vector<glm::dvec3> mean, ci;
+  for (size_t s = 0; s < suns.size(); ++s)
+    for (size_t v = 0; v < cam.dirs.size(); ++v) {
+      spec.seed = 3 * (s * cam.dirs.size() + v) + 1 + uint64_t(set) * 1000003ull;
+      const RadianceEstimate e = tracer.trace(cam.position, cam.dirs[v], sky_radiance_sun(suns[s]),
+                                              spec);
+      mean.push_back(e.mean), ci.push_back(e.ci95);
+    }
+  return {{"mean", channel_arrays(mean)}, {"ci95", channel_arrays(ci)}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: psi_oracle_dump PRESET OUT.json [WxH] [PATHS] [SEED_SETS] [heldout]\n");
+    return 2;
+  }
+  const Scene scene = load_scene(argv[1]);
+  const Atmosphere& atm = scene.atmosphere;
+  const SkyRadianceSetup setup = SkyRadianceSetup::quick();
+  const int paths = argc > 4 ? std::stoi(argv[4]) : 16384, sets = argc > 5 ? std::stoi(argv[5]) : 2;
+  const Texture transmittance = bake_transmittance_lut(
+      atm, transmittance_spec(operating_spec(scene, "transmittance")), BakeContext{});
+  const OutputSpec op = operating_spec(scene, "multiscattering");
+  MultiscatteringLutSpec table = multiscattering_spec(op);
+  if (argc > 3 && std::sscanf(argv[3], "%dx%d", &table.width, &table.height) != 2) return 2;
+  const Texture hillaire = bake_multiscattering_lut(atm, transmittance, table, BakeContext{});
+  ConvergedMultiscatteringSpec spec = converged_multiscattering_spec(op);
+  const ConvergedField field = compute_converged_field(atm, transmittance, spec, BakeContext{});
+  spec.estimator = PsiEstimator::mean;
+  const Texture mean = converged_multiscattering_table(atm, transmittance, table, spec, field, {});
+  spec.estimator = PsiEstimator::relative;
+  const Texture rel = converged_multiscattering_table(atm, transmittance, table, spec, field, {});
+
+  SkyRadianceSetup views = setup;
+  const bool heldout = argc > 6 && std::string(argv[6]) == "heldout";
+  if (heldout) views.view_elevations_deg = {10.0, 35.0, 50.0};
+  SkyRadianceCamera cam = sky_radiance_camera(scene, views);
+  if (heldout)
+    for (glm::dvec3& d : cam.dirs) {  // rotated by half an azimuth step about the zenith
+      const double a = kPi / views.view_azimuths, x = d.x, y = d.y;
+      d.x = std::cos(a) * x - std::sin(a) * y;
+      d.y = std::sin(a) * x + std::cos(a) * y;
+    }
+  const std::vector<double>& suns = setup.sun_elevations_deg;
+  const PsiWeights w = sky_view_psi_weights(atm, transmittance, hillaire, cam, suns);
+  nlohmann::json out;
+  out["preset"] = argv[1];
+  out["table"] = {table.width, table.height};
+  out["paths"] = paths;
+  out["sun_elevations_deg"] = suns;
+  out["view_elevations_deg"] = views.view_elevations_deg;
+  out["heldout"] = heldout;
+  out["view_azimuths"] = setup.view_azimuths;
+  out["single"] = channel_arrays(w.single);
+  nlohmann::json weights = nlohmann::json::array();
+  for (size_t v = 0; v < w.views; ++v)
+    weights.push_back(channel_arrays(std::vector<glm::dvec3>(
+        w.weights.begin() + long(v * size_t(table.width * table.height)),
+        w.weights.begin() + long((v + 1) * size_t(table.width * table.height)))));
+  out["weights"] = weights;  // [view][channel][texel], texel = y * width + x
+  std::vector<double> altitude, mu_s;
+  const MultiscatteringMapping mapping = multiscattering_mapping_of(hillaire);
+  for (int y = 0; y < table.height; ++y)
+    for (int x = 0; x < table.width; ++x) {
+      const RadiusSunCosine p = r_mu_s_from_multiscattering_uv(
+          atm, {texel_center(x, table.width), texel_center(y, table.height)}, table.width,
+          table.height, mapping);
+      altitude.push_back(p.r - atm.bottom_radius_m), mu_s.push_back(p.mu_s);
+    }
+  out["texel_altitude_m"] = altitude;
+  out["texel_mu_s"] = mu_s;
+  // The range of the true source over directions at each texel: where any
+  // mean of it with weights >= 0 (any estimator of that kind) must lie.
+  const PsiQuadrature q = psi_quadrature(spec, field.phases);  // relative: has the kernels
+  std::vector<glm::dvec3> lo(altitude.size()), hi(altitude.size());
+  tbb::parallel_for(size_t(0), altitude.size(), [&](size_t k) {
+    const SourceRange range = converged_source_range(
+        atm, transmittance, field, atm.bottom_radius_m + altitude[k], mu_s[k], q);
+    lo[k] = range.min, hi[k] = range.max;
+  });
+  out["texel_source_min"] = channel_arrays(lo);
+  out["texel_source_max"] = channel_arrays(hi);
+  for (const auto& [name, t] : {std::pair<const char*, const Texture*>{"hillaire", &hillaire},
+                                {"converged_mean", &mean},
+                                {"converged_relative", &rel}}) {
+    std::vector<glm::dvec3> rendered;
+    for (double sun : suns)
+      for (const glm::dvec3& l : render_sky_views(atm, transmittance, *t, cam, sun))
+        rendered.push_back(l);
+    out["tables"][name] = {{"values", table_json(*t)}, {"rendered", channel_arrays(rendered)}};
+  }
+  for (int set = 0; set < sets; ++set)
+    out["references"].push_back(references(atm, cam, suns, paths, set));
+  std::ofstream(argv[2]) << out.dump();
+  return 0;
+}
