@@ -21,8 +21,8 @@
 #include <fstream>
 #include <string>
 
-#include <nlohmann/json.hpp>
 #include <tbb/parallel_for.h>
+#include <nlohmann/json.hpp>
 
 #include "atmosphere/converged_multiscattering.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
@@ -51,8 +51,8 @@ nlohmann::json channel_arrays(const std::vector<glm::dvec3>& v) {
 nlohmann::json table_json(const Texture& t) {
   std::vector<glm::dvec3> v;
   for (int y = 0; y < t.height; ++y)
-    for (int x = 0; x < t.width; ++x) v.push_back({t.at(x, y, 0, 0, 0), t.at(x, y, 0, 0, 1),
-                                                   t.at(x, y, 0, 0, 2)});
+    for (int x = 0; x < t.width; ++x)
+      v.push_back({t.at(x, y, 0, 0, 0), t.at(x, y, 0, 0, 1), t.at(x, y, 0, 0, 2)});
   return channel_arrays(v);
 }
 
@@ -67,8 +67,8 @@ nlohmann::json references(const Atmosphere& atm, const SkyRadianceCamera& cam,
   for (size_t s = 0; s < suns.size(); ++s)
     for (size_t v = 0; v < cam.dirs.size(); ++v) {
       spec.seed = 3 * (s * cam.dirs.size() + v) + 1 + uint64_t(set) * 1000003ull;
-      const RadianceEstimate e = tracer.trace(cam.position, cam.dirs[v], sky_radiance_sun(suns[s]),
-                                              spec);
+      const RadianceEstimate e =
+          tracer.trace(cam.position, cam.dirs[v], sky_radiance_sun(suns[s]), spec);
       mean.push_back(e.mean), ci.push_back(e.ci95);
     }
   return {{"mean", channel_arrays(mean)}, {"ci95", channel_arrays(ci)}};
@@ -78,7 +78,8 @@ nlohmann::json references(const Atmosphere& atm, const SkyRadianceCamera& cam,
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: psi_oracle_dump PRESET OUT.json [WxH] [PATHS] [SEED_SETS] [heldout]\n");
+    std::fprintf(stderr,
+                 "usage: psi_oracle_dump PRESET OUT.json [WxH] [PATHS] [SEED_SETS] [heldout]\n");
     return 2;
   }
   const Scene scene = load_scene(argv[1]);
@@ -141,8 +142,8 @@ int main(int argc, char** argv) {
   const PsiQuadrature q = psi_quadrature(spec, field.phases);  // relative: has the kernels
   std::vector<glm::dvec3> lo(altitude.size()), hi(altitude.size());
   tbb::parallel_for(size_t(0), altitude.size(), [&](size_t k) {
-    const SourceRange range = converged_source_range(
-        atm, transmittance, field, atm.bottom_radius_m + altitude[k], mu_s[k], q);
+    const SourceRange range = converged_source_range(atm, transmittance, field,
+                                                     atm.bottom_radius_m + altitude[k], mu_s[k], q);
     lo[k] = range.min, hi[k] = range.max;
   });
   out["texel_source_min"] = channel_arrays(lo);

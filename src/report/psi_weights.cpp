@@ -18,8 +18,8 @@ PsiWeights sky_view_psi_weights(const Atmosphere& atm, const Texture& transmitta
   Texture zero = layout;
   std::fill(zero.data.begin(), zero.data.end(), 0.0f);
   for (size_t s = 0; s < sun_elevations_deg.size(); ++s)
-    for (const glm::dvec3& l : render_sky_views(atm, transmittance, zero, camera,
-                                                sun_elevations_deg[s]))
+    for (const glm::dvec3& l :
+         render_sky_views(atm, transmittance, zero, camera, sun_elevations_deg[s]))
       w.single.push_back(l);
   // One unit table per texel (1 in every channel: channels do not mix); the
   // rendering is linear in the table, so the weight is the difference. A unit

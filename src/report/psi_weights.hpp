@@ -20,8 +20,8 @@
 namespace skybake {
 
 struct PsiWeights {
-  int width = 0, height = 0;  // the table's texels
-  size_t views = 0;           // sun elevations x camera.dirs, sun outer (the report's order)
+  int width = 0, height = 0;        // the table's texels
+  size_t views = 0;                 // sun elevations x camera.dirs, sun outer (the report's order)
   std::vector<glm::dvec3> single;   // per view: the rendering with Psi_ms = 0
   std::vector<glm::dvec3> weights;  // [view * width * height + y * width + x], per channel
 
