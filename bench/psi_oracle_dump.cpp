@@ -11,7 +11,8 @@
 //        report's seeds, so its references are the report's bit for bit.
 //        A 6th argument `heldout` replaces the report's views with others
 //        (elevations 10, 35, 50 degrees, azimuths offset by half a step),
-//        to check a table fitted to the report's views on views it was not.
+//        to check a table fitted to the report's views on views it was not;
+//        `heldout2` another set (elevations 2, 14, 75, a quarter step).
 //
 // Views, camera, sky-view settings, sun elevations and path tracer settings
 // are the report's (`skybake report PRESET --only skyview --quick --paths
@@ -100,12 +101,15 @@ int main(int argc, char** argv) {
   const Texture rel = converged_multiscattering_table(atm, transmittance, table, spec, field, {});
 
   SkyRadianceSetup views = setup;
-  const bool heldout = argc > 6 && std::string(argv[6]) == "heldout";
-  if (heldout) views.view_elevations_deg = {10.0, 35.0, 50.0};
+  const std::string held = argc > 6 ? argv[6] : "";
+  const bool heldout = held == "heldout" || held == "heldout2";
+  if (held == "heldout") views.view_elevations_deg = {10.0, 35.0, 50.0};
+  if (held == "heldout2") views.view_elevations_deg = {2.0, 14.0, 75.0};
+  const double turn = held == "heldout2" ? 0.25 : 0.5;  // of an azimuth step
   SkyRadianceCamera cam = sky_radiance_camera(scene, views);
   if (heldout)
-    for (glm::dvec3& d : cam.dirs) {  // rotated by half an azimuth step about the zenith
-      const double a = kPi / views.view_azimuths, x = d.x, y = d.y;
+    for (glm::dvec3& d : cam.dirs) {  // rotated about the zenith
+      const double a = 2.0 * kPi * turn / views.view_azimuths, x = d.x, y = d.y;
       d.x = std::cos(a) * x - std::sin(a) * y;
       d.y = std::sin(a) * x + std::cos(a) * y;
     }

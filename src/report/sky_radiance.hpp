@@ -94,7 +94,7 @@ glm::dvec3 sky_radiance_sun(double sun_elevation_deg);
 // multiple-scattering table as the report renders them: one sky-view layer
 // baked for the camera from `transmittance` and `multiscattering`, read
 // through render_sky_luminance without sun disk and ground. Linear in the
-// table's texels (docs/decisions.md "Multiple-scattering table: an oracle").
+// table's texels (report/psi_weights.hpp).
 std::vector<glm::dvec3> render_sky_views(const Atmosphere& atm, const Texture& transmittance,
                                          const Texture& multiscattering,
                                          const SkyRadianceCamera& camera,

@@ -14,8 +14,9 @@
 // - Mars shrunk to a 10 km planet (dust of g = 0.85 dominating): the
 //   relative estimator is below both the mean's error and Hillaire's; the
 //   mean spreads the aureole over every view and is worse than Hillaire's
-//   there. (Halving Hillaire's error on Mars, the target, is out of
-//   reach of any Psi(r, mu_s): docs/reference.md "The relative estimator".)
+//   there. (Halving Hillaire's error on Mars is out of reach of every
+//   estimator that is a mean of the source over directions: docs/decisions.md
+//   "Multiple-scattering table: an oracle for Psi(r, mu_s)".)
 #include <gtest/gtest.h>
 
 #include <algorithm>
