@@ -14,6 +14,10 @@ Run (from the repository, after building the target psi_oracle_dump):
     # fitted tables judged on views they were not fitted to:
     build/bench/psi_oracle_dump presets/mars.json /tmp/mars_heldout.json 32x32 16384 1 heldout
     /usr/bin/python3 bench/psi_oracle.py /tmp/mars_32x32.json --heldout /tmp/mars_heldout.json
+    # fitted to more views (--also, stacked into every fit), judged on others:
+    build/bench/psi_oracle_dump presets/mars.json /tmp/mars_heldout2.json 32x32 16384 1 heldout2
+    /usr/bin/python3 bench/psi_oracle.py /tmp/mars_32x32.json --also /tmp/mars_heldout.json \
+        --heldout /tmp/mars_heldout2.json
 
 Needs numpy and scipy (Debian: apt-get install python3-scipy). The report's
 views render as L = s + A x per channel (report/psi_weights.hpp: s the single
@@ -86,6 +90,14 @@ def minimax(A, s, b, lo, hi):
 
 
 HELDOUT = None  # (A, s, refs) of the held-out views, when given
+ALSO = []  # (A, s, refs) of more views every fit is made to (their set 0)
+
+
+def stacked(A, s, b, c):
+    """The fit's rows: the views of channel c and those of ALSO."""
+    return (np.vstack([A] + [a[c] for a, _, _ in ALSO]),
+            np.concatenate([s] + [x[c] for _, x, _ in ALSO]),
+            np.concatenate([b] + [r[0][0][c] for _, _, r in ALSO]))
 
 
 def line(name, L, refs, c, x=None):
@@ -153,14 +165,14 @@ def main(path, refs_path=None):
         boxes += [(f"converged x [1/{k:g}, {k:g}]", conv[c] / k, conv[c] * k)
                   for k in (1.25, 1.5, 2, 3, 5, 10)]
         for bname, lo, hi in boxes:
-            x = least_squares(A[c], s[c], b0, lo, hi)
+            x = least_squares(*stacked(A[c], s[c], b0, c), lo, hi)
             worst.setdefault("LS " + bname, []).append(line("LS " + bname, s[c] + A[c] @ x, refs, c, x))
             if bname == "x >= 0":
                 x_any = x
             if bname == "[min_v j, max_v j]":
                 x_env = x
             if np.all(np.isfinite(hi)) or bname == "x >= 0":
-                xm = minimax(A[c], s[c], b0, lo, np.where(np.isfinite(hi), hi, 1e30))
+                xm = minimax(*stacked(A[c], s[c], b0, c), lo, np.where(np.isfinite(hi), hi, 1e30))
                 worst.setdefault("minimax " + bname, []).append(
                     line("minimax " + bname, s[c] + A[c] @ xm, refs, c, xm))
         print("  LS x >= 0:")
@@ -181,6 +193,11 @@ if __name__ == "__main__":
         i = args.index("--refs")
         refs_path = args.pop(i + 1)
         args.pop(i)
+    while "--also" in args:
+        i = args.index("--also")
+        _, A_a, s_a, refs_a = load(args.pop(i + 1))
+        args.pop(i)
+        ALSO.append((A_a, s_a, refs_a))
     if "--heldout" in args:
         i = args.index("--heldout")
         heldout = args.pop(i + 1)
