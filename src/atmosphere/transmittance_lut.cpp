@@ -9,7 +9,9 @@
 // segment (6th order) ~1e-4 at 20 steps, ~2e-6 at 40, ~4e-8 at 80 over the
 // whole table; with 8 points (16th order), the table's rule, ~1e-8 at 6
 // steps, 48 samples of sigma_t per ray where the 3-point rule needs 120 for
-// ~2e-6 (docs/reference.md "Transmittance").
+// ~2e-6. The table's rule also integrates the layers without an exponential
+// term (the ozone tent) in closed form, so that neither their kinks cut the
+// ray nor their densities are sampled (docs/reference.md "Transmittance").
 #include "atmosphere/transmittance_lut.hpp"
 
 #include "core/texture_sampling.hpp"
@@ -23,7 +25,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "atmosphere/density_kinks.hpp"
+#include "atmosphere/extinction_profile.hpp"
 #include "atmosphere/geometry.hpp"
+#include "atmosphere/linear_layer_depth.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
 
@@ -39,41 +44,12 @@ double horizon_distance(const Atmosphere& atm) {
 
 // ---- Kinks of the density profiles ----
 
-// Appends the altitudes strictly inside (0, top_h) where `profile` is not
-// smooth: the boundaries between layers and the altitudes where a layer's
-// formula crosses 0 or 1 and the clamp bends it (the ozone tent at 10 and
-// 40 km). Crossings are solved for the pure-linear and pure-exponential
-// layers, the only shapes the profile helpers build.
-void add_profile_kinks(const DensityProfile& profile, double top_h, std::vector<double>& out) {
-  const double inf = std::numeric_limits<double>::infinity();
-  double bottom = 0.0;
-  for (size_t i = 0; i < profile.layers.size(); ++i) {
-    const DensityLayer& l = profile.layers[i];
-    const bool last = i + 1 == profile.layers.size();
-    const double top = last ? inf : bottom + l.width_m;
-    auto add = [&](double h, double lo, double hi) {
-      if (h > lo && h < hi && h > 0.0 && h < top_h) out.push_back(h);
-    };
-    if (!last) add(top, -inf, inf);
-    for (double v : {0.0, 1.0}) {
-      if (l.exp_term == 0.0 && l.linear_term_per_m != 0.0) {
-        add((v - l.constant_term) / l.linear_term_per_m, bottom, top);
-      } else if (l.linear_term_per_m == 0.0 && l.exp_term != 0.0 && l.exp_scale_per_m != 0.0) {
-        const double q = (v - l.constant_term) / l.exp_term;  // exp(b h) = q
-        if (q > 0.0) add(std::log(q) / l.exp_scale_per_m, bottom, top);
-      }
-    }
-    bottom = top;
-  }
-}
-
-// Sorted kink altitudes of every component that has any extinction.
-std::vector<double> kink_altitudes(const Atmosphere& atm) {
+// Sorted kink altitudes of every component the quadrature integrates.
+std::vector<double> kink_altitudes(const Atmosphere& atm, bool closed_form_linear) {
   std::vector<double> kinks;
   const double top_h = atm.top_radius_m - atm.bottom_radius_m;
   for (const MediumComponent& c : atm.components) {
-    const glm::dvec3 sigma_t = c.scattering_per_m + c.absorption_per_m;
-    if (sigma_t == glm::dvec3(0.0)) continue;
+    if (!integrated_by_quadrature(c, closed_form_linear)) continue;
     add_profile_kinks(c.density, top_h, kinks);
   }
   std::sort(kinks.begin(), kinks.end());
@@ -81,99 +57,45 @@ std::vector<double> kink_altitudes(const Atmosphere& atm) {
   return kinks;
 }
 
-// density[j] of one layer's formula at h[j], clamped to [0, 1]
-// (medium.cpp density_at).
-void one_layer_densities(const DensityLayer& l, const double* h, double* density, size_t n) {
-  if (l.exp_term == 0.0) {
-    for (size_t j = 0; j < n; ++j)
-      density[j] = std::min(std::max(l.linear_term_per_m * h[j] + l.constant_term, 0.0), 1.0);
-    return;
-  }
-  for (size_t j = 0; j < n; ++j) {
-    const double e = l.exp_term * std::exp(l.exp_scale_per_m * h[j]);
-    density[j] =
-        std::min(std::max(e + l.linear_term_per_m * h[j] + l.constant_term, 0.0), 1.0);
-  }
-}
-
-// sigma_t(h) of every component with extinction, laid out for the
-// quadrature's inner loop: each component's sigma_t = sigma_s + sigma_a summed
-// once and its layer tops accumulated once. The arithmetic per sample is
-// extinction_at's, term for term, so the sums are bit-identical to it.
-class ExtinctionProfile {
- public:
-  explicit ExtinctionProfile(const Atmosphere& atm) {
-    for (const MediumComponent& c : atm.components) {
-      const glm::dvec3 sigma_t = c.scattering_per_m + c.absorption_per_m;
-      // A component without extinction adds d * 0 = +0 to a sum that starts
-      // at +0, so leaving it out changes no bit.
-      if (sigma_t == glm::dvec3(0.0) || c.density.layers.empty()) continue;
-      Component out{sigma_t, layers_.size(), c.density.layers.size()};
-      double layer_bottom = 0.0;
-      for (size_t i = 0; i < c.density.layers.size(); ++i) {
-        const DensityLayer& l = c.density.layers[i];
-        const bool last = i + 1 == c.density.layers.size();
-        const double inf = std::numeric_limits<double>::infinity();
-        layers_.push_back({last ? inf : layer_bottom + l.width_m, l});
-        layer_bottom += l.width_m;
-      }
-      components_.push_back(out);
-    }
-  }
-
-  // sum_j w[j] extinction_at(atm, h[j]): per component, its density at each
-  // h (the first layer whose top lies above h, the last has none, its formula
-  // clamped to [0, 1] as medium.cpp density_at does) summed with the weights,
-  // times its sigma_t once. A component of one layer (every exponential
-  // profile the helpers build) needs no search.
-  glm::dvec3 integrate(const std::vector<double>& h, const std::vector<double>& w,
-                       std::vector<double>& density) const {
-    glm::dvec3 tau(0.0);
-    const size_t n = h.size();
-    density.resize(n);
-    for (const Component& c : components_) {
-      const Layer* first = &layers_[c.first_layer];
-      if (c.layer_count == 1) {
-        one_layer_densities(first->layer, h.data(), density.data(), n);
-      } else {
-        const Layer* last = first + (c.layer_count - 1);
-        for (size_t j = 0; j < n; ++j) {
-          const Layer* layer = first;
-          while (layer != last && !(h[j] < layer->top)) ++layer;
-          one_layer_densities(layer->layer, &h[j], &density[j], 1);
-        }
-      }
-      double sum = 0.0;
-      for (size_t j = 0; j < n; ++j) sum += w[j] * density[j];
-      tau += sum * c.sigma_t;
-    }
-    return tau;
-  }
-
- private:
-  struct Layer {
-    double top;  // the altitude where the next layer starts; +inf for the last
-    DensityLayer layer;
-  };
-  struct Component {
-    glm::dvec3 sigma_t;
-    size_t first_layer, layer_count;
-  };
-  std::vector<Layer> layers_;
-  std::vector<Component> components_;
-};
-
 // What one ray's quadrature needs besides the ray: the kinks, the profile,
 // and scratch arrays reused from ray to ray (a bake row allocates once).
+// With `closed_form_linear` (the table's rule) the piecewise-linear
+// components are integrated in closed form and neither their kinks cut the
+// ray nor their densities are sampled; else every component is sampled.
 struct RayQuadrature {
-  explicit RayQuadrature(const Atmosphere& atm) : kinks(kink_altitudes(atm)), extinction(atm) {}
+  RayQuadrature(const Atmosphere& atm, bool closed_form_linear)
+      : table_rule(closed_form_linear),
+        kinks(kink_altitudes(atm, closed_form_linear)),
+        extinction(atm, closed_form_linear,
+                   closed_form_linear ? NodeExp::block : NodeExp::libm),
+        linear(closed_form_linear ? LinearLayerDepth(atm) : LinearLayerDepth(Atmosphere{})) {}
+  bool table_rule;  // the 8-point rule's cuts and grading (docs/reference.md)
   std::vector<double> kinks;
   ExtinctionProfile extinction;
+  LinearLayerDepth linear;
   std::vector<double> scratch, breakpoints;
   std::vector<int> segments;
   std::vector<double> heights, weights;  // per node: altitude, Gauss weight times the half length
   std::vector<double> densities;         // per node, one component at a time
 };
+
+// The radius along the ray, r(x) = sqrt(x^2 + p^2) at distance x from the
+// perigee (p its radius), has branch points at x = +-i p: a Gauss rule on a
+// segment much longer than its distance to them converges slowly (a ray
+// grazing a 1 km planet). From the ray's point nearest the perigee, x_0,
+// cuts at x_{k+1} = x_k + r(x_k) on the ray's side(s) keep every piece no
+// longer than its low end's distance to the branch points (Bernstein
+// ellipse parameter >= ~3 for the 8-point rule). On Earth and Mars r > any
+// ray's length, so nothing is cut.
+void add_perigee_cuts(std::vector<double>& s, double r, double mu, double d) {
+  const double perigee = -r * mu;  // s at x = 0
+  const double p2 = r * r * std::max(0.0, (1.0 - mu) * (1.0 + mu));
+  const double reach = std::max(std::abs(perigee), std::abs(d - perigee));  // largest |x|
+  double x = perigee > 0.0 && perigee < d ? 0.0 : std::min(std::abs(perigee), std::abs(d - perigee));
+  for (x += std::sqrt(x * x + p2); x < reach; x += std::sqrt(x * x + p2))
+    for (double cut : {perigee - x, perigee + x})
+      if (cut > 0.0 && cut < d) s.push_back(cut);
+}
 
 // Distances in [0, d] cutting the segment (r, mu, d) into smooth pieces of
 // monotone altitude: its ends, the perigee s = -r mu and where it crosses the
@@ -192,6 +114,7 @@ void segment_breakpoints(const Atmosphere& atm, RayQuadrature& q, double r, doub
     for (double crossing : {perigee - root, perigee + root})
       if (crossing > 0.0 && crossing < d) s.push_back(crossing);
   }
+  if (q.table_rule) add_perigee_cuts(s, r, mu, d);
   std::sort(s.begin(), s.end());
   // Drop pieces too short to matter (a kink grazed at the perigee, rounding).
   const double min_length = 1e-12 * d;
@@ -248,33 +171,63 @@ GaussRule gauss_rule(SegmentRule rule) {
   return {kGauss3Nodes, kGauss3Weights, 3};
 }
 
-// Appends the altitudes of the Gauss nodes of [a, b] on the ray and their
-// weights (the rule's times the half length).
-void add_gauss_nodes(const Atmosphere& atm, RayQuadrature& q, const GaussRule& g, double r,
-                     double mu, double a, double b) {
+// Writes the distances along the ray of the Gauss nodes of [a, b] to
+// s[0, points) (node_altitudes turns them into altitudes) and their weights
+// (the rule's times the half length) to w.
+void gauss_nodes(const GaussRule& g, double a, double b, double* s, double* w) {
   const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
   for (int k = 0; k < g.points; ++k) {
-    const double s = mid + half * g.nodes[k];
-    q.heights.push_back(std::max(0.0, radius_after(r, mu, s) - atm.bottom_radius_m));
-    q.weights.push_back(half * g.weights[k]);
+    s[k] = mid + half * g.nodes[k];
+    w[k] = half * g.weights[k];
   }
 }
 
-// The quadrature of compute_optical_depth with the kinks and profile already known.
+// Distance s along (r, mu) -> altitude, radius_after's arithmetic, in one
+// pass over the nodes (the compiler vectorizes it). Altitudes below 0 read
+// the ground's density.
+void node_altitudes(std::vector<double>& s, double r, double mu, double bottom_radius) {
+  const double two_r_mu = 2.0 * r * mu, r2 = r * r;
+  for (double& x : s)
+    x = std::max(0.0, std::sqrt(std::max(x * x + two_r_mu * x + r2, 0.0)) - bottom_radius);
+}
+
+// node_altitudes for the table's rule, without its clamps (which keep the
+// compiler from vectorizing): the radius is sqrt((s + r mu)^2 + p^2), p^2 =
+// r^2 (1 - mu)(1 + mu) >= 0, so the root's argument cannot be negative, and
+// altitudes a rounding below the ground stay in the lowest layer's formula.
+void node_altitudes_from_perigee(std::vector<double>& s, double r, double mu,
+                                 double bottom_radius) {
+  const double from_perigee = r * mu, p2 = r * r * std::max(0.0, (1.0 - mu) * (1.0 + mu));
+  for (double& x : s) {
+    const double x_p = x + from_perigee;
+    x = std::sqrt(x_p * x_p + p2) - bottom_radius;
+  }
+}
+
+// The quadrature of compute_optical_depth with the kinks and profile already
+// known, plus the closed form of the linear components q.linear holds.
 glm::dvec3 integrate_optical_depth(const Atmosphere& atm, RayQuadrature& q, double r, double mu,
                                    double d, int steps, SegmentRule rule) {
-  const GaussRule g = gauss_rule(rule);
   if (!(d > 0.0) || atm.components.empty()) return glm::dvec3(0.0);
+  const glm::dvec3 linear = q.linear.integrate(r, mu, d);
+  if (q.extinction.empty()) return linear;
+  const GaussRule g = gauss_rule(rule);
   segment_breakpoints(atm, q, r, mu, d);
   segments_per_piece(q, steps);
   const std::vector<double>& s = q.breakpoints;
   const std::vector<int>& n = q.segments;
   const double perigee = -r * mu;
-  q.heights.clear();
-  q.weights.clear();
+  int total = 0;
+  for (int count : n) total += count;
+  q.heights.resize(size_t(total) * g.points);
+  q.weights.resize(size_t(total) * g.points);
+  size_t node = 0;
   for (size_t i = 0; i + 1 < s.size(); ++i) {
-    // Grade s = low_end +- L t^2 toward the lowest altitude of the piece: its
-    // end when the ray still descends to the perigee, else its start.
+    // Grade s = low_end +- L t^2 toward the lowest altitude of the piece:
+    // its end when the ray still descends to the perigee, else its start.
+    // The table's rule grades t^1.25 on rays through their perigee: there
+    // the altitude is quadratic in s and an exponential density a Gaussian,
+    // which wants segments of more even length (docs/reference.md).
     const bool descending = s[i + 1] <= perigee;
     const double length = s[i + 1] - s[i];
     const double low_end = descending ? s[i + 1] : s[i];
@@ -282,13 +235,20 @@ glm::dvec3 integrate_optical_depth(const Atmosphere& atm, RayQuadrature& q, doub
     double prev = low_end;
     for (int k = 1; k <= n[i]; ++k) {
       const double t = double(k) / n[i];
+      const double graded = q.table_rule && perigee > 0.0 ? t * std::sqrt(std::sqrt(t)) : t * t;
       const double next =
-          k == n[i] ? (descending ? s[i] : s[i + 1]) : low_end + sign * length * t * t;
-      add_gauss_nodes(atm, q, g, r, mu, std::min(prev, next), std::max(prev, next));
+          k == n[i] ? (descending ? s[i] : s[i + 1]) : low_end + sign * length * graded;
+      gauss_nodes(g, std::min(prev, next), std::max(prev, next), &q.heights[node],
+                  &q.weights[node]);
+      node += g.points;
       prev = next;
     }
   }
-  return q.extinction.integrate(q.heights, q.weights, q.densities);
+  if (q.table_rule)
+    node_altitudes_from_perigee(q.heights, r, mu, atm.bottom_radius_m);
+  else
+    node_altitudes(q.heights, r, mu, atm.bottom_radius_m);
+  return q.extinction.integrate(q.heights, q.weights, q.densities) + linear;
 }
 
 glm::dvec3 transmittance_from_optical_depth(glm::dvec3 tau) {
@@ -308,8 +268,9 @@ void set_transmittance_metadata(Metadata& meta, const Atmosphere& atm,
   set_meta(meta, "height", spec.height);
   set_meta(meta, "integration_steps", spec.steps);
   set_meta(meta, "integration_rule",
-           std::string("steps graded segments per smooth piece of the ray, 8-point "
-                       "Gauss-Legendre on each"));
+           std::string("layers without an exponential term (ozone) in closed form; the "
+                       "others over steps graded segments per smooth piece of the ray, "
+                       "8-point Gauss-Legendre on each"));
   set_meta(meta, "texel_centers",
            std::string("texel (x, y) has its centre at u = (x + 0.5)/W, v = (y + 0.5)/Ht; "
                        "y = 0 is the ground (r = Rb), x = 0 the zenith (mu = 1)"));
@@ -365,7 +326,7 @@ void r_mu_from_transmittance_uv(const Atmosphere& atm, glm::dvec2 uv, int width,
 
 glm::dvec3 compute_optical_depth(const Atmosphere& atm, double r, double mu, double d, int steps,
                                  SegmentRule rule) {
-  RayQuadrature q(atm);
+  RayQuadrature q(atm, rule == SegmentRule::gauss8);
   return integrate_optical_depth(atm, q, r, mu, d, steps, rule);
 }
 
@@ -391,7 +352,7 @@ Texture bake_transmittance_lut(const Atmosphere& atm, const TransmittanceLutSpec
         spec.width, spec.height, spec.steps));
   Texture tex(spec.width, spec.height, 1, 1, {"R", "G", "B"});
   set_transmittance_metadata(tex.metadata, atm, spec);
-  const RayQuadrature shared(atm);
+  const RayQuadrature shared(atm, true);
   ProgressCounter progress(ctx, size_t(spec.height));
   tbb::parallel_for(
       tbb::blocked_range<int>(0, spec.height), [&](const tbb::blocked_range<int>& rows) {
