@@ -14,7 +14,6 @@ namespace skybake {
 
 namespace {
 
-constexpr double kDeg = kPi / 180.0;
 constexpr double kWhite = 4.0;  // extended Reinhard white point (exposed units)
 
 double luminance(const float* rgb) {

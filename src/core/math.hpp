@@ -9,6 +9,8 @@
 namespace skybake {
 
 constexpr double kPi = 3.14159265358979323846;
+// Radians per degree: presets give angles in degrees.
+constexpr double kDeg = kPi / 180.0;
 
 inline double clamp_cosine(double mu) { return std::clamp(mu, -1.0, 1.0); }
 inline double safe_sqrt(double a) { return std::sqrt(std::max(a, 0.0)); }

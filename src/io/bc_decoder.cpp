@@ -5,13 +5,12 @@
 #include <algorithm>
 
 #include "io/block_compression.hpp"
+#include "io/le_bytes.hpp"
 
 namespace skybake {
 namespace {
 
-uint16_t get_u16(const uint8_t* p) {
-  return uint16_t(p[0] | p[1] << 8);
-}
+using le::get_u16;
 
 // RGB565 endpoint as normalized floats: R = red / 31, G = green / 63,
 // B = blue / 31 (S3TC: "the 5-bit or 6-bit value is divided by its maximum").

@@ -27,6 +27,8 @@
 #include "core/suggest.hpp"
 #include "io/block_compression.hpp"
 #include "io/dds_format_table.hpp"
+#include "io/le_bytes.hpp"
+#include "io/size_math.hpp"
 
 namespace skybake {
 namespace {
@@ -51,14 +53,8 @@ std::string format_list(bool with_codes) {
   return s;
 }
 
-// ---- little-endian bytes -------------------------------------------------
-
-void put_u32(uint8_t* p, uint32_t v) {
-  for (int i = 0; i < 4; ++i) p[i] = uint8_t(v >> (8 * i));
-}
-uint32_t get_u32(const uint8_t* p) {
-  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
-}
+using le::get_u32;
+using le::put_u32;
 
 // ---- shapes ----------------------------------------------------------------
 
@@ -260,13 +256,9 @@ constexpr uint32_t kMaxDdsVolumeSide = 2048;
 constexpr uint32_t kMaxDdsArraySize = 2048;
 constexpr uint64_t kMaxDdsDecodedBytes = uint64_t(4) << 30;
 
-// Header sizes come from the file: saturate instead of wrapping, so a forged
-// header cannot announce a small total (a saturated total never matches the
-// file size, so nothing is allocated for it).
-constexpr uint64_t kU64Max = std::numeric_limits<uint64_t>::max();
-uint64_t mul_saturated(uint64_t a, uint64_t b) {
-  return a != 0 && b > kU64Max / a ? kU64Max : a * b;
-}
+// Header sizes come from the file: they saturate (io/size_math.hpp).
+using sizes::kU64Max;
+using sizes::mul_saturated;
 
 // The format, the dimension and the array size, from the DX10 header or, in
 // a legacy file, from the pixel format and caps2.

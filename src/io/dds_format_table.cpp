@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "core/half.hpp"
+#include "io/le_bytes.hpp"
 
 namespace skybake {
 namespace {
@@ -65,30 +66,12 @@ bool same_masks(const DdsPixelFormat& a, const DdsPixelFormat& b) {
 
 // ---- little-endian texels --------------------------------------------------
 
-void put_u32(uint8_t* p, uint32_t v) {
-  for (int i = 0; i < 4; ++i) p[i] = uint8_t(v >> (8 * i));
-}
-void put_u16(uint8_t* p, uint16_t v) {
-  p[0] = uint8_t(v);
-  p[1] = uint8_t(v >> 8);
-}
-uint32_t get_u32(const uint8_t* p) {
-  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
-}
-uint16_t get_u16(const uint8_t* p) {
-  return uint16_t(p[0] | p[1] << 8);
-}
-void put_f32(uint8_t* p, float v) {
-  uint32_t u;
-  std::memcpy(&u, &v, 4);
-  put_u32(p, u);
-}
-float get_f32(const uint8_t* p) {
-  const uint32_t u = get_u32(p);
-  float v;
-  std::memcpy(&v, &u, 4);
-  return v;
-}
+using le::get_f32;
+using le::get_u16;
+using le::get_u32;
+using le::put_f32;
+using le::put_u16;
+using le::put_u32;
 // lround of x in [0, 255] (halves away from zero), without the library
 // call: x - trunc(x) is exact for such floats, so the comparison decides.
 uint8_t unorm8_from_float(float v) {

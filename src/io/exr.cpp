@@ -38,6 +38,7 @@
 
 #include "core/error.hpp"
 #include "io/exr_attributes.hpp"
+#include "io/size_math.hpp"
 
 namespace skybake {
 
@@ -267,7 +268,7 @@ void write_exr(const std::string& path, const Texture& tex, ExrPrecision precisi
 
 namespace {
 
-struct Shape {
+struct PartShape {
   int width = 0, height = 0, depth = 1, layers = 1;
 };
 
@@ -324,14 +325,12 @@ std::vector<std::string> file_channels(const Imf::Header& h) {
 }
 
 // Every size below comes from the file: products are taken in 64 bits and
-// saturate instead of wrapping, so no forged header can announce a small total.
-constexpr uint64_t kU64Max = std::numeric_limits<uint64_t>::max();
-uint64_t mul_saturated(uint64_t a, uint64_t b) {
-  return a != 0 && b > kU64Max / a ? kU64Max : a * b;
-}
+// saturate (io/size_math.hpp).
+using sizes::kU64Max;
+using sizes::mul_saturated;
 
 // "WxHxDxL", four integers from 1 to INT_MAX, or nullopt.
-std::optional<Shape> parse_shape(const std::string& text) {
+std::optional<PartShape> parse_shape(const std::string& text) {
   int values[4];
   const char* p = text.c_str();
   for (int i = 0; i < 4; ++i) {
@@ -345,7 +344,7 @@ std::optional<Shape> parse_shape(const std::string& text) {
     p = end;
   }
   if (*p != '\0') return std::nullopt;
-  return Shape{values[0], values[1], values[2], values[3]};
+  return PartShape{values[0], values[1], values[2], values[3]};
 }
 
 // Refuses, before any pixel is allocated, a file whose parts would decode to
@@ -372,7 +371,7 @@ void check_decoded_size(const std::string& path, const std::vector<PartInfo>& sp
     const uint64_t part = mul_saturated(
         mul_saturated(mul_saturated(uint64_t(s.width), uint64_t(s.height)), uint64_t(s.channels)),
         sizeof(float));
-    decoded = part > kU64Max - decoded ? kU64Max : decoded + part;
+    decoded = sizes::add_saturated(decoded, part);
   }
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0)
@@ -414,7 +413,7 @@ void expect_part_size(const std::string& path, const PartInfo& spec, int part, i
 // skybake:shape and the image: slice_count x slice_width x slice_height is
 // the volume, atlas_columns x atlas_rows cells hold exactly slice_count
 // slices, and the image is that many slices wide and high. Returns columns.
-int atlas_columns(const std::string& path, const Imf::Header& h, const Shape& shape) {
+int atlas_columns(const std::string& path, const Imf::Header& h, const PartShape& shape) {
   const int columns = int_attribute(h, kPrefix + "atlas_columns");
   const int rows = int_attribute(h, kPrefix + "atlas_rows");
   const int count = int_attribute(h, kPrefix + "slice_count");
@@ -497,11 +496,11 @@ Texture read_exr_file(const std::string& path, ExrShape shape_from) {
   const PartInfo& head_info = specs.at(0);
   const Imf::Header& head = *head_info.header;
 
-  Shape shape{int(head_info.width), int(head_info.height), 1, int(specs.size())};
+  PartShape shape{int(head_info.width), int(head_info.height), 1, int(specs.size())};
   const bool recorded = shape_from == ExrShape::recorded;
   const std::string shape_text = recorded ? string_attribute(head, kPrefix + "shape") : "";
   if (!shape_text.empty()) {
-    const std::optional<Shape> parsed = parse_shape(shape_text);
+    const std::optional<PartShape> parsed = parse_shape(shape_text);
     if (!parsed)
       throw IoError(fmt::format(
           "{}: expected skybake:shape of the form WxHxDxL with sizes from 1 to {}, got '{}'", path,

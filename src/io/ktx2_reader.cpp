@@ -24,6 +24,7 @@
 #include "io/block_compression.hpp"
 #include "io/ktx2.hpp"
 #include "io/le_bytes.hpp"
+#include "io/size_math.hpp"
 
 namespace skybake {
 
@@ -37,9 +38,7 @@ constexpr uint32_t kMaxVolumeSide = 2048;
 constexpr uint32_t kMaxLayers = 2048;
 constexpr uint64_t kMaxDecodedBytes = uint64_t(4) << 30;
 
-uint64_t align_up(uint64_t v, uint64_t a) {
-  return (v + a - 1) / a * a;
-}
+using sizes::align_up;
 
 uint64_t file_size_of(const std::string& path) {
   struct stat st {};

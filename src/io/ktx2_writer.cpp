@@ -18,14 +18,13 @@
 #include "io/block_compression.hpp"
 #include "io/ktx2.hpp"
 #include "io/le_bytes.hpp"
+#include "io/size_math.hpp"
 
 namespace skybake {
 
 namespace {
 
-uint64_t align_up(uint64_t v, uint64_t a) {
-  return (v + a - 1) / a * a;
-}
+using sizes::align_up;
 
 // Encodes one texel of `nc` channels (nc <= components of the format).
 void encode_texel(const Ktx2FormatInfo& f, const float* src, int nc, uint8_t* dst) {

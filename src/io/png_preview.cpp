@@ -112,19 +112,19 @@ void draw_panel(std::vector<uint8_t>& rgb, const PreviewLayout& layout, const Te
     }
 }
 
-void put_u32(std::string& out, uint32_t v) {
+void append_u32_be(std::string& out, uint32_t v) {
   const char b[4] = {char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
   out.append(b, 4);
 }
 
 // One chunk: length, type, data, CRC-32 of type and data (PNG spec sec. 5.3).
 void put_chunk(std::string& out, const char type[4], const std::string& data) {
-  put_u32(out, uint32_t(data.size()));
+  append_u32_be(out, uint32_t(data.size()));
   const size_t start = out.size();
   out.append(type, 4);
   out += data;
   const auto* p = reinterpret_cast<const Bytef*>(out.data() + start);
-  put_u32(out, uint32_t(crc32(crc32(0L, Z_NULL, 0), p, uInt(out.size() - start))));
+  append_u32_be(out, uint32_t(crc32(crc32(0L, Z_NULL, 0), p, uInt(out.size() - start))));
 }
 
 // Filter byte + filtered row (PNG spec sec. 9): every row tries the five
@@ -173,8 +173,8 @@ constexpr int kZlibLevel = 3;
 void write_png_rgb8(const std::string& path, const std::vector<uint8_t>& rgb, int width,
                     int height) {
   std::string ihdr;
-  put_u32(ihdr, uint32_t(width));
-  put_u32(ihdr, uint32_t(height));
+  append_u32_be(ihdr, uint32_t(width));
+  append_u32_be(ihdr, uint32_t(height));
   ihdr += std::string("\x08\x02\x00\x00\x00", 5);  // 8-bit RGB, deflate, adaptive, no interlace
   std::string raw;
   filter_rows(rgb, width, height, raw);

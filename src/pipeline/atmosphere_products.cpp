@@ -20,8 +20,6 @@ namespace skybake {
 
 namespace {
 
-constexpr double kDeg = kPi / 180.0;
-const std::vector<std::string> kAtmosphereSections = {"planet", "atmosphere"};
 
 double json_number(const nlohmann::json& obj, const char* key, double fallback) {
   auto it = obj.find(key);

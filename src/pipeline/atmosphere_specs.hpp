@@ -2,6 +2,9 @@
 // converted here once; shared by the product table and the error estimates.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "atmosphere/aerial_perspective_lut.hpp"
 #include "atmosphere/converged_multiscattering.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
@@ -13,6 +16,9 @@
 #include "pipeline/scene.hpp"
 
 namespace skybake {
+
+// The preset sections every atmosphere product's input hash covers.
+inline const std::vector<std::string> kAtmosphereSections = {"planet", "atmosphere"};
 
 TransmittanceLutSpec transmittance_spec(const OutputSpec& spec);
 MultiscatteringLutSpec multiscattering_spec(const OutputSpec& spec);

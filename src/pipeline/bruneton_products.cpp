@@ -54,8 +54,6 @@ Scattering3dSpec scattering3d_spec(const OutputSpec& spec) {
 
 namespace {
 
-const std::vector<std::string> kAtmosphereSections = {"planet", "atmosphere"};
-
 // The scene's own output of `product`, or that product's defaults.
 OutputSpec spec_of(const Scene& scene, const std::string& product) {
   if (const OutputSpec* s = scene.find_output(product)) return *s;

@@ -18,7 +18,6 @@ namespace skybake {
 
 namespace {
 
-constexpr double kDeg = kPi / 180.0;
 
 BrunetonSpec level_bruneton_spec(const BrunetonSetup& setup) {
   BrunetonSpec b;

@@ -16,7 +16,6 @@ namespace skybake {
 
 namespace {
 
-constexpr double kDeg = kPi / 180.0;
 constexpr double kVisibleFloor = 1e-6;
 constexpr double kTolerance = 1e-10;
 const double kElevationsDeg[] = {10.0, 2.0, 0.5, 0.1, 0.0, -0.1, -0.5, -2.0, -10.0};

@@ -21,7 +21,6 @@ namespace skybake {
 
 namespace {
 
-constexpr double kDeg = kPi / 180.0;
 const char* const kChannels[3] = {"R", "G", "B"};
 constexpr double kVisibleFraction = 1e-3;
 

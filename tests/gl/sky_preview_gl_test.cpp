@@ -28,8 +28,6 @@
 namespace skybake::gltest {
 namespace {
 
-constexpr double kDeg = kPi / 180.0;
-
 const SamplerState kClamp{Filter::linear, Wrap::clamp_to_edge, Wrap::clamp_to_edge,
                           Wrap::clamp_to_edge};
 const SamplerState kRepeatU{Filter::linear, Wrap::repeat, Wrap::clamp_to_edge,

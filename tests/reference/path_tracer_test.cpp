@@ -35,8 +35,6 @@ namespace {
 using fixtures::earth_atmosphere;
 using fixtures::make_component;
 
-constexpr double kDeg = kPi / 180.0;
-
 // A direction of elevation / azimuth (degrees) in the frame of a viewer on
 // the z axis (up = z).
 glm::dvec3 direction(double elevation_deg, double azimuth_deg) {
