@@ -5,14 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/wide_vectors.hpp"
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-#if SKYBAKE_HAS_AVX2
-#include <immintrin.h>
-#endif
+#include "core/wide_intrinsics.hpp"
 
 namespace skybake {
 

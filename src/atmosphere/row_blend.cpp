@@ -4,14 +4,7 @@
 
 #include <algorithm>
 
-#include "core/wide_vectors.hpp"
-
-#if defined(__SSE2__)
-#include <xmmintrin.h>
-#endif
-#if SKYBAKE_HAS_AVX2
-#include <immintrin.h>
-#endif
+#include "core/wide_intrinsics.hpp"
 
 namespace skybake {
 

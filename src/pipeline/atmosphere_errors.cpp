@@ -112,7 +112,6 @@ nlohmann::json measure_multiscattering_error(const Scene& scene, const OutputSpe
     reads[i].second =
         multiscattering_at_point(atm, *in.at("transmittance"), q.r, q.mu, rule).psi_ms;
   });
-  const PointQuadrature& quadrature = kMultiscatteringReference;
   return error_record(
       reads,
       fmt::format("lookup_multiscattering (bilinear) at points uniform in altitude and sun "
@@ -121,8 +120,9 @@ nlohmann::json measure_multiscattering_error(const Scene& scene, const OutputSpe
                   "in s where mu = mu_h -+ c s^2, x {} azimuths ({} lit, each with its mirror "
                   "image across the sun's plane), {} segments per ray graded toward the densest "
                   "air (multiscattering_at_point), reading the same transmittance table",
-                  quadrature.below, quadrature.above, 2 * quadrature.azimuths, quadrature.azimuths,
-                  quadrature.steps));
+                  kMultiscatteringReference.below, kMultiscatteringReference.above,
+                  2 * kMultiscatteringReference.azimuths, kMultiscatteringReference.azimuths,
+                  kMultiscatteringReference.steps));
 }
 
 namespace {
