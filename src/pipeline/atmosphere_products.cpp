@@ -189,6 +189,9 @@ ProductInfo atmosphere_lut_product(std::string name, std::string summary,
   p.sampling.wrap.assign(std::min<size_t>(p.axes.size(), 3), "clamp");
   p.atmosphere_table = true;
   p.reads_mie_phase = true;
+  // Float32 tables: zip saves 12-23% of the bytes for a third more CPU on
+  // Earth's Hillaire set (docs/decisions.md "EXR compression").
+  p.default_exr_compression = "none";
   return p;
 }
 

@@ -32,7 +32,8 @@ namespace {
 
 // Raised whenever what a file holds for the same texels changes.
 constexpr const char* kFileLayout =
-    "file layout 3: typed metadata, exact atlas, EXR and VDB compression per product";
+    "file layout 4: typed metadata, exact atlas, EXR and VDB compression per product, "
+    "uncompressed EXR atmosphere tables";
 
 // Keys of an output object read only by the file writers.
 bool is_writer_key(const std::string& key) {

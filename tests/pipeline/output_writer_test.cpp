@@ -119,12 +119,14 @@ TEST(OutputWriter, ExrCompressionIsTheOutputsOwn) {
 }
 
 TEST(OutputWriter, ExrCompressionDefaultsToTheProducts) {
-  // docs/formats.md "EXR": zip for the tables and maps, none for the
-  // tileable noises, whose float texels zip barely shrinks.
+  // docs/formats.md "EXR": zip for the maps, none for the float32
+  // atmosphere tables and the tileable noises, whose texels zip barely shrinks.
   const fs::path dir = test::fresh_dir("output_writer_exr_default");
   const Texture tex = rgba_volume();
   for (const auto& [product, compression] :
-       {std::pair<const char*, const char*>{"aerial_perspective", "zip"},
+       {std::pair<const char*, const char*>{"weather", "zip"},
+        {"aerial_perspective", "none"},
+        {"scattering", "none"},
         {"noise_shape", "none"},
         {"noise_detail", "none"}}) {
     const ProductInfo* info = find_product(product);
