@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
@@ -117,24 +118,28 @@ Texture bake_skyview_lut(const Atmosphere& atm, const Texture& transmittance_lut
     const double mu = view_from_skyview_uv(atm, r, {0.5, v}, spec.width, spec.height).mu;
     const SkyviewRowMarch row = march_skyview_row(atm, transmittance_lut, multiscattering_lut,
                                                   mapping, r, mu, spec.steps, spec.distribution);
-    std::vector<glm::dvec3> scratch;
+    // The sky is symmetric about the sun's vertical plane (the medium varies
+    // with altitude only): texel width - 1 - x sees the mirror image of
+    // texel x, so half the row is marched and mirrored.
+    const int half = (spec.width + 1) / 2;
+    std::vector<double> cos_phi(size_t(half), 0.0), nu(size_t(half), 0.0);
+    std::vector<glm::dvec3> luminance(static_cast<size_t>(half));
     for (int layer : layers_at[group]) {
       const double sun_zenith = spec.views[layer].sun_zenith_rad;
       const double cos_s = std::cos(sun_zenith), sin_s = std::sin(sun_zenith);
       const glm::dvec3 sun_dir(sin_s, 0.0, cos_s);
-      // The sky is symmetric about the sun's vertical plane (the medium varies
-      // with altitude only): texel width - 1 - x sees the mirror image of
-      // texel x, so half the row is marched and mirrored.
-      for (int x = 0; x < (spec.width + 1) / 2; ++x) {
+      for (int x = 0; x < half; ++x) {
         const SkyviewDirection d =
             view_from_skyview_uv(atm, r, {texel_center(x, spec.width), v}, spec.width, spec.height);
-        const double nu = clamp_cosine(glm::dot(skyview_vector_from_direction(d), sun_dir));
-        const glm::dvec3 luminance =
-            skyview_texel_luminance(row, atm, transmittance_lut, multiscattering_lut,
-                                    std::cos(d.azimuth_rad), cos_s, sin_s, nu, scratch);
+        nu[x] = clamp_cosine(glm::dot(skyview_vector_from_direction(d), sun_dir));
+        cos_phi[x] = std::cos(d.azimuth_rad);
+      }
+      skyview_row_luminance(row, atm, transmittance_lut, multiscattering_lut, cos_phi.data(),
+                            nu.data(), half, cos_s, sin_s, luminance.data());
+      for (int x = 0; x < half; ++x) {
         float* t = tex.texel(x, y, 0, layer);
         float* mirror = tex.texel(spec.width - 1 - x, y, 0, layer);
-        for (int c = 0; c < 3; ++c) t[c] = mirror[c] = float(luminance[c]);
+        for (int c = 0; c < 3; ++c) t[c] = mirror[c] = float(luminance[x][c]);
       }
       progress.tick();
     }

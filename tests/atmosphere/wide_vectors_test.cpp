@@ -1,13 +1,16 @@
 // The AVX2 loops of the 4D orders (the density's Mie loop, the mu_s taps
 // and the row blends of the multiple-scattering pass) against their SSE2
-// twins: the same bits (core/wide_vectors.hpp). Sizes that leave remainders
-// for every loop: 15 texels per row (nu 3 x mu_s 5) and 25 direction pairs
-// (5 zenith bands), padded to 32.
+// twins, and the sky-view's four-texel loop against its one-texel one: the
+// same bits (core/wide_vectors.hpp). Sizes that leave remainders for every
+// loop: 15 texels per row (nu 3 x mu_s 5), 25 direction pairs (5 zenith
+// bands) padded to 32, and sky-view rows of 11 texels (22 mirrored).
 #include <cstring>
 
 #include <gtest/gtest.h>
 
+#include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/scattering_orders.hpp"
+#include "atmosphere/skyview_lut.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/wide_vectors.hpp"
 #include "support/test_atmospheres.hpp"
@@ -47,6 +50,34 @@ TEST(WideVectors, OrdersHaveTheSameBitsInAvx2AndSse2) {
   EXPECT_TRUE(same_bits(sse2.single_mie, avx2.single_mie));
   EXPECT_TRUE(same_bits(sse2.irradiance, avx2.irradiance));
   EXPECT_EQ(sse2.residuals, avx2.residuals);
+}
+
+TEST(WideVectors, SkyviewHasTheSameBitsInAvx2AndOneTexelAtATime) {
+  {
+    const WideVectorsAs probe(true);
+    if (!wide_vectors()) GTEST_SKIP() << "this CPU has no AVX2: only the one-texel loop runs";
+  }
+  for (const Atmosphere& atm : {fixtures::earth_atmosphere(), fixtures::tiny_planet_atmosphere()}) {
+    const fixtures::SkyLutInputs l = fixtures::bake_sky_lut_inputs(atm);
+    // The four-texel loop serves the linear sun mapping (the terminator's
+    // reads go one at a time).
+    ASSERT_EQ(multiscattering_mapping_of(l.multiscattering).sun, SunMapping::linear);
+    const double top = atm.top_radius_m - atm.bottom_radius_m;
+    // Ground, sunset, sun below the horizon and space views: rays to the
+    // ground and to space, sun lookups on both sides of the horizon.
+    const SkyviewLutSpec spec{22, 15, 12, StepDistribution::quadratic,
+                              {{0.0, 0.3}, {5e3, 1.5}, {0.0, 1.75}, {top + 20e3, 1.2}}};
+    Texture one, four;
+    {
+      const WideVectorsAs as(false);
+      one = bake_skyview_lut(atm, l.transmittance, l.multiscattering, spec, {});
+    }
+    {
+      const WideVectorsAs as(true);
+      four = bake_skyview_lut(atm, l.transmittance, l.multiscattering, spec, {});
+    }
+    EXPECT_TRUE(same_bits(one, four));
+  }
 }
 
 TEST(WideVectors, OffStaysOffAndOnFollowsTheCpu) {
