@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <vector>
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include "atmosphere/direction_march.hpp"
 #include "atmosphere/phase.hpp"
 #include "atmosphere/sky_integrator.hpp"
 #include "atmosphere/transmittance_lut.hpp"
@@ -15,21 +17,6 @@
 
 namespace skybake {
 namespace {
-
-// One direction's march from a point, everything but the sun: the texels of
-// a table row share their point and so their marches, and differ in mu_s only.
-struct DirectionMarch {
-  std::vector<double> distances;                 // of the segment midpoints from the point
-  std::vector<glm::dvec3> points;                // segment midpoints
-  std::vector<double> radii;                     // |point|, at least Rb
-  std::vector<TransmittanceAtRadius> sun_reads;  // the sun's lookups at those radii
-  std::vector<glm::dvec3> scattered;  // T sigma_s (1 - exp(-sigma_t dt)) / sigma_t per segment
-  glm::dvec3 l_f{0.0};                // L_f of eq. 8: the sum of `scattered`
-  double t_exit = 0.0;                // where the ray leaves the atmosphere or meets the ground
-  bool ground = false;                // the ray ends on the ground, lit by the sun
-  glm::dvec3 ground_up{0.0};          // the ground's normal there
-  glm::dvec3 ground_transmittance{1.0};  // T from the point to the ground
-};
 
 // Eq. 6 and 8 along one direction from `position`, `steps` uniform segments
 // sampled at their midpoints, without the sun.
@@ -121,20 +108,29 @@ void march_directions(const Atmosphere& atm, const Texture& transmittance_lut, d
   }
 }
 
-// Eq. 5-10 from the marches of `rule` under a sun of zenith cosine mu_s
-// (clamped), in the x-z plane.
-MultiscatteringSample sunlit_multiscattering(const Atmosphere& atm,
-                                             const Texture& transmittance_lut,
-                                             const std::vector<DirectionMarch>& marches,
-                                             const SphereRule& rule, double mu_s) {
-  MultiscatteringSample out;
+// The sum over the rule's directions of w L' (eq. 5-6) under a sun of
+// zenith cosine mu_s (clamped), in the x-z plane.
+glm::dvec3 sunlit_sum(const Atmosphere& atm, const Texture& transmittance_lut,
+                      const std::vector<DirectionMarch>& marches, const SphereRule& rule,
+                      double mu_s) {
   const glm::dvec3 sun_dir(safe_sqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
   const bool weighted = !rule.weights.empty();
-  for (size_t k = 0; k < marches.size(); ++k) {
-    const double w = weighted ? rule.weights[k] : 1.0;
-    out.l2 += w * sunlit_direction(atm, transmittance_lut, marches[k], sun_dir);
-    out.f_ms += w * marches[k].l_f;
-  }
+  glm::dvec3 l2(0.0);
+  for (size_t k = 0; k < marches.size(); ++k)
+    l2 += (weighted ? rule.weights[k] : 1.0) *
+          sunlit_direction(atm, transmittance_lut, marches[k], sun_dir);
+  return l2;
+}
+
+// Eq. 5-10 from the sum of sunlit_sum and the marches' L_f (eq. 7-8; the
+// same for every sun).
+MultiscatteringSample multiscattering_from_sums(const std::vector<DirectionMarch>& marches,
+                                                const SphereRule& rule, glm::dvec3 l2) {
+  MultiscatteringSample out;
+  out.l2 = l2;
+  const bool weighted = !rule.weights.empty();
+  for (size_t k = 0; k < marches.size(); ++k)
+    out.f_ms += (weighted ? rule.weights[k] : 1.0) * marches[k].l_f;
   // Integral over the sphere times p_u: the weights are fractions of 4 pi;
   // without weights each direction stands for 4 pi / n.
   if (!weighted) {
@@ -144,6 +140,16 @@ MultiscatteringSample sunlit_multiscattering(const Atmosphere& atm,
   const glm::dvec3 f = glm::min(out.f_ms, glm::dvec3(kMaxMultiscatteringTransfer));
   out.psi_ms = out.l2 / (1.0 - f);  // eq. 9-10
   return out;
+}
+
+// Eq. 5-10 from the marches of `rule` under a sun of zenith cosine mu_s
+// (clamped), in the x-z plane.
+MultiscatteringSample sunlit_multiscattering(const Atmosphere& atm,
+                                             const Texture& transmittance_lut,
+                                             const std::vector<DirectionMarch>& marches,
+                                             const SphereRule& rule, double mu_s) {
+  return multiscattering_from_sums(marches, rule,
+                                   sunlit_sum(atm, transmittance_lut, marches, rule, mu_s));
 }
 
 }  // namespace
@@ -310,11 +316,20 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
     std::vector<DirectionMarch> marches;
     march_directions(atm, transmittance_lut, std::clamp(r, atm.bottom_radius_m, atm.top_radius_m),
                      rule, spec.steps, marches);
+    // The row's suns, several at a time (direction_march.hpp).
+    std::vector<double> mu_s(size_t(spec.width), 0.0);
+    for (int x = 0; x < spec.width; ++x)
+      mu_s[x] = clamp_cosine(r_mu_s_from_multiscattering_uv(
+                                 atm, {texel_center(x, spec.width), v}, spec.width, spec.height,
+                                 mapping)
+                                 .mu_s);
+    std::vector<glm::dvec3> l2(size_t(spec.width), glm::dvec3(0.0));
+    const int wide = sunlit_sums_wide(atm, transmittance_lut, marches, rule, mu_s.data(),
+                                      spec.width, l2.data());
+    for (int x = wide; x < spec.width; ++x)
+      l2[x] = sunlit_sum(atm, transmittance_lut, marches, rule, mu_s[x]);
     for (int x = 0; x < spec.width; ++x) {
-      const RadiusSunCosine p = r_mu_s_from_multiscattering_uv(
-          atm, {texel_center(x, spec.width), v}, spec.width, spec.height, mapping);
-      const MultiscatteringSample s = sunlit_multiscattering(atm, transmittance_lut, marches,
-                                                             rule, clamp_cosine(p.mu_s));
+      const MultiscatteringSample s = multiscattering_from_sums(marches, rule, l2[x]);
       const double fms = std::max({s.f_ms.x, s.f_ms.y, s.f_ms.z});
       row_fms_max[y] = std::max(row_fms_max[y], fms);
       if (fms > kMaxMultiscatteringTransfer) ++row_clamped[y];

@@ -1,9 +1,10 @@
 // The AVX2 loops of the 4D orders (the density's Mie loop, the mu_s taps
 // and the row blends of the multiple-scattering pass) against their SSE2
-// twins, and the sky-view's four-texel loop against its one-texel one: the
-// same bits (core/wide_vectors.hpp). Sizes that leave remainders for every
-// loop: 15 texels per row (nu 3 x mu_s 5), 25 direction pairs (5 zenith
-// bands) padded to 32, and sky-view rows of 11 texels (22 mirrored).
+// twins, and the four-texel loops of the sky-view and multiple-scattering
+// tables against their one-texel ones: the same bits (core/wide_vectors.hpp).
+// Sizes that leave remainders for every loop: 15 texels per row (nu 3 x
+// mu_s 5), 25 direction pairs (5 zenith bands) padded to 32, sky-view rows
+// of 11 texels (22 mirrored) and multiple-scattering rows of 11.
 #include <cstring>
 
 #include <gtest/gtest.h>
@@ -77,6 +78,35 @@ TEST(WideVectors, SkyviewHasTheSameBitsInAvx2AndOneTexelAtATime) {
       four = bake_skyview_lut(atm, l.transmittance, l.multiscattering, spec, {});
     }
     EXPECT_TRUE(same_bits(one, four));
+  }
+}
+
+TEST(WideVectors, MultiscatteringHasTheSameBitsInAvx2AndOneTexelAtATime) {
+  {
+    const WideVectorsAs probe(true);
+    if (!wide_vectors()) GTEST_SKIP() << "this CPU has no AVX2: only the one-texel loop runs";
+  }
+  // Both direction rules (unweighted and weighted), both sun mappings, a
+  // planet whose rays mostly end on its ground.
+  for (const Atmosphere& atm : {fixtures::earth_atmosphere(), fixtures::tiny_planet_atmosphere()}) {
+    const Texture lut = bake_transmittance_lut(atm, {64, 16, 40}, BakeContext{});
+    for (const DirectionQuadrature q : {DirectionQuadrature::fibonacci, DirectionQuadrature::symmetric_gauss}) {
+      for (const SunMapping sun : {SunMapping::linear, SunMapping::terminator}) {
+        MultiscatteringLutSpec spec{11, 6, 24, 8};
+        spec.quadrature = q;
+        spec.sun_mapping = sun;
+        Texture one, four;
+        {
+          const WideVectorsAs as(false);
+          one = bake_multiscattering_lut(atm, lut, spec, {});
+        }
+        {
+          const WideVectorsAs as(true);
+          four = bake_multiscattering_lut(atm, lut, spec, {});
+        }
+        EXPECT_TRUE(same_bits(one, four)) << int(q) << " " << int(sun);
+      }
+    }
   }
 }
 
