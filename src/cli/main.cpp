@@ -150,7 +150,8 @@ void add_plan_emit_options(CLI::App* cmd, PlanArgs& args) {
       ->check(CLI::Range(1, 1000000))
       ->needs(emit);
   cmd->add_option("--max-parallel", args.max_parallel,
-                  "slurm: at most this many array tasks at once (0 = no limit)")
+                  "At most this many bakes at once: slurm array tasks, or ninja edges (a pool, "
+                  "whatever -j) (0 = no limit)")
       ->capture_default_str()
       ->needs(emit);
   cmd->get_option("--json")->excludes(emit);

@@ -74,6 +74,11 @@ void write_or_print(const std::string& text, const std::string& file) {
     std::cout << text;
     return;
   }
+  // The folder it names may not exist yet (a fresh build tree).
+  const fs::path parent = fs::path(file).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) fs::create_directories(parent, ec);
+  if (ec) throw IoError(fmt::format("{}: cannot create folder: {}", parent.string(), ec.message()));
   write_text_atomic(file, text);
 }
 

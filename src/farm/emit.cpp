@@ -64,6 +64,19 @@ std::string ninja_header(const FarmGraph& graph, const EmitOptions& opt, const c
   return s;
 }
 
+// The bake rule's head: its command line, and with --max-parallel a pool
+// that lets at most that many bakes run at once whatever ninja's -j.
+std::string bake_rule(const EmitOptions& opt, const std::string& command) {
+  std::string s;
+  if (opt.max_parallel > 0)
+    s += fmt::format("pool bake_pool\n  depth = {}\n\n", opt.max_parallel);
+  s += "rule bake\n";
+  s += fmt::format("  command = {} --threads {} --quiet{}\n", command, opt.threads,
+                   opt.strict ? " --strict" : "");
+  if (opt.max_parallel > 0) s += "  pool = bake_pool\n";
+  return s;
+}
+
 std::string stamp_of(const FarmGraph& graph, const FarmNode& n) {
   return absolute((graph.out_dir / n.stamp).string());
 }
@@ -88,11 +101,8 @@ std::string all_target(const std::vector<std::string>& stamps) {
 // of the products it reads.
 std::string product_edges(const FarmGraph& graph, const EmitOptions& opt) {
   // Note: `deps` is reserved by ninja; the per-edge variables avoid it.
-  std::string s = "rule bake\n";
-  s += fmt::format(
-      "  command = $launcher $skybake bake $preset --only $product -o $out_dir --threads {} "
-      "--quiet{}\n",
-      opt.threads, opt.strict ? " --strict" : "");
+  std::string s =
+      bake_rule(opt, "$launcher $skybake bake $preset --only $product -o $out_dir");
   s += "  description = bake $scene/$product\n";
   s += "  restat = 1\n\n";
   std::vector<std::string> all;
@@ -128,10 +138,7 @@ std::vector<std::vector<const FarmNode*>> scenes_of(const FarmGraph& graph) {
 // stamp and file of those scenes; it reads no other edge's outputs (a scene's
 // dependencies stay inside its process).
 std::string scene_edges(const FarmGraph& graph, const EmitOptions& opt) {
-  std::string s = "rule bake\n";
-  s += fmt::format(
-      "  command = $launcher $skybake bake $presets -o $out_dir --threads {} --quiet{}\n",
-      opt.threads, opt.strict ? " --strict" : "");
+  std::string s = bake_rule(opt, "$launcher $skybake bake $presets -o $out_dir");
   s += "  description = bake $scenes\n";
   s += "  restat = 1\n\n";
   const auto scenes = scenes_of(graph);

@@ -19,7 +19,7 @@ struct EmitOptions {
   std::string launcher;  // prefix, e.g. "srun -n1 -c1 --exact --quiet"; empty = run directly
   int threads = 1;       // --threads for each task
   int chunk = 1;         // presets per slurm array task, or per ninja edge of kScene
-  int max_parallel = 0;  // slurm: %N array throttle; 0 = none
+  int max_parallel = 0;  // slurm: %N array throttle; ninja: a pool of that depth; 0 = none
   bool strict = false;   // each task runs `bake --strict`: a warning fails it
   NinjaEdges edges = NinjaEdges::kScene;
 };

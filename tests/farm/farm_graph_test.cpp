@@ -279,6 +279,28 @@ TEST_F(FarmGraphTest, NinjaSceneEdgesOwnEveryStampAndFileOfTheirScenes) {
   }
 }
 
+// --max-parallel is a ninja pool for either kind of edge: declared before
+// the rule, with the depth asked for, and named by the rule; none without it.
+TEST_F(FarmGraphTest, NinjaMaxParallelIsAPoolOfTheBakeRule) {
+  const FarmGraph g = graph();
+  for (NinjaEdges edges : {NinjaEdges::kScene, NinjaEdges::kProduct}) {
+    EmitOptions options;
+    options.skybake = "/usr/bin/skybake";
+    options.edges = edges;
+    EXPECT_EQ(emit_ninja(g, options).find("pool"), std::string::npos);
+    options.max_parallel = 3;
+    const std::string ninja = emit_ninja(g, options);
+    const size_t pool = ninja.find("pool bake_pool\n  depth = 3\n");
+    const size_t rule = ninja.find("rule bake\n");
+    ASSERT_NE(pool, std::string::npos) << ninja;
+    ASSERT_NE(rule, std::string::npos) << ninja;
+    EXPECT_LT(pool, rule);
+    const size_t first_build = ninja.find("\nbuild ");
+    const size_t uses = ninja.find("  pool = bake_pool\n", rule);
+    EXPECT_LT(uses, first_build) << ninja;
+  }
+}
+
 void set_mtime_ns(const fs::path& file, int64_t ns) {
   const timespec t{time_t(ns / 1000000000), long(ns % 1000000000)};
   const timespec times[2] = {t, t};

@@ -27,7 +27,9 @@
 #     gone, ninja re-runs that edge only, which bakes only what was missing
 #     (the products finished before the failure keep their file times) and
 #     ends byte-identical to a local bake.
-#  6. --chunk 2 gives one edge per two scenes and the same bytes.
+#  6. --chunk 2 gives one edge per two scenes and the same bytes; with
+#     --max-parallel 1 (a ninja pool) no two of them run at once under -j 2
+#     (.ninja_log's start and end times), and --emit-file creates its folder.
 #
 # Exit 0 pass, 1 fail, 77 skip (ninja missing). Paths contain a space and a
 # '$' on purpose: the emitted file must quote and escape them.
@@ -191,18 +193,25 @@ $nlog"
 same_outputs "$ref" "$outf"
 ok "5. failing earth/skyview: ninja exit $frc, Earth's edge named, the other $((scenes - 1)) scenes completed, stamps of [$finished ] agree with the manifest; after the fix 1 edge finished it, == local bake"
 
-# 6. --chunk 2: one edge per two scenes, the same bytes.
+# 6. --chunk 2: one edge per two scenes, the same bytes; one at a time.
 outc="$T/out chunk"
-"$skybake" plan "$cat" --emit ninja --chunk 2 -o "$outc" --emit-file "$T/chunk.ninja" 2>/dev/null
-[ "$(grep -c '^build .*: bake ' "$T/chunk.ninja")" -eq $((scenes / 2)) ] ||
+chunk_file="$T/new folder/chunk.ninja"
+"$skybake" plan "$cat" --emit ninja --chunk 2 --max-parallel 1 -o "$outc" \
+  --emit-file "$chunk_file" 2>/dev/null || fail "--emit-file into a folder not made yet failed"
+[ "$(grep -c '^build .*: bake ' "$chunk_file")" -eq $((scenes / 2)) ] ||
   fail "chunk.ninja should have $((scenes / 2)) edges"
-run_ninja -f "$T/chunk.ninja" -j 2
+run_ninja -f "$chunk_file" -j 2
 [ "$rc" -eq 0 ] && [ "$(edges_run "$nlog")" -eq $((scenes / 2)) ] || fail "ninja over chunks exited $rc:
 $nlog"
 same_outputs "$ref" "$outc"
-run_ninja -f "$T/chunk.ninja" -j 2
+# .ninja_log (v5): start and end in ms of each edge, one line per output of
+# it. Sorted by start, an edge may not start before the previous one ended.
+overlaps="$(grep -v '^#' "$outc/.ninja_log" | cut -f1,2 | sort -u -n |
+  awk 'NR > 1 && $1 < end { n++ } { end = $2 } END { print n + 0 }')"
+[ "$overlaps" -eq 0 ] || fail "--max-parallel 1: $overlaps edges ran beside another"
+run_ninja -f "$chunk_file" -j 2
 grep -q 'no work to do' <<<"$nlog" || fail "second ninja run over chunks did work: $nlog"
-ok "6. --chunk 2: $((scenes / 2)) edges == local bake; then no work"
+ok "6. --chunk 2 --max-parallel 1: $((scenes / 2)) edges one at a time == local bake; then no work"
 
 status=0
 echo "ninja_scene_e2e: PASS"
