@@ -4,14 +4,11 @@
 #include <cassert>
 #include <cmath>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "core/math.hpp"
+#include "core/wide_intrinsics.hpp"
 #include "noise/perlin.hpp"
 #include "noise/worley.hpp"
 
@@ -73,10 +70,63 @@ void nearest4(const float* f, const float* ox, const float* q, const int* start,
 #endif
 }
 
+#if SKYBAKE_HAS_AVX2
+// The whole row 8 voxels at a time, whatever cells they fall in: lane l
+// (voxel x0 + l, cell cell[x0 + l]) scans the candidates of every column
+// from cell[x0] - 1 to cell[x0 + 7] + 1, a contiguous range of the
+// compacted arrays, with its own shift col[k] - cell (an exact integer), so
+// the lanes of one cell compute nearest4's d2 bit for bit. A column two or
+// more cells away from a lane's cell gives that lane d2 >= 1 (|dx| >= 1:
+// f and ox are in [0, 1)), which cannot lower the bound: the same minimum.
+// Small cells (2 or 4 voxels, periods 64 and 32 of a 128 volume) then
+// fill all 8 lanes instead of 4 lanes of which half are dropped.
+// d2 of 8 voxels at cell-local positions fs in cells cs to a candidate of
+// column col: nearest4's expression with the shift col - cs per lane.
+// Always inlined: a 256-bit value passed to a call would change its ABI.
+SKYBAKE_AVX2 inline __attribute__((always_inline)) __m256 worley_d2_avx2(__m256 fs, __m256 cs,
+                                                                        float col, float ox,
+                                                                        float q) {
+  const __m256 shift = _mm256_sub_ps(_mm256_set1_ps(col), cs);
+  const __m256 dx = _mm256_sub_ps(fs, _mm256_add_ps(shift, _mm256_set1_ps(ox)));
+  return _mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_set1_ps(q));
+}
+
+SKYBAKE_AVX2 void nearest_row_avx2(const float* frac, const float* cell_f, const int* cell,
+                                   int size, const float* ox, const float* q, const float* col,
+                                   const int* start, float* out) {
+  const __m256 one = _mm256_set1_ps(1.0f);
+  for (int x0 = 0; x0 < size; x0 += 8) {
+    const int last = std::min(x0 + 7, size - 1);
+    const int k_end = start[cell[last] + 3];
+    const __m256 fs = _mm256_loadu_ps(frac + x0), cs = _mm256_loadu_ps(cell_f + x0);
+    __m256 b0 = one, b1 = one;
+    int k = start[cell[x0]];
+    for (; k + 1 < k_end; k += 2) {
+      b0 = _mm256_min_ps(worley_d2_avx2(fs, cs, col[k], ox[k], q[k]), b0);
+      b1 = _mm256_min_ps(worley_d2_avx2(fs, cs, col[k + 1], ox[k + 1], q[k + 1]), b1);
+    }
+    if (k < k_end) b0 = _mm256_min_ps(worley_d2_avx2(fs, cs, col[k], ox[k], q[k]), b0);
+    const __m256 value = _mm256_sub_ps(one, _mm256_sqrt_ps(_mm256_min_ps(b0, b1)));
+    if (x0 + 8 <= size) {
+      _mm256_storeu_ps(out + x0, value);
+    } else {
+      float lanes[8];
+      _mm256_storeu_ps(lanes, value);
+      std::copy(lanes, lanes + (size - x0), out + x0);
+    }
+  }
+}
+#endif
+
 }  // namespace
 
 WorleyRows::WorleyRows(int size, int period, uint32_t seed)
-    : size_(size), period_(period), frac_(size + 3), cell_(size), cell_begin_(period + 1) {
+    : size_(size),
+      period_(period),
+      frac_(size + 7),
+      cell_f_(size + 7),
+      cell_(size),
+      cell_begin_(period + 1) {
   assert(size > 0 && period > 0);
   const size_t cells = size_t(period) * period * period;
   for (auto* a : {&offset_x_, &offset_y_, &offset_z_}) a->resize(cells);
@@ -92,9 +142,10 @@ WorleyRows::WorleyRows(int size, int period, uint32_t seed)
   });
   // cell_begin_[c] = first voxel whose centre lies in cell c (coordinates increase).
   int c = 0;
-  for (int i = 0; i < size + 3; ++i) {
+  for (int i = 0; i < size + 7; ++i) {
     const float u = cell_coord_from_texel(i, size, period), fl = std::floor(u);
     frac_[i] = u - fl;  // exact
+    cell_f_[i] = i < size ? fl : cell_f_[size - 1];  // lanes past the row stay in its last cell
     if (i >= size) continue;
     cell_[i] = int(fl);
     while (c <= cell_[i]) cell_begin_[c++] = i;
@@ -113,9 +164,11 @@ void WorleyRows::eval_row(int y, int z, RowScratch& s, float* out) const {
   if (s.a.size() < max_candidates) s.a.resize(max_candidates), s.b.resize(max_candidates);
   if (s.c.size() < size_t(p) * 9) s.c.resize(size_t(p) * 9);
   if (s.start.size() < size_t(p + 3)) s.start.resize(p + 3);
+  if (s.d.size() < max_candidates) s.d.resize(max_candidates);
   float* ox = s.a.data();
   float* q = s.b.data();
   float* qj = s.c.data();  // [j][wx]: q of the 9 y-z neighbours j of every column
+  float* col_of = s.d.data();  // the column cx of each candidate
   // First the y-z distances, neighbour by neighbour along contiguous table
   // rows (vectorized), with the expressions of worley3_f1 (cell-local), so
   // the values are bit-identical.
@@ -143,10 +196,18 @@ void WorleyRows::eval_row(int y, int z, RowScratch& s, float* out) const {
       // Branch-free: the test is close to a coin flip.
       ox[count] = offset_x_[rows[j] + wx];
       q[count] = qyz;
+      col_of[count] = float(cx);
       count += qyz < 1.0f;
     }
   }
   s.start[p + 2] = count;
+#if SKYBAKE_HAS_AVX2
+  if (wide_vectors()) {
+    nearest_row_avx2(frac_.data(), cell_f_.data(), cell_.data(), size_, ox, q, col_of,
+                     s.start.data(), out);
+    return;
+  }
+#endif
   // Voxels of one cell share their candidates: 4 voxels at a time (lanes past
   // the cell are computed and dropped). Columns c - 1, c, c + 1 are shifted by
   // -1, 0, +1 cell relative to the voxels' cell.

@@ -13,8 +13,10 @@
 //   for Perlin, the y-z interpolated gradient terms of each lattice column,
 //   leaving ~10 flops per voxel and octave.
 // - The voxels of one Worley cell share their candidates and are scanned 4 at
-//   a time with SSE; distances are cell-local with worley3_f1's expressions,
-//   so the baked Worley values equal the pure function's bit for bit.
+//   a time with SSE, or 8 neighbouring voxels at a time with AVX2 (of one
+//   cell or several: core/wide_vectors.hpp); distances are cell-local with
+//   worley3_f1's expressions, so the baked Worley values equal the pure
+//   function's bit for bit either way.
 // Voxel i of n sits at the texel centre (i + 0.5) / n of the unit domain, i.e.
 // at cell_coord_from_texel(i, n, period) in cells.
 #pragma once
@@ -34,7 +36,7 @@ inline float cell_coord_from_texel(int i, int n, int period) {
 // Per-thread buffers of the row evaluators; reused across rows, so no
 // allocation happens per voxel or per row once they have grown.
 struct RowScratch {
-  std::vector<float> a, b, c;
+  std::vector<float> a, b, c, d;
   std::vector<int> start;
 };
 
@@ -52,7 +54,8 @@ class WorleyRows {
   // Feature point offset per cell, x fastest; one array per axis so that
   // rows of cells load as contiguous floats.
   std::vector<float> offset_x_, offset_y_, offset_z_;
-  std::vector<float> frac_;      // voxel centre per index, in its cell (3 extra: SIMD lanes)
+  std::vector<float> frac_;      // voxel centre per index, in its cell (7 extra: SIMD lanes)
+  std::vector<float> cell_f_;    // cell_ as floats (7 extra: the last cell again)
   std::vector<int> cell_;        // the cell of the voxel centre
   std::vector<int> cell_begin_;  // first voxel of each cell; [period] = size
 };
