@@ -363,6 +363,23 @@ TEST(DdsConvert, Unorm8RoundsHalvesAwayFromZeroLikeLround) {
   }
 }
 
+TEST(DdsConvert, Unorm8RowsRoundLikeLroundOfTheClampedProduct) {
+  // The row loop (16 values at a time, then one by one) around every half
+  // step, out of range, at both zeros and an odd count for the remainder.
+  std::vector<float> values{-0.0f, 0.0f, 1.0f, -1e-30f, -3.0f, 1.0000001f, 7.0f, 1e-45f};
+  for (int k = 0; k < 255; ++k) {
+    float v = float((k + 0.5) / 255.0);
+    for (int i = 0; i < 4; ++i) v = std::nextafter(v, 0.0f);
+    for (int i = 0; i < 9; ++i, v = std::nextafter(v, 1.0f)) values.push_back(v);
+  }
+  values.push_back(0.5f);
+  std::vector<uint8_t> bytes(values.size());
+  encode_dds_texels(DdsFormat::R8_UNORM, values.data(), 1, values.size(), bytes.data());
+  for (size_t i = 0; i < values.size(); ++i)
+    ASSERT_EQ(long(bytes[i]), std::lround(std::clamp(values[i], 0.0f, 1.0f) * 255.0f))
+        << values[i];
+}
+
 TEST(DdsConvert, ARowOfTexelsIsEachTexelEncoded) {
   std::vector<float> values(7 * 4);
   for (size_t i = 0; i < values.size(); ++i) values[i] = float(i) / 9.0f - 0.6f;  // some clamp
