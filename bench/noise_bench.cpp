@@ -7,6 +7,8 @@
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
+#include "core/mip_chain.hpp"
+#include "core/tiling_profiles.hpp"
 #include "noise/curl_texture.hpp"
 #include "noise/noise_volume.hpp"
 #include "noise/worley.hpp"
@@ -52,8 +54,30 @@ void BM_NoiseWorleyCall(benchmark::State& state) {
   benchmark::DoNotOptimize(sum);
 }
 
+// The post-passes of the shape volume in a bake: the tiling record's
+// profiles along one axis (0, 1, 2 for x, y, z) and the DDS mip chain.
+const Texture& default_shape() {
+  static const Texture t = bake_noise_shape({}, {});
+  return t;
+}
+
+void BM_NoiseShapeTilingProfiles(benchmark::State& state) {
+  const Texture& t = default_shape();
+  tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(compute_tiling_profiles(t, 0, int(state.range(0))).data());
+}
+
+void BM_NoiseShapeLowerMips(benchmark::State& state) {
+  const Texture& t = default_shape();
+  tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+  for (auto _ : state) benchmark::DoNotOptimize(build_lower_mips(t, MipEdge::wrap).data());
+}
+
 }  // namespace
 
+BENCHMARK(BM_NoiseShapeTilingProfiles)->DenseRange(0, 2)->ArgName("axis")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NoiseShapeLowerMips)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_NoiseShape)
     ->Arg(1)
     ->Arg(2)

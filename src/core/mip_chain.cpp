@@ -97,6 +97,65 @@ Texture reduce_axis(const Texture& in, int axis, int n_out, MipEdge edge) {
   return out;
 }
 
+// For sizes that halve exactly (n_in = 2 n_out: every level of a
+// power-of-two texture) the taps are 2j and 2j + 1 with weight 0.5, and an
+// axis of one texel that stays one is a copy. The three axis passes then
+// run fused per output row: the input rows are reduced along x, their
+// pairs along y, then along z, each step rounded to float as the pass's
+// texture holds it and adding 0.0 + 0.5 a + 0.5 b in the passes' order, so
+// the level is the same to the bit, without the two intermediate textures
+// (a 16 MB and an 8 MB fresh buffer for a 128^3 RGBA level 1).
+bool halves_exactly(int n_in, int n_out) { return n_in == 2 * n_out || (n_in == 1 && n_out == 1); }
+
+inline float half_sum(float a, float b) {
+  double acc = 0.0;
+  acc += 0.5 * double(a);
+  acc += 0.5 * double(b);
+  return float(acc);
+}
+
+// row[0 .. n) of pairs along x (or a copy when x stays), nc channels.
+void halve_row_along_x(const float* in, bool halve, int width, size_t nc, float* out) {
+  const size_t n = size_t(width) * nc;
+  if (!halve) {
+    std::copy(in, in + n, out);
+    return;
+  }
+  for (size_t x = 0; x < size_t(width); ++x)
+    for (size_t c = 0; c < nc; ++c) out[x * nc + c] = half_sum(in[2 * x * nc + c], in[(2 * x + 1) * nc + c]);
+}
+
+void halve_rows(const float* a, const float* b, bool halve, size_t n, float* out) {
+  if (!halve) {
+    std::copy(a, a + n, out);
+    return;
+  }
+  for (size_t k = 0; k < n; ++k) out[k] = half_sum(a[k], b[k]);
+}
+
+Texture halve_level(const Texture& in, int w, int h, int d) {
+  Texture out(w, h, d, in.layers, in.channels);
+  out.metadata = in.metadata;
+  const bool hx = in.width == 2 * w, hy = in.height == 2 * h, hz = in.depth == 2 * d;
+  const size_t nc = in.channels.size(), n = size_t(w) * nc;
+  const int rows = out.layers * d * h;
+  tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& r) {
+    std::vector<float> along_x(4 * n), along_y(2 * n);  // [z pair][y pair] rows, [z pair] rows
+    for (int row = r.begin(); row < r.end(); ++row) {
+      const int y = row % h, z = (row / h) % d, layer = row / (h * d);
+      for (int zz = 0; zz < (hz ? 2 : 1); ++zz) {
+        for (int yy = 0; yy < (hy ? 2 : 1); ++yy)
+          halve_row_along_x(in.texel(0, hy ? 2 * y + yy : y, hz ? 2 * z + zz : z, layer), hx, w,
+                            nc, &along_x[size_t(2 * zz + yy) * n]);
+        halve_rows(&along_x[size_t(2 * zz) * n], &along_x[size_t(2 * zz + 1) * n], hy, n,
+                   &along_y[size_t(zz) * n]);
+      }
+      halve_rows(&along_y[0], &along_y[n], hz, n, out.texel(0, y, z, layer));
+    }
+  });
+  return out;
+}
+
 }  // namespace
 
 int mip_count(int width, int height, int depth) {
@@ -115,6 +174,13 @@ std::vector<Texture> build_lower_mips(const Texture& level0, MipEdge edge) {
   const int levels = mip_count(level0.width, level0.height, level0.depth);
   for (int level = 1; level < levels; ++level) {
     const Texture& prev = chain.empty() ? level0 : chain.back();
+    const int w = std::max(1, prev.width / 2), h = std::max(1, prev.height / 2),
+              d = std::max(1, prev.depth / 2);
+    if (halves_exactly(prev.width, w) && halves_exactly(prev.height, h) &&
+        halves_exactly(prev.depth, d)) {
+      chain.push_back(halve_level(prev, w, h, d));
+      continue;
+    }
     Texture next = reduce_axis(prev, 0, std::max(1, prev.width / 2), edge);
     next = reduce_axis(next, 1, std::max(1, prev.height / 2), edge);
     next = reduce_axis(next, 2, std::max(1, prev.depth / 2), edge);

@@ -13,6 +13,9 @@ constexpr int kPadBefore = 4;
 constexpr int kPadAfter = 5;
 // Lines read side by side along x: 8 doubles, one cache line of a plane.
 constexpr int kLineBlock = 8;
+// Lines of the y and z axes taken together: a plane of 128 texels of 128
+// lines in doubles is 128 KB, which stays in the cache across the passes.
+constexpr size_t kChunk = 128;
 
 // The loops below also get an AVX2 version, picked at load time where the
 // CPU has it (twice the doubles per instruction). AVX2 without FMA: every
@@ -28,63 +31,96 @@ int wrap_index(int i, int len) {
   return ((i % len) + len) % len;
 }
 
-// The lines along `axis` of one plane (index `v` of the other axes; u
-// counts the lines of the plane), every channel c:
-// planes[c][i * lines + u] = texel i of line u. Each texel is read once,
-// and the rows read are contiguous in memory for the y and z axes.
-SKYBAKE_WIDE_VECTORS void read_planes(const Texture& t, int layer, int axis, int v, int lines,
-                                      std::vector<std::vector<double>>& planes) {
+// The lines along x of one plane (z = v; u counts the lines, y), every
+// channel c: planes[c][i * lines + u] = texel i of line u, for the far
+// jumps, which run across the lines. Each texel is read once; kLineBlock
+// rows at a time fill whole cache lines of the planes.
+SKYBAKE_WIDE_VECTORS void read_planes_x(const Texture& t, int layer, int v, int lines,
+                                        std::vector<std::vector<double>>& planes) {
   const size_t nc = t.channels.size();
-  const int len = axis == 0 ? t.width : axis == 1 ? t.height : t.depth;
-  if (axis == 0) {  // lines are rows: kLineBlock of them at a time fill whole cache lines
-    for (int u0 = 0; u0 < lines; u0 += kLineBlock) {
-      const int block = std::min(kLineBlock, lines - u0);
-      const float* rows[kLineBlock];
-      for (int b = 0; b < block; ++b) rows[b] = t.texel(0, u0 + b, v, layer);
-      for (int i = 0; i < len; ++i)
-        for (size_t c = 0; c < nc; ++c) {
-          double* out = &planes[c][size_t(i) * lines + u0];
-          for (int b = 0; b < block; ++b) out[b] = double(rows[b][size_t(i) * nc + c]);
-        }
-    }
-    return;
-  }
-  for (int i = 0; i < len; ++i) {
-    const float* row = axis == 1 ? t.texel(0, i, v, layer) : t.texel(0, v, i, layer);
-    for (size_t c = 0; c < nc; ++c) {
-      double* out = &planes[c][size_t(i) * lines];
-      for (int u = 0; u < lines; ++u) out[u] = double(row[size_t(u) * nc + c]);
-    }
+  const int len = t.width;
+  for (int u0 = 0; u0 < lines; u0 += kLineBlock) {
+    const int block = std::min(kLineBlock, lines - u0);
+    const float* rows[kLineBlock];
+    for (int b = 0; b < block; ++b) rows[b] = t.texel(0, u0 + b, v, layer);
+    for (int i = 0; i < len; ++i)
+      for (size_t c = 0; c < nc; ++c) {
+        double* out = &planes[c][size_t(i) * lines + u0];
+        for (int b = 0; b < block; ++b) out[b] = double(rows[b][size_t(i) * nc + c]);
+      }
   }
 }
 
-// Per line of the plane, sum over lags and texels of |v(i + lag) - v(i)|,
-// texel by texel across the lines (each line's sum in the order of the
-// definition), then added to `far` line after line.
-SKYBAKE_WIDE_VECTORS void add_far_jumps(const std::vector<double>& plane, int len, int lines,
-                                        const std::vector<int>& lags, std::vector<double>& line_far,
-                                        long double& far) {
-  std::fill(line_far.begin(), line_far.end(), 0.0);
+// Per line k of the plane, line_far[k] = the sum over lags and texels of
+// |v(i + lag) - v(i)| in the order of the definition, texel by texel
+// across the lines.
+SKYBAKE_WIDE_VECTORS void add_far_jumps_by_line(const std::vector<double>& plane, int len,
+                                                size_t count, const std::vector<int>& lags,
+                                                std::vector<double>& line_far) {
+  std::fill(line_far.begin(), line_far.begin() + std::ptrdiff_t(count), 0.0);
   double* acc = line_far.data();
   for (int lag : lags)
     for (int i = 0; i < len; ++i) {
-      const double* a = &plane[size_t(i) * lines];
-      const double* b = &plane[size_t(i + lag < len ? i + lag : i + lag - len) * lines];
-      for (int u = 0; u < lines; ++u) acc[u] += std::abs(b[u] - a[u]);
+      const double* a = &plane[size_t(i) * count];
+      const double* b = &plane[size_t(i + lag < len ? i + lag : i + lag - len) * count];
+      for (size_t k = 0; k < count; ++k) acc[k] += std::abs(b[k] - a[k]);
     }
-  for (int u = 0; u < lines; ++u) far += line_far[u];
+}
+
+// The same for one channel's plane of `lines` lines, added to `far` line
+// after line.
+void add_far_jumps(const std::vector<double>& plane, int len, int lines,
+                   const std::vector<int>& lags, std::vector<double>& line_far, long double& far) {
+  add_far_jumps_by_line(plane, len, size_t(lines), lags, line_far);
+  for (int u = 0; u < lines; ++u) far += line_far[size_t(u)];
+}
+
+// For the y and z axes the lines of a plane are its rows side by side:
+// texel i of every line is row i of the plane, lines k = u * channels + c
+// (u is x). They are taken kChunk at a time (a plane of doubles that stays
+// in the cache): plane[i * count + k] = texel i of line k0 + k, one
+// contiguous conversion per row, no channel split.
+SKYBAKE_WIDE_VECTORS void read_rows(const float* const* rows, size_t k0, int len, size_t count,
+                                    std::vector<double>& plane) {
+  for (int i = 0; i < len; ++i) {
+    const float* row = rows[i] + k0;
+    double* out = &plane[size_t(i) * count];
+    for (size_t k = 0; k < count; ++k) out[k] = double(row[k]);
+  }
 }
 
 // The plane's lines one after another, each padded with the texels it
-// wraps to: lines[u * stride + kPadBefore + i] = texel i (mod len) of line
-// u, i in [-kPadBefore, len + kPadAfter).
-SKYBAKE_WIDE_VECTORS void pad_lines(const std::vector<double>& plane, int len, int lines,
-                                    std::vector<double>& out) {
+// wraps to: out[k * stride + kPadBefore + i] = texel i (mod len) of line
+// k, i in [-kPadBefore, len + kPadAfter). kLineBlock texels of a line at a
+// time: each line's cache line is written whole, not a double per visit.
+SKYBAKE_WIDE_VECTORS void pad_lines(const std::vector<double>& plane, int len, size_t count,
+                                    double* out) {
   const size_t stride = size_t(len + kPadBefore + kPadAfter);
-  for (int i = -kPadBefore; i < len + kPadAfter; ++i) {
-    const double* row = &plane[size_t(wrap_index(i, len)) * lines];
-    double* col = &out[size_t(i + kPadBefore)];
-    for (int u = 0; u < lines; ++u) col[size_t(u) * stride] = row[u];
+  for (int i0 = -kPadBefore; i0 < len + kPadAfter; i0 += kLineBlock) {
+    const int block = std::min(kLineBlock, len + kPadAfter - i0);
+    const double* rows[kLineBlock];
+    for (int b = 0; b < block; ++b) rows[b] = &plane[size_t(wrap_index(i0 + b, len)) * count];
+    double* col = out + (i0 + kPadBefore);
+    for (size_t k = 0; k < count; ++k)
+      for (int b = 0; b < block; ++b) col[k * stride + size_t(b)] = rows[b][k];
+  }
+}
+
+// The same for the x axis, whose lines are the rows (y = u) of plane z = v:
+// each line is a row's channel, read along the row.
+SKYBAKE_WIDE_VECTORS void pad_lines_along_x(const Texture& t, int layer, int v, int lines,
+                                            double* out) {
+  const int nc = t.channel_count(), len = t.width;
+  const size_t stride = size_t(len + kPadBefore + kPadAfter);
+  for (int u = 0; u < lines; ++u) {
+    const float* row = t.texel(0, u, v, layer);
+    for (int c = 0; c < nc; ++c) {
+      double* line = out + (size_t(u) * nc + c) * stride + kPadBefore;
+      for (int i = 0; i < len; ++i) line[i] = double(row[size_t(i) * nc + c]);
+      for (int i = -kPadBefore; i < 0; ++i) line[i] = double(row[size_t(wrap_index(i, len)) * nc + c]);
+      for (int i = len; i < len + kPadAfter; ++i)
+        line[i] = double(row[size_t(wrap_index(i, len)) * nc + c]);
+    }
   }
 }
 
@@ -128,21 +164,45 @@ std::vector<TilingProfiles> compute_tiling_profiles(const Texture& t, int layer,
   std::vector<TilingProfiles> profiles(nc);
   for (TilingProfiles& p : profiles)
     for (auto* v : {&p.jump, &p.jump_side, &p.turn, &p.turn_side}) v->assign(len, 0.0);
-  std::vector<std::vector<double>> plane(nc, std::vector<double>(size_t(len) * size_t(lines)));
+  // The lines of one plane, every channel: line k = u * nc + c, kChunk at
+  // a time. Each channel's sums take its lines in plane order, as the
+  // definition.
+  const size_t count = size_t(lines) * nc;
+  const size_t chunk = axis == 0 ? size_t(lines) : std::min(count, kChunk);
   const size_t stride = size_t(len + kPadBefore + kPadAfter);
-  std::vector<double> padded(stride * size_t(lines));
-  std::vector<double> line_far(static_cast<size_t>(lines));
+  std::vector<double> padded(stride * (axis == 0 ? count : chunk));
+  std::vector<double> line_far(chunk);
   LineScratch scratch(len);
   std::vector<long double> far(nc, 0.0);
+  // x axis: one plane per channel (the far jumps run across its lines);
+  // y and z: one plane of a chunk of every channel's lines.
+  std::vector<std::vector<double>> plane(axis == 0 ? nc : 1,
+                                         std::vector<double>(size_t(len) * chunk));
+  std::vector<const float*> rows(size_t(len), nullptr);
+  auto add_lines = [&](size_t k0, size_t n) {
+    for (size_t k = 0; k < n; ++k) {
+      TilingProfiles& p = profiles[(k0 + k) % nc];
+      add_line(&padded[k * stride + kPadBefore], len, scratch, p.jump.data(), p.jump_side.data(),
+               p.turn.data(), p.turn_side.data());
+    }
+  };
   for (int v = 0; v < planes; ++v) {
-    read_planes(t, layer, axis, v, lines, plane);
-    for (size_t c = 0; c < nc; ++c) {
-      TilingProfiles& p = profiles[c];
-      pad_lines(plane[c], len, lines, padded);
-      for (int u = 0; u < lines; ++u)
-        add_line(&padded[size_t(u) * stride + kPadBefore], len, scratch, p.jump.data(),
-                 p.jump_side.data(), p.turn.data(), p.turn_side.data());
-      add_far_jumps(plane[c], len, lines, lags, line_far, far[c]);
+    if (axis == 0) {
+      read_planes_x(t, layer, v, lines, plane);
+      for (size_t c = 0; c < nc; ++c) add_far_jumps(plane[c], len, lines, lags, line_far, far[c]);
+      pad_lines_along_x(t, layer, v, lines, padded.data());
+      add_lines(0, count);
+      continue;
+    }
+    for (int i = 0; i < len; ++i)
+      rows[size_t(i)] = axis == 1 ? t.texel(0, i, v, layer) : t.texel(0, v, i, layer);
+    for (size_t k0 = 0; k0 < count; k0 += chunk) {
+      const size_t n = std::min(chunk, count - k0);
+      read_rows(rows.data(), k0, len, n, plane[0]);
+      add_far_jumps_by_line(plane[0], len, n, lags, line_far);
+      for (size_t k = 0; k < n; ++k) far[(k0 + k) % nc] += line_far[k];
+      pad_lines(plane[0], len, n, padded.data());
+      add_lines(k0, n);
     }
   }
   const double total = double(size_t(lines) * size_t(planes));
