@@ -99,6 +99,32 @@ struct WorleyPlan {
   }
 };
 
+// R = perlin_worley(Perlin fBm / amplitude sum, Worley fBm), then the
+// four channels interleaved. The remap is a template argument so that the
+// loop holds no switch and vectorizes.
+template <PerlinWorleyRemap kRemap>
+void combine_row(const float* perlin, float amplitude_sum, const float* channels, int n,
+                 float* out) {
+  for (int x = 0; x < n; ++x) {
+    out[4 * x] = perlin_worley(perlin[x] / amplitude_sum, channels[x], kRemap);
+    out[4 * x + 1] = channels[n + x];
+    out[4 * x + 2] = channels[2 * n + x];
+    out[4 * x + 3] = channels[3 * n + x];
+  }
+}
+
+void combine_shape_row(PerlinWorleyRemap remap, const float* perlin, float amplitude_sum,
+                       const float* channels, int n, float* out) {
+  switch (remap) {
+    case PerlinWorleyRemap::worley_new_min:
+      return combine_row<PerlinWorleyRemap::worley_new_min>(perlin, amplitude_sum, channels, n, out);
+    case PerlinWorleyRemap::worley_old_min:
+      return combine_row<PerlinWorleyRemap::worley_old_min>(perlin, amplitude_sum, channels, n, out);
+    case PerlinWorleyRemap::dilate:
+      return combine_row<PerlinWorleyRemap::dilate>(perlin, amplitude_sum, channels, n, out);
+  }
+}
+
 }  // namespace
 
 std::vector<SpecProblem> spec_problems(const NoiseShapeSpec& spec) {
@@ -155,13 +181,8 @@ Texture bake_noise_shape(const NoiseShapeSpec& spec, const BakeContext& ctx) {
         std::fill(perlin_row.begin(), perlin_row.end(), 0.0f);
         for (size_t o = 0; o < perlin.size(); ++o)
           perlin[o]->accumulate_row(y, z, amplitude[o], scratch, perlin_row.data());
-        float* out = tex.texel(0, y, z);
-        for (int x = 0; x < n; ++x, out += 4) {
-          out[0] = perlin_worley(perlin_row[x] / amplitude_sum, channels[x], spec.remap);
-          out[1] = channels[n + x];
-          out[2] = channels[2 * n + x];
-          out[3] = channels[3 * n + x];
-        }
+        combine_shape_row(spec.remap, perlin_row.data(), amplitude_sum, channels.data(), n,
+                          tex.texel(0, y, z));
       }
       progress.tick();
     }

@@ -72,6 +72,7 @@ class PerlinRows {
   std::vector<glm::vec3> gradients_;  // per lattice point, x fastest
   std::vector<float> frac_, fade_;    // per voxel index: position in its cell, fade of it
   std::vector<int> cell_;             // per voxel index: lattice cell (wrapped)
+  std::vector<int> cell_begin_;       // first voxel of each cell; [period] = size
 };
 
 }  // namespace skybake
