@@ -341,6 +341,24 @@ glm::dvec3 compute_transmittance_to_top(const Atmosphere& atm, double r, double 
   return transmittance_from_optical_depth(compute_optical_depth_to_top(atm, r, mu, steps, rule));
 }
 
+std::vector<glm::dvec3> compute_transmittances_to_top(const Atmosphere& atm,
+                                                      const std::vector<glm::dvec2>& rays,
+                                                      int steps, SegmentRule rule) {
+  std::vector<glm::dvec3> out(rays.size());
+  const RayQuadrature shared(atm, rule == SegmentRule::gauss8);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 16),
+                    [&](const tbb::blocked_range<size_t>& range) {
+                      RayQuadrature q = shared;  // scratch arrays of this task
+                      for (size_t i = range.begin(); i != range.end(); ++i) {
+                        const double r = rays[i].x, mu = rays[i].y;
+                        const double d = distance_to_top_boundary(atm.top_radius_m, r, mu);
+                        out[i] = transmittance_from_optical_depth(
+                            integrate_optical_depth(atm, q, r, mu, d, steps, rule));
+                      }
+                    });
+  return out;
+}
+
 // ---- Bake ----
 
 Texture bake_transmittance_lut(const Atmosphere& atm, const TransmittanceLutSpec& spec,

@@ -25,6 +25,8 @@
 // "Pitfalls").
 #pragma once
 
+#include <vector>
+
 #include <glm/glm.hpp>
 
 #include "atmosphere/geometry.hpp"
@@ -89,6 +91,15 @@ glm::dvec3 compute_optical_depth_to_top(const Atmosphere& atm, double r, double 
 // (x, y) is this at its centre with spec.steps and SegmentRule::gauss8.
 glm::dvec3 compute_transmittance_to_top(const Atmosphere& atm, double r, double mu, int steps,
                                         SegmentRule rule = SegmentRule::gauss3);
+
+// compute_transmittance_to_top at each ray (r, mu) = rays[i], the same values
+// bit for bit, with the kinks, the extinction profile and the scratch arrays
+// worked out once per task instead of per ray (a quarter of the error
+// record's time went to that set-up). Parallel over the rays.
+std::vector<glm::dvec3> compute_transmittances_to_top(const Atmosphere& atm,
+                                                      const std::vector<glm::dvec2>& rays,
+                                                      int steps,
+                                                      SegmentRule rule = SegmentRule::gauss3);
 
 // ---- Product entry point ----------------------------------------------------
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <vector>
 
 #include <tbb/parallel_for.h>
 
@@ -17,50 +18,23 @@
 #include "atmosphere/sky_integrator.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/error_measures.hpp"
+#include "pipeline/error_references.hpp"
 
 namespace skybake {
-
-namespace {
-
-// Query counts: the report's --quick counts (report/*.cpp). References: the
-// fewest steps or directions at which the measured max_rel and rms_rel of
-// the shipped and extreme presets stop moving in their third digit; the
-// report's --quick references take 1-2x as many (tests/report/bake_error_test.cpp
-// compares). Multiple scattering's has a quadrature of its own
-// (atmosphere/multiscattering_point.hpp).
-constexpr int kTransmittanceQueries = 512;
-// 3-point segments, ~2e-6 of the optical depth (transmittance_lut.cpp); the
-// table's 6 segments of 8 points are a rule it does not share. Every shipped
-// and extreme preset's record is the same as with 100 to 4 digits or more.
-constexpr int kTransmittanceReferenceSteps = 40;
-constexpr int kMultiscatteringQueries = 24;
-// 6 + 24 zenith cosines x 6 azimuths (x 2 mirrored), 40 graded segments:
-// 7200 rays' samples a point where the table's integrator needed 10240 for
-// 2-5x the error (docs/decisions.md "Multiple-scattering error record";
-// tests/atmosphere/multiscattering_point_test.cpp holds it to a finer rule).
-constexpr PointQuadrature kMultiscatteringReference = {6, 24, 6, 40};
-constexpr int kSkyviewQueries = 128;
-constexpr int kSkyviewReferenceSteps = 300;
-constexpr int kAerialQueries = 256;
-// Steps over the whole depth range; a query marches as many as its distance
-// needs for the same step length (at least kAerialMinSteps), so a short
-// query costs less and no query is marched with longer steps than a
-// full-range one. 100: the shipped presets' records are those of 1600 to 3
-// digits (docs/decisions.md "Multiple-scattering error record").
-constexpr int kAerialReferenceSteps = 100;
-constexpr int kAerialMinSteps = 8;
-
-}  // namespace
 
 nlohmann::json measure_transmittance_error(const Scene& scene, const OutputSpec&,
                                            const ProductInputs&, const Texture& lut) {
   const Atmosphere& atm = scene.atmosphere;
   QueryReads reads(kTransmittanceQueries);
-  tbb::parallel_for(size_t(0), reads.size(), [&](size_t i) {
+  std::vector<glm::dvec2> rays(reads.size());
+  for (size_t i = 0; i < reads.size(); ++i) {
     const RadiusCosine q = transmittance_query(atm, i);
+    rays[i] = {q.r, q.mu};
     reads[i].first = lookup_transmittance_to_top(lut, atm, q.r, q.mu);
-    reads[i].second = compute_transmittance_to_top(atm, q.r, q.mu, kTransmittanceReferenceSteps);
-  });
+  }
+  const std::vector<glm::dvec3> reference =
+      compute_transmittances_to_top(atm, rays, kTransmittanceReferenceSteps);
+  for (size_t i = 0; i < reads.size(); ++i) reads[i].second = reference[i];
   return error_record(
       reads,
       fmt::format("lookup_transmittance_to_top (bilinear) at points uniform in the table's "

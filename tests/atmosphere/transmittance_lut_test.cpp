@@ -393,6 +393,22 @@ TEST(ComputeTransmittance, EmptyAtmosphereIsExactlyOne) {
   for (float v : lut.data) ASSERT_EQ(v, 1.0f);
 }
 
+TEST(ComputeTransmittance, ManyRaysAreTheOneRayValuesBitForBit) {
+  // The error record's batch (set-up shared per task) against one call per
+  // ray, both rules, on a medium with kinks (ozone) and one with perigee cuts.
+  for (const Atmosphere& atm : {fixtures::earth_atmosphere(), fixtures::tiny_planet_atmosphere()}) {
+    std::vector<glm::dvec2> rays;
+    for (const Ray& ray : domain_rays(atm)) rays.push_back({ray.r, ray.mu});
+    ASSERT_GT(rays.size(), 16u);
+    for (SegmentRule rule : {SegmentRule::gauss3, SegmentRule::gauss8}) {
+      const std::vector<glm::dvec3> many = compute_transmittances_to_top(atm, rays, 24, rule);
+      ASSERT_EQ(many.size(), rays.size());
+      for (size_t i = 0; i < rays.size(); ++i)
+        ASSERT_EQ(many[i], compute_transmittance_to_top(atm, rays[i].x, rays[i].y, 24, rule)) << i;
+    }
+  }
+}
+
 TEST(ComputeTransmittance, MonotoneInMuAndR) {
   // A lower ray crosses more air at every altitude: T does not increase as
   // mu goes from the zenith to the horizon. Going up along the vertical

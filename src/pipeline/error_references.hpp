@@ -1,0 +1,44 @@
+// The settings of the error records' references for Hillaire's tables
+// (pipeline/atmosphere_errors.cpp), in one place so that the tests that hold
+// each reference to a much denser one (tests/report/bake_error_test.cpp,
+// tests/pipeline/error_references_test.cpp) test the settings the bake uses.
+//
+// Query counts: the report's --quick counts (report/*.cpp), so the bake's
+// points are the first of the report's. References: the fewest steps or
+// directions at which the measured max_rel and rms_rel of the shipped and
+// extreme presets stop moving in their third digit, each checked against a
+// much denser rule (docs/decisions.md "Multiple-scattering error record",
+// "Error records at a tenth of the bake").
+#pragma once
+
+#include "atmosphere/multiscattering_point.hpp"
+
+namespace skybake {
+
+constexpr int kTransmittanceQueries = 512;
+// 3-point Gauss segments from scratch (compute_transmittances_to_top); the
+// table's 6 segments of 8 points are a rule it does not share. 24 steps:
+// within 2e-5 of 400 steps at the 512 points of every shipped and extreme
+// preset, a thousandth of the smallest table error among them.
+constexpr int kTransmittanceReferenceSteps = 24;
+
+constexpr int kMultiscatteringQueries = 24;
+// 6 + 24 zenith cosines x 6 azimuths (x 2 mirrored), 40 graded segments:
+// 7200 rays' samples a point where the table's integrator needed 10240 for
+// 2-5x the error (tests/atmosphere/multiscattering_point_test.cpp holds it
+// to a finer rule).
+constexpr PointQuadrature kMultiscatteringReference = {6, 24, 6, 40};
+
+constexpr int kSkyviewQueries = 128;
+constexpr int kSkyviewReferenceSteps = 300;
+
+constexpr int kAerialQueries = 256;
+// Steps over the whole depth range; a query marches as many as its distance
+// needs for the same step length (at least kAerialMinSteps), so a short
+// query costs less and no query is marched with longer steps than a
+// full-range one. 100: the shipped presets' records are those of 1600 to 3
+// digits.
+constexpr int kAerialReferenceSteps = 100;
+constexpr int kAerialMinSteps = 8;
+
+}  // namespace skybake
