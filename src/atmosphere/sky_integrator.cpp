@@ -77,18 +77,43 @@ class RayMarcher {
     st.transmittance *= w.transmittance;
   }
 
-  // n segments over [t0, t1] placed by `dist`.
-  void march(double t0, double t1, int n, StepDistribution dist, MarchState& st) const {
+  // n segments over [t0, t1] placed by `dist`; a segment that holds one of
+  // the ascending distances `cuts` is integrated as two (or more) pieces.
+  void march(double t0, double t1, int n, StepDistribution dist, MarchState& st,
+             const std::vector<double>& cuts = {}) const {
     if (empty() || !(t1 > t0)) return;
     n = std::max(n, 1);
     double a = t0;
+    size_t cut = 0;
     for (int i = 1; i <= n; ++i) {
       double x = double(i) / n;
       if (dist == StepDistribution::quadratic) x *= x;
       const double b = i == n ? t1 : t0 + (t1 - t0) * x;
+      for (; cut < cuts.size() && cuts[cut] < b; ++cut)
+        if (cuts[cut] > a) {
+          segment(a, cuts[cut], st);
+          a = cuts[cut];
+        }
       segment(a, b, st);
       a = b;
     }
+  }
+
+  // Where the ray enters and leaves the planet's shadow, ascending: the
+  // roots of |p_perp(t)|^2 = Rb^2 (p_perp the part of the point across the
+  // sun's direction) on the night side (p . sun < 0).
+  std::vector<double> shadow_crossings() const {
+    const glm::dvec3 o = origin_ - glm::dot(origin_, sun_) * sun_;
+    const glm::dvec3 d = dir_ - glm::dot(dir_, sun_) * sun_;
+    const double a = glm::dot(d, d), b = glm::dot(o, d);
+    const double c = glm::dot(o, o) - atm_.bottom_radius_m * atm_.bottom_radius_m;
+    const double disc = b * b - a * c;
+    std::vector<double> out;
+    if (!(a > 0.0) || !(disc > 0.0)) return out;
+    const double root = std::sqrt(disc);
+    for (double t : {(-b - root) / a, (-b + root) / a})
+      if (t > 0.0 && glm::dot(origin_ + t * dir_, sun_) < 0.0) out.push_back(t);
+    return out;
   }
 
   // The ground's diffuse response at distance t (eq. 1 L_o), seen through st.
@@ -147,10 +172,26 @@ ScatteringResult integrate_scattered_luminance(const Atmosphere& atm,
   const RayMarcher marcher(atm, transmittance_lut, multiscattering_lut, position_m, view_dir,
                            sun_dir);
   MarchState st;
-  marcher.march(span.t_enter, t_end, steps, options.distribution, st);
+  marcher.march(span.t_enter, t_end, steps, options.distribution, st,
+                options.cut_at_shadow ? marcher.shadow_crossings() : std::vector<double>{});
   if (options.lit_ground && span.exits_on_ground && t_end >= span.t_exit)
     marcher.lit_ground(span.t_exit, st);
   return {st.luminance, st.transmittance};
+}
+
+glm::dvec3 extrapolated_scattered_luminance(const Atmosphere& atm, const Texture& transmittance_lut,
+                                            const Texture* multiscattering_lut,
+                                            glm::dvec3 position_m, glm::dvec3 view_dir,
+                                            glm::dvec3 sun_dir, double max_distance_m, int n,
+                                            IntegrationOptions options) {
+  options.cut_at_shadow = true;
+  n = std::max(n, 1);
+  const auto march = [&](int steps) {
+    return integrate_scattered_luminance(atm, transmittance_lut, multiscattering_lut, position_m,
+                                         view_dir, sun_dir, max_distance_m, steps, options)
+        .luminance;
+  };
+  return (4.0 * march(2 * n) - march(n)) / 3.0;
 }
 
 std::vector<ScatteringResult> integrate_scattered_luminance_profile(

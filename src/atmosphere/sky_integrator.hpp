@@ -54,6 +54,12 @@ struct IntegrationOptions {
   // When the ray ends on the ground, add the ground's diffuse response
   // (eq. 1 L_o): albedo / pi * E * T_sun * max(mu_s, 0), attenuated by T.
   bool lit_ground = false;
+  // Also end a segment where the ray enters or leaves the planet's shadow
+  // (the cylinder of radius Rb behind the planet, where Vis of eq. 4 drops
+  // to 0), so that no segment straddles the jump: the march then converges
+  // as h^2 on every ray, where a straddled jump costs h (the error records'
+  // references, pipeline/atmosphere_errors.cpp). The tables do not cut.
+  bool cut_at_shadow = false;
 };
 
 struct ScatteringResult {
@@ -82,6 +88,20 @@ ScatteringResult integrate_scattered_luminance(const Atmosphere& atm,
                                                glm::dvec3 position_m, glm::dvec3 view_dir,
                                                glm::dvec3 sun_dir, double max_distance_m, int steps,
                                                const IntegrationOptions& options = {});
+
+// integrate_scattered_luminance's luminance extrapolated to zero step length
+// (Richardson): (4 L(2n) - L(n)) / 3 with L(k) the march of k segments, both
+// cut at the planet's shadow (options.cut_at_shadow is forced on), so every
+// segment's integrand is smooth but for the input tables' bilinear kinks and
+// the march's h^2 error cancels to leading order. The error records'
+// reference (pipeline/atmosphere_errors.cpp): 3n segments where the plain
+// march needed 300 for a several times larger error
+// (docs/decisions.md "Error records at a tenth of the bake").
+glm::dvec3 extrapolated_scattered_luminance(const Atmosphere& atm, const Texture& transmittance_lut,
+                                            const Texture* multiscattering_lut,
+                                            glm::dvec3 position_m, glm::dvec3 view_dir,
+                                            glm::dvec3 sun_dir, double max_distance_m, int n,
+                                            IntegrationOptions options = {});
 
 // The same march, cumulative: element k is the luminance and transmittance
 // from the viewer to distance distances_m[k] (ascending, metres), each

@@ -118,10 +118,9 @@ QueryReads skyview_reads(
     const glm::dvec3 sun(std::sin(zenith), 0.0, std::cos(zenith));
     reads[i].first = lookup_skyview(lut, q.layer, atm, q.r, q.view);
     reads[i].second =
-        integrate_scattered_luminance(atm, transmittance, multiscattering, {0.0, 0.0, q.r},
-                                      skyview_vector_from_direction(q.view), sun, INFINITY,
-                                      kSkyviewReferenceSteps, options)
-            .luminance +
+        extrapolated_scattered_luminance(atm, transmittance, multiscattering, {0.0, 0.0, q.r},
+                                         skyview_vector_from_direction(q.view), sun, INFINITY,
+                                         kSkyviewReferenceSteps, options) +
         more_light(q.r, q.view, zenith);
   });
   return reads;
@@ -143,9 +142,10 @@ nlohmann::json measure_skyview_multiple4d_error(const Scene& scene, const Output
       });
   return error_record(
       reads, fmt::format("lookup_skyview (bilinear, azimuth wraps) at a uniform layer and view "
-                         "direction against single scattering marched with {} steps plus the "
+                         "direction against single scattering marched with {} and {} steps, cut at "
+                         "the planet's shadow and extrapolated to zero step (Richardson), plus the "
                          "same 4D iteration's orders >= 2 toward that direction",
-                         kSkyviewReferenceSteps));
+                         2 * kSkyviewReferenceSteps, kSkyviewReferenceSteps));
 }
 
 }  // namespace
@@ -159,9 +159,10 @@ nlohmann::json measure_skyview_error(const Scene& scene, const OutputSpec& spec,
                     [](double, const SkyviewDirection&, double) { return glm::dvec3(0.0); });
   return error_record(
       reads, fmt::format("lookup_skyview (bilinear, azimuth wraps) at a uniform layer and view "
-                         "direction against the same march with {} steps, reading the same "
-                         "transmittance and multiple-scattering tables",
-                         kSkyviewReferenceSteps));
+                         "direction against the same march with {} and {} steps, cut at the "
+                         "planet's shadow and extrapolated to zero step (Richardson), reading the "
+                         "same transmittance and multiple-scattering tables",
+                         2 * kSkyviewReferenceSteps, kSkyviewReferenceSteps));
 }
 
 nlohmann::json measure_aerial_perspective_error(const Scene& scene, const OutputSpec& spec,

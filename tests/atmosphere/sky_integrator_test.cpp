@@ -6,13 +6,14 @@
 #include "atmosphere/sky_integrator.hpp"
 
 #include <cmath>
+#include <functional>
 
 #include <gtest/gtest.h>
 
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/phase.hpp"
-#include "support/test_atmospheres.hpp"
 #include "atmosphere/transmittance_lut.hpp"
+#include "support/test_atmospheres.hpp"
 
 namespace skybake {
 namespace {
@@ -121,6 +122,65 @@ TEST(Integrator, SunAtNadirLeavesTheZenithRayInTheShadow) {
   const ScatteringResult s = integrate_scattered_luminance(atm, t, &ms, p, kUp, -kUp, INFINITY, 30);
   EXPECT_EQ(s.luminance, glm::dvec3(0.0));
   EXPECT_LT(s.transmittance.z, 1.0);
+}
+
+TEST(Integrator, ShadowCutsOnlyWhereTheRayCrossesTheShadow) {
+  // Sun at the zenith: no point of the shell is in the shadow, so the cut
+  // march is the plain march bit for bit. Sun below the horizon: a ray
+  // toward the sun's side leaves the shadow on its way: a segment straddling
+  // the shadow's edge is off by O(h), so the cut march converges faster
+  // (second order) and its extrapolation beats the plain march at more
+  // steps.
+  const Atmosphere atm = earth_atmosphere();
+  const Texture t = small_transmittance(atm);
+  const glm::dvec3 p(0.0, 0.0, atm.bottom_radius_m + 1e3);
+  IntegrationOptions cut;
+  cut.cut_at_shadow = true;
+  for (double elevation : {-0.2, 0.05, 0.6}) {
+    const glm::dvec3 dir =
+        glm::normalize(glm::dvec3(std::cos(elevation), 0.0, std::sin(elevation)));
+    EXPECT_EQ(
+        integrate_scattered_luminance(atm, t, nullptr, p, dir, kUp, INFINITY, 37, cut).luminance,
+        integrate_scattered_luminance(atm, t, nullptr, p, dir, kUp, INFINITY, 37).luminance);
+  }
+  // Rays toward the sun's side from a viewer 1 km up, the sun 3-11 degrees
+  // below the horizon: rms over the rays and channels of the relative
+  // error against 4000 cut steps.
+  const auto rms_error = [&](const std::function<glm::dvec3(glm::dvec3, glm::dvec3)>& march) {
+    double sum = 0.0;
+    int count = 0;
+    for (double below : {0.05, 0.1, 0.2})
+      for (double elevation : {0.01, 0.03, 0.06, 0.1, 0.15, 0.2, 0.3}) {
+        const glm::dvec3 sun(std::cos(below), 0.0, -std::sin(below));
+        const glm::dvec3 dir =
+            glm::normalize(glm::dvec3(std::cos(elevation), 0.3, std::sin(elevation)));
+        const glm::dvec3 dense =
+            integrate_scattered_luminance(atm, t, nullptr, p, dir, sun, INFINITY, 4000, cut)
+                .luminance;
+        const glm::dvec3 value = march(dir, sun);
+        for (int c = 0; c < 3; ++c, ++count) sum += std::pow(value[c] / dense[c] - 1.0, 2);
+      }
+    return std::sqrt(sum / count);
+  };
+  const auto plain = [&](int n) {
+    return rms_error([&](glm::dvec3 dir, glm::dvec3 sun) {
+      return integrate_scattered_luminance(atm, t, nullptr, p, dir, sun, INFINITY, n).luminance;
+    });
+  };
+  const auto cut_march = [&](int n) {
+    return rms_error([&](glm::dvec3 dir, glm::dvec3 sun) {
+      return integrate_scattered_luminance(atm, t, nullptr, p, dir, sun, INFINITY, n, cut)
+          .luminance;
+    });
+  };
+  const double extrapolated = rms_error([&](glm::dvec3 dir, glm::dvec3 sun) {
+    return extrapolated_scattered_luminance(atm, t, nullptr, p, dir, sun, INFINITY, 50);
+  });
+  // Measured: plain 1.36e-3 at 100 steps, 5.1e-4 at 200; cut 7.5e-4 and
+  // 2.2e-4 (second order); extrapolated from 100 and 50, 3.3e-4.
+  EXPECT_GT(cut_march(100) / cut_march(200), 3.0);
+  EXPECT_LT(cut_march(200), 0.6 * plain(200));
+  EXPECT_LT(extrapolated, plain(200));
 }
 
 TEST(Integrator, LitGroundSeenThroughEmptyAtmosphereIsLambertian) {
