@@ -5,7 +5,8 @@
 // the medians printed. Steadier than bench/error_cost.sh's wall times on a
 // loaded machine; the same products and the same records.
 //
-//   build/bench/error_records_cpu [--repeat N] PRESET...
+//   build/bench/error_records_cpu [--repeat N] [--no-avx2] PRESET...
+//        --no-avx2: the one-value loops only (core/wide_vectors.hpp)
 #include <algorithm>
 #include <cstdio>
 #include <ctime>
@@ -16,6 +17,7 @@
 
 #include <tbb/global_control.h>
 
+#include "core/wide_vectors.hpp"
 #include "pipeline/preset_loader.hpp"
 #include "pipeline/product_graph.hpp"
 
@@ -67,6 +69,8 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--repeat" && i + 1 < argc)
       repeat = std::max(1, std::stoi(argv[++i]));
+    else if (a == "--no-avx2")
+      set_wide_vectors(false);
     else
       presets.push_back(a);
   }
