@@ -9,6 +9,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "atmosphere/nu_slices.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
@@ -89,16 +90,21 @@ glm::dvec3 compute_indirect_irradiance(const Atmosphere& atm, const ScatteringSh
   // The sun in the x-z plane; the sky is symmetric about it (phi -> -phi).
   const double sun_x = std::sqrt(std::max(0.0, 1.0 - mu_s * mu_s));
   glm::dvec3 E(0.0);
+  NuSlices slices;
   for (int l = 0; l < bands; ++l) {
     const double theta0 = l * d_theta, theta1 = (l + 1) * d_theta, theta = (l + 0.5) * d_theta;
     // int_band cos(theta) sin(theta) d theta, times 2 d_phi for the mirrored half.
     const double s0 = std::sin(theta0), s1 = std::sin(theta1);
     const double weight = 0.5 * (s1 * s1 - s0 * s0) * 2.0 * d_phi;
     const double mu = std::cos(theta), sin_theta = std::sin(theta);
+    // r, mu and mu_s are the band's for every azimuth; only nu turns.
+    slices.read(order, shape,
+                scattering_taps(shape, scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r, mu, mu_s,
+                                                                         1.0, false)));
     for (int m = 0; m < azimuths; ++m) {
       const double phi = (m + 0.5) * d_phi;
       const double nu = sin_theta * std::cos(phi) * sun_x + mu * mu_s;
-      E += weight * order.radiance_at(atm, shape, r, mu, mu_s, nu, false);
+      E += weight * slices.at(order, shape, nu);
     }
   }
   return E;

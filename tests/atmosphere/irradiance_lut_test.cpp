@@ -124,6 +124,51 @@ TEST(ComputeIndirectIrradiance, IsotropicSkyGivesPiTimesItsRadiance) {
       }
 }
 
+// compute_indirect_irradiance as the header defines it: one quadrilinear read
+// (ScatteringOrder::radiance_at) per direction, where the baker reads each
+// band's nu slices once.
+glm::dvec3 indirect_one_read_at_a_time(const Atmosphere& atm, const ScatteringOrder& order,
+                                       double r, double mu_s, int directions) {
+  const int bands = directions / 2, azimuths = directions;
+  const double d_theta = 0.5 * kPi / bands, d_phi = kPi / azimuths;
+  const glm::dvec3 sun(std::sqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
+  glm::dvec3 E(0.0);
+  for (int l = 0; l < bands; ++l) {
+    const double theta = (l + 0.5) * d_theta;
+    const double s0 = std::sin(l * d_theta), s1 = std::sin((l + 1) * d_theta);
+    // cos(theta) d omega over the band, both mirrored halves of each azimuth cell.
+    const double weight = (s1 * s1 - s0 * s0) * d_phi;
+    for (int m = 0; m < azimuths; ++m) {
+      const double phi = (m + 0.5) * d_phi;
+      const glm::dvec3 w(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                         std::cos(theta));
+      E += weight * order.radiance_at(atm, kSmall, r, w.z, mu_s, glm::dot(w, sun), false);
+    }
+  }
+  return E;
+}
+
+TEST(ComputeIndirectIrradiance, EqualsOneReadPerDirection) {
+  // Order 1 (two tables, each with its phase) and a radiance table (order 2's
+  // shape), at the ground and aloft, suns above and below the horizon.
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const Texture lut = bake_transmittance_lut(atm, {64, 16, 4}, BakeContext{});
+  const SingleScatteringTables single = bake_single_scattering(atm, lut, kSmall, 20, BakeContext{});
+  const ScatteringPhases phases = scattering_phases(atm);
+  const ScatteringOrder order1{&single.rayleigh, &single.mie, nullptr, &phases};
+  const ScatteringOrder order2{nullptr, nullptr, &single.mie, &phases};
+  for (const ScatteringOrder* order : {&order1, &order2})
+    for (double h : {0.0, 2e3, 40e3})
+      for (double mu_s : {0.95, 0.3, 0.02, -0.15}) {
+        const double r = atm.bottom_radius_m + h;
+        const glm::dvec3 fast = compute_indirect_irradiance(atm, kSmall, *order, r, mu_s, 32);
+        const glm::dvec3 slow = indirect_one_read_at_a_time(atm, *order, r, mu_s, 32);
+        ASSERT_GT(slow.b, 0.0);
+        for (int c = 0; c < 3; ++c)
+          ASSERT_NEAR(fast[c], slow[c], 1e-12 * slow[c]) << "h " << h << " mu_s " << mu_s;
+      }
+}
+
 TEST(LookupIrradiance, ExactAtTexelCentresLinearBetween) {
   Texture table(4, 2, 1, 1, {"R", "G", "B"});
   for (int y = 0; y < 2; ++y)
