@@ -67,9 +67,95 @@ SKYBAKE_AVX2 int mu_s_taps_avx2(const double* mu_s, int n, int* i0, double* w, d
   }
   return k;
 }
+
+// TransmittanceReader::add_sun_products four cosines at a time: sun_taps'
+// operations (in their SSE2 order) and to_sun_at's; returns how many it
+// did. (Gathers were slower here than loads and a transpose.)
+struct SunRow {
+  const float *row0, *row1;
+  double r, rt, d_min, inv_span, sun_edge, inv_sun_width, wy;
+  int width, stride;
+};
+SKYBAKE_AVX2 int sun_products_avx2(const SunRow& q, const double* mu_s, int n, const double a[6],
+                                   double* const sums[6]) {
+  const __m256d one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd(), three = _mm256_set1_pd(3.0),
+                two = _mm256_set1_pd(2.0);
+  const __m256d minus_r = _mm256_set1_pd(-q.r);
+  const __m256d rr = _mm256_set1_pd(q.r * q.r), tt = _mm256_set1_pd(q.rt * q.rt);
+  const __m256d d_min = _mm256_set1_pd(q.d_min), inv_span = _mm256_set1_pd(q.inv_span);
+  const __m256d edge = _mm256_set1_pd(q.sun_edge), inv_width = _mm256_set1_pd(q.inv_sun_width);
+  const __m256d last = _mm256_set1_pd(double(q.width - 1));
+  const __m256d below_last = _mm256_set1_pd(double(q.width - 2)), wy = _mm256_set1_pd(q.wy);
+  int k = 0;
+  for (; k + 4 <= n; k += 4) {
+    const __m256d raw = _mm256_loadu_pd(mu_s + k);
+    const __m256d mu = clamp_pd4(raw, -1.0, 1.0);
+    const __m256d discriminant =
+        _mm256_add_pd(_mm256_mul_pd(rr, _mm256_sub_pd(_mm256_mul_pd(mu, mu), one)), tt);
+    const __m256d d = _mm256_max_pd(
+        _mm256_add_pd(_mm256_mul_pd(minus_r, mu), _mm256_sqrt_pd(_mm256_max_pd(zero, discriminant))),
+        zero);
+    const __m256d x = clamp_pd4(_mm256_mul_pd(_mm256_sub_pd(d, d_min), inv_span), 0.0, 1.0);
+    const __m256d t = _mm256_mul_pd(x, last);
+    const __m256d i = _mm256_min_pd(below_last, _mm256_cvtepi32_pd(_mm256_cvttpd_epi32(t)));
+    const __m256d w = _mm256_sub_pd(t, i);
+    const __m256d s = _mm256_mul_pd(_mm256_sub_pd(raw, edge), inv_width);
+    const __m256d smooth = _mm256_mul_pd(_mm256_mul_pd(s, s), _mm256_sub_pd(three, _mm256_mul_pd(two, s)));
+    const __m256d full = _mm256_cmp_pd(s, one, _CMP_GE_OQ), none = _mm256_cmp_pd(s, zero, _CMP_LE_OQ);
+    const __m256d visible = _mm256_or_pd(_mm256_and_pd(full, one),
+                                         _mm256_andnot_pd(_mm256_or_pd(full, none), smooth));
+    // A sun below the horizon at this node for all four: T = 0 adds +0 to
+    // sums that are >= +0, which leaves them as they are.
+    if (_mm256_movemask_pd(_mm256_cmp_pd(visible, zero, _CMP_NEQ_UQ)) == 0) continue;
+    // Each lane's texels i0 and i0 + 1 of both LUT rows: R G B at positions
+    // 0-2 of a load at the first and 1-3 of a load ending at the second's
+    // blue (any stride >= 3, never past the row), transposed into lanes.
+    alignas(16) int at[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(at), _mm256_cvttpd_epi32(i));
+    __m128 lo[2][4], hi[2][4];
+    for (int y = 0; y < 2; ++y) {
+      const float* row = y == 0 ? q.row0 : q.row1;
+      for (int l = 0; l < 4; ++l) {
+        lo[y][l] = _mm_loadu_ps(row + q.stride * at[l]);
+        hi[y][l] = _mm_loadu_ps(row + q.stride * at[l] + q.stride - 1);
+      }
+      _MM_TRANSPOSE4_PS(lo[y][0], lo[y][1], lo[y][2], lo[y][3]);
+      _MM_TRANSPOSE4_PS(hi[y][0], hi[y][1], hi[y][2], hi[y][3]);
+    }
+    for (int c = 0; c < 3; ++c) {
+      const __m256d t00 = _mm256_cvtps_pd(lo[0][c]), t10 = _mm256_cvtps_pd(hi[0][c + 1]);
+      const __m256d t01 = _mm256_cvtps_pd(lo[1][c]), t11 = _mm256_cvtps_pd(hi[1][c + 1]);
+      const __m256d bottom = _mm256_add_pd(t00, _mm256_mul_pd(_mm256_sub_pd(t10, t00), w));
+      const __m256d top = _mm256_add_pd(t01, _mm256_mul_pd(_mm256_sub_pd(t11, t01), w));
+      const __m256d T = _mm256_mul_pd(
+          visible, _mm256_add_pd(bottom, _mm256_mul_pd(_mm256_sub_pd(top, bottom), wy)));
+      for (int g = 0; g < 2; ++g) {
+        double* sum = sums[3 * g + c] + k;
+        _mm256_storeu_pd(sum, _mm256_add_pd(_mm256_loadu_pd(sum),
+                                            _mm256_mul_pd(_mm256_set1_pd(a[3 * g + c]), T)));
+      }
+    }
+  }
+  return k;
+}
 #endif
 
 }  // namespace
+
+int TransmittanceReader::add_sun_products(const Row& row, const double* mu_s, int n,
+                                          const glm::dvec3& a_rayleigh, const glm::dvec3& a_mie,
+                                          double* const sums[6]) const {
+#if SKYBAKE_HAS_AVX2
+  if (!wide_vectors() || stride_ < 3) return 0;
+  const SunRow q{row.row0,    row.row1,  row.r,         rt_,         row.d_min, row.inv_span,
+                 row.sun_edge, row.inv_sun_width, row.wy, lut_.width, stride_};
+  const double a[6] = {a_rayleigh.r, a_rayleigh.g, a_rayleigh.b, a_mie.r, a_mie.g, a_mie.b};
+  return sun_products_avx2(q, mu_s, n, a, sums);
+#else
+  (void)row, (void)mu_s, (void)n, (void)a_rayleigh, (void)a_mie, (void)sums;
+  return 0;
+#endif
+}
 
 void MuSAxis::taps(const double* mu_s, int n, int* i0, double* w) const {
   int k = 0;

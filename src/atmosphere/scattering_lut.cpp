@@ -406,19 +406,30 @@ void SingleScatteringRay::at_suns(const TransmittanceReader& reader, const doubl
                                   Scratch& scratch) const {
   for (auto* v : {&scratch.mu_s, &scratch.w, &scratch.visible}) v->resize(n);
   scratch.i0.resize(n);
+  scratch.sums.assign(6 * size_t(n), 0.0);
+  double* const sums[6] = {&scratch.sums[0],     &scratch.sums[n],     &scratch.sums[2 * n],
+                           &scratch.sums[3 * n], &scratch.sums[4 * n], &scratch.sums[5 * n]};
   for (int k = 0; k < n; ++k) out[k] = SingleScattering{};
+  int wide = 0;  // the suns [0, wide) are summed in `sums`, the others in `out`
   for (const Node& node : nodes) {
     // clamp_cosine as min / max: the same value, no branch.
     for (int k = 0; k < n; ++k)
       scratch.mu_s[k] = std::min(std::max((r * mu_s[k] + node.s * nu[k]) * node.inv_r, -1.0), 1.0);
-    reader.sun_taps(node.sun_row, scratch.mu_s.data(), n, scratch.i0.data(), scratch.w.data(),
-                    scratch.visible.data());
-    for (int k = 0; k < n; ++k) {
+    wide = reader.add_sun_products(node.sun_row, scratch.mu_s.data(), n, node.a_rayleigh,
+                                   node.a_mie, sums);
+    const int rest = n - wide;
+    reader.sun_taps(node.sun_row, scratch.mu_s.data() + wide, rest, scratch.i0.data(),
+                    scratch.w.data(), scratch.visible.data());
+    for (int k = 0; k < rest; ++k) {
       const glm::dvec3 T_sun =
           reader.to_sun_at(node.sun_row, scratch.i0[k], scratch.w[k], scratch.visible[k]);
-      out[k].rayleigh += node.a_rayleigh * T_sun;
-      out[k].mie += node.a_mie * T_sun;
+      out[wide + k].rayleigh += node.a_rayleigh * T_sun;
+      out[wide + k].mie += node.a_mie * T_sun;
     }
+  }
+  for (int k = 0; k < wide; ++k) {
+    out[k].rayleigh = {sums[0][k], sums[1][k], sums[2][k]};
+    out[k].mie = {sums[3][k], sums[4][k], sums[5][k]};
   }
   for (int k = 0; k < n; ++k) {
     out[k].rayleigh *= sun;

@@ -258,6 +258,13 @@ class TransmittanceReader {
     }
     return out;
   }
+  // sums[c][k] += a_rayleigh[c] T_k, sums[3 + c][k] += a_mie[c] T_k, with
+  // T_k = to_sun_at of sun_taps(row, mu_s[k]) (the same values, the same
+  // operations per lane), for the first cosines in AVX2 (four at a time,
+  // batch_taps.cpp); returns how many it did: a multiple of 4, 0 without
+  // AVX2. Single scattering's hottest loop (SingleScatteringRay::at_suns).
+  int add_sun_products(const Row& row, const double* mu_s, int n, const glm::dvec3& a_rayleigh,
+                       const glm::dvec3& a_mie, double* const sums[6]) const;
   // Between (r, mu) and the point at distance d along the ray.
   glm::dvec3 between(double r, double mu, double d, bool ray_hits_ground) const;
   // To the sun of zenith cosine mu_s, with the fraction of the sun's disk
@@ -314,7 +321,7 @@ struct SingleScatteringRay {
   // all of them at once (TransmittanceReader::sun_taps): out[k] equals
   // at_sun(mu_s[k], nu[k]). The work arrays are the caller's, reused.
   struct Scratch {
-    std::vector<double> mu_s, w, visible;
+    std::vector<double> mu_s, w, visible, sums;
     std::vector<int> i0;
   };
   void at_suns(const TransmittanceReader& reader, const double* mu_s, const double* nu, int n,
