@@ -126,12 +126,11 @@ Texture bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& s
         if (wS == glm::dvec3(0.0)) continue;
         const Rgb4 wS4{{float(wS.r), float(wS.g), float(wS.b), 0.0f}};
         const double r_i = q.r, mu_i = mu_after(r, mu, q.s, r_i);
-        const glm::dvec4 uvwz =
-            scattering_uvwz_from_r_mu_mu_s_nu(atm, shape, r_i, mu_i, 1.0, 1.0, hits);
+        const glm::dvec2 u_mu_r = scattering_u_mu_r(atm, shape, r_i, mu_i, hits);
         // J / sigma_s at (r_i, mu_i) for every (mu_s, nu) texel: the
         // bilinear blend of four rows of the table, shared by the row's W
         // texels.
-        const AxisTap tr = axis_tap(uvwz.w, shape.r_size), tm = axis_tap(uvwz.z, shape.mu_size);
+        const AxisTap tr = axis_tap(u_mu_r.y, shape.r_size), tm = axis_tap(u_mu_r.x, shape.mu_size);
         const Rgb4* rows4[4] = {row_of(tm.i0, tr.i0), row_of(tm.i1, tr.i0), row_of(tm.i0, tr.i1),
                                 row_of(tm.i1, tr.i1)};
         const float w4[4] = {float((1.0 - tr.w) * (1.0 - tm.w)), float((1.0 - tr.w) * tm.w),

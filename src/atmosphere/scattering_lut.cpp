@@ -96,9 +96,8 @@ ScatteringShape scattering_shape_from_metadata(const Metadata& meta) {
 
 // ---- Mapping ----
 
-glm::dvec4 scattering_uvwz_from_r_mu_mu_s_nu(const Atmosphere& atm, const ScatteringShape& shape,
-                                             double r, double mu, double mu_s, double nu,
-                                             bool ray_hits_ground) {
+glm::dvec2 scattering_u_mu_r(const Atmosphere& atm, const ScatteringShape& shape, double r,
+                             double mu, bool ray_hits_ground) {
   const double rb = atm.bottom_radius_m, rt = atm.top_radius_m, H = horizon_distance(atm);
   r = std::clamp(r, rb, rt);
   mu = clamp_cosine(mu);
@@ -118,11 +117,16 @@ glm::dvec4 scattering_uvwz_from_r_mu_mu_s_nu(const Atmosphere& atm, const Scatte
     const double x = (d - d_min) / (d_max - d_min);
     u_mu = 0.5 + 0.5 * texel_coord_from_unit(std::clamp(x, 0.0, 1.0), half);
   }
+  return {u_mu, u_r};
+}
 
+glm::dvec4 scattering_uvwz_from_r_mu_mu_s_nu(const Atmosphere& atm, const ScatteringShape& shape,
+                                             double r, double mu, double mu_s, double nu,
+                                             bool ray_hits_ground) {
+  const glm::dvec2 u_mu_r = scattering_u_mu_r(atm, shape, r, mu, ray_hits_ground);
   const double u_mu_s = MuSAxis(atm, shape).u(mu_s);
-
   const double u_nu = 0.5 * (clamp_cosine(nu) + 1.0);
-  return {u_nu, u_mu_s, u_mu, u_r};
+  return {u_nu, u_mu_s, u_mu_r.x, u_mu_r.y};
 }
 
 ScatteringParams r_mu_mu_s_nu_from_scattering_uvwz(const Atmosphere& atm,

@@ -94,6 +94,9 @@ inline AxisTap axis_tap(double u, int n) {
 glm::dvec4 scattering_uvwz_from_r_mu_mu_s_nu(const Atmosphere& atm, const ScatteringShape& shape,
                                              double r, double mu, double mu_s, double nu,
                                              bool ray_hits_ground);
+// Its (u_mu, u_r) alone, for loops that read whole (mu_s, nu) rows.
+glm::dvec2 scattering_u_mu_r(const Atmosphere& atm, const ScatteringShape& shape, double r,
+                             double mu, bool ray_hits_ground);
 // The exact inverse. Degenerate rows, where one uvwz stands for many rays:
 // at r = Rb every ground ray has d = 0 and comes back as mu = -1; at r = Rt
 // every upward ray has d = 0 and comes back as mu = 1.
