@@ -172,19 +172,40 @@ Imf::FrameBuffer write_buffer(const Imf::Header& header, const std::vector<std::
   return frame_buffer(channels, halves.data(), width, 0, 0);
 }
 
-// Copies the slices of a volume into an atlas image of columns x rows cells.
-std::vector<float> make_atlas(const Texture& tex, int columns, int rows) {
-  const size_t nc = tex.channels.size();
-  const size_t atlas_width = size_t(columns) * tex.width;
-  std::vector<float> atlas(atlas_width * size_t(rows) * tex.height * nc, 0.0f);
-  for (int z = 0; z < tex.depth; ++z) {
-    const size_t x0 = size_t(z % columns) * tex.width, y0 = size_t(z / columns) * tex.height;
-    for (int y = 0; y < tex.height; ++y) {
-      const float* src = tex.texel(0, y, z, 0);
-      std::copy(src, src + tex.width * nc, &atlas[((y0 + y) * atlas_width + x0) * nc]);
+// Writes a volume as an atlas image of columns x rows cells, one row of
+// cells (tex.height scanlines) at a time: the slice rows behind it are
+// copied into one reused band, never the whole atlas (a fresh copy of the
+// volume, zero-filled first). Scanlines go out in the same order, so the
+// file is the same.
+void write_atlas(const std::string& path, const Imf::Header& header, const Texture& tex,
+                 int columns, int rows) {
+  const size_t nc = tex.channels.size(), slice_row = size_t(tex.width) * nc;
+  const size_t atlas_width = size_t(columns) * size_t(tex.width);
+  std::vector<float> band(atlas_width * size_t(tex.height) * nc);
+  std::vector<half> halves;
+  const bool halve = header.channels().begin().channel().type == Imf::HALF;
+  try {
+    Imf::OutputFile out(path.c_str(), header, exr_threads());
+    for (int r = 0; r < rows; ++r) {
+      for (int k = 0; k < columns; ++k)
+        for (int y = 0; y < tex.height; ++y) {
+          const float* src = tex.texel(0, y, r * columns + k, 0);
+          std::copy(src, src + slice_row, &band[(size_t(y) * atlas_width + size_t(k) * tex.width) * nc]);
+        }
+      const int64_t min_y = int64_t(r) * tex.height;
+      if (halve) {
+        halves.resize(band.size());
+        for (size_t i = 0; i < band.size(); ++i) halves[i] = half(band[i]);
+        out.setFrameBuffer(frame_buffer(tex.channels, halves.data(), int64_t(atlas_width), 0, min_y));
+      } else {
+        out.setFrameBuffer(frame_buffer(tex.channels, band.data(), int64_t(atlas_width), 0, min_y));
+      }
+      out.writePixels(tex.height);
     }
+  } catch (const std::exception& e) {
+    std::remove(path.c_str());
+    throw IoError(fmt::format("{}: cannot write EXR: {}", path, e.what()));
   }
-  return atlas;
 }
 
 // Writes the given parts (one header and one pixel pointer each, float32 with
@@ -235,7 +256,6 @@ void write_exr(const std::string& path, const Texture& tex, ExrPrecision precisi
   check_writable(path, tex, precision);
   std::vector<Imf::Header> specs;
   std::vector<const float*> pixels;
-  std::vector<float> atlas;
   if (tex.is_volume() && layout == ExrVolumeLayout::atlas) {
     const int columns = exr_atlas_columns(tex.depth);
     const int rows = tex.depth / columns;  // columns * rows == depth: no empty cell
@@ -246,9 +266,9 @@ void write_exr(const std::string& path, const Texture& tex, ExrPrecision precisi
     spec.insert(kPrefix + "slice_width", Imf::IntAttribute(tex.width));
     spec.insert(kPrefix + "slice_height", Imf::IntAttribute(tex.height));
     spec.insert(kPrefix + "slice_count", Imf::IntAttribute(tex.depth));
-    atlas = make_atlas(tex, columns, rows);
-    specs.push_back(spec);
-    pixels.push_back(atlas.data());
+    spec.compression() = imf_compression(compression);
+    write_atlas(path, spec, tex, columns, rows);
+    return;
   } else if (tex.is_volume() || tex.is_array()) {
     const bool volume = tex.is_volume();
     const int parts = volume ? tex.depth : tex.layers;
