@@ -49,6 +49,21 @@ uint64_t hash_words_mix(uint64_t h, const void* data, size_t size) {
   return h;
 }
 
+void hash_words_mix2(uint64_t h[2], const void* data, size_t size) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  uint64_t a = h[0], b = h[1];
+  size_t i = 0;
+  for (; i + 8 <= size; i += 8) {
+    uint64_t w;
+    std::memcpy(&w, p + i, 8);
+    const uint64_t m = w * kMul1;
+    a = rotl(a ^ m, 29) * kMul2;
+    b = rotl(b ^ m, 29) * kMul2;
+  }
+  h[0] = hash_words_mix(a, p + i, size - i);
+  h[1] = hash_words_mix(b, p + i, size - i);
+}
+
 uint64_t hash_words_finish(uint64_t h, uint64_t length) {
   h ^= length * kMul2;
   h ^= h >> 33;

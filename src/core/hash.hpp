@@ -30,6 +30,10 @@ std::string hash_hex(std::string_view bytes);
 // length.
 uint64_t hash_words_mix(uint64_t h, const void* data, size_t size);
 uint64_t hash_words_finish(uint64_t h, uint64_t length);
+// hash_words_mix of the same content from two states at once, h[0] and h[1]
+// updated in place: the same two results, one pass over the memory, and the
+// two chains of rounds interleaved (each round waits on the one before).
+void hash_words_mix2(uint64_t h[2], const void* data, size_t size);
 // hash_words_finish(hash_words_mix(seed, data, size), size).
 uint64_t hash_words(const void* data, size_t size, uint64_t seed);
 

@@ -242,7 +242,7 @@ void make_uuid_deterministic(const std::string& path) {
                                 kUuidOffset));
       std::fill_n(block.begin() + kUuidOffset, kUuidLength, '\0');
     }
-    for (uint64_t& lane : h) lane = hash_words_mix(lane, block.data(), n);
+    hash_words_mix2(h, block.data(), n);
     length += n;
   }
   if (!file.eof()) throw IoError(fmt::format("{}: cannot read back the VDB file", path));

@@ -24,6 +24,16 @@ TEST(HashWords, PiecesOfWholeWordsHashAsOneContent) {
   }
 }
 
+TEST(HashWords, TwoStatesAtOnceAreTwoSeparateMixes) {
+  const std::string s = content(1003);
+  for (size_t n : {0u, 5u, 8u, 13u, 1000u, 1003u}) {
+    uint64_t h[2] = {7, 0xfedcba9876543210ull};
+    hash_words_mix2(h, s.data(), n);
+    EXPECT_EQ(h[0], hash_words_mix(7, s.data(), n)) << n;
+    EXPECT_EQ(h[1], hash_words_mix(0xfedcba9876543210ull, s.data(), n)) << n;
+  }
+}
+
 TEST(HashWords, EveryByteTheLengthAndTheSeedChangeTheHash) {
   const std::string s = content(37);  // 4 words and a 5-byte tail
   const uint64_t h = hash_words(s.data(), s.size(), 1);
