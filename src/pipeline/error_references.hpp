@@ -23,11 +23,14 @@ constexpr int kTransmittanceQueries = 512;
 constexpr int kTransmittanceReferenceSteps = 24;
 
 constexpr int kMultiscatteringQueries = 24;
-// 6 + 24 zenith cosines x 6 azimuths (x 2 mirrored), 40 graded segments:
-// 7200 rays' samples a point where the table's integrator needed 10240 for
-// 2-5x the error (tests/atmosphere/multiscattering_point_test.cpp holds it
-// to a finer rule).
-constexpr PointQuadrature kMultiscatteringReference = {6, 24, 6, 40};
+// 6 + 24 zenith cosines x 4 azimuths (x 2 mirrored), 32 graded segments:
+// 3.5e-3 max_rel of a rule 4x finer in zenith and steps and 2x in azimuth on
+// Earth, 1.2e-2 under 100x Rayleigh (tests/atmosphere/
+// multiscattering_point_test.cpp), 1-2% of the tables' own errors there; the
+// 6-azimuth, 40-segment rule halved that for twice the time, which put the
+// record above a tenth of the table's AVX2 bake (docs/decisions.md "Error
+// records at a tenth of the bake").
+constexpr PointQuadrature kMultiscatteringReference = {6, 24, 4, 32};
 
 constexpr int kSkyviewQueries = 128;
 // The march of the table's step distribution with 100 and 50 segments, cut
