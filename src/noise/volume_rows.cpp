@@ -91,6 +91,58 @@ SKYBAKE_AVX2 inline __attribute__((always_inline)) __m256 worley_d2_avx2(__m256 
   return _mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_set1_ps(q));
 }
 
+// For every 8-bit mask, the lanes of its set bits in increasing order, then
+// the others: _mm256_permutevar8x32_ps with it moves the kept values to the
+// front, in order.
+struct LeftPack {
+  alignas(32) int lanes[256][8];
+  LeftPack() {
+    for (int m = 0; m < 256; ++m) {
+      int n = 0;
+      for (int l = 0; l < 8; ++l)
+        if (m & (1 << l)) lanes[m][n++] = l;
+      for (int l = 0; l < 8; ++l)
+        if (!(m & (1 << l))) lanes[m][n++] = l;
+    }
+  }
+};
+const LeftPack kLeftPack;
+
+// eval_row's compaction, column by column: the y-z neighbours j = 0 .. 7 of
+// a column gathered at once, those with q < 1 moved to the front in j
+// order, then j = 8: the same candidates in the same order as the scalar
+// loop. Writes up to 8 floats past the last candidate. Returns the count.
+SKYBAKE_AVX2 int compact_columns_avx2(const float* qj, const float* offset_x, const size_t* rows,
+                                      int p, float* ox, float* q, float* col_of, int* start) {
+  const __m256i q_index = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
+                                             _mm256_set1_epi32(p));
+  const __m256i x_index = _mm256_setr_epi32(int(rows[0]), int(rows[1]), int(rows[2]),
+                                            int(rows[3]), int(rows[4]), int(rows[5]),
+                                            int(rows[6]), int(rows[7]));
+  const __m256 one = _mm256_set1_ps(1.0f);
+  int count = 0;
+  for (int col = 0; col < p + 2; ++col) {
+    const int cx = col - 1, wx = cx < 0 ? cx + p : (cx >= p ? cx - p : cx);
+    start[col] = count;
+    const __m256 qv = _mm256_i32gather_ps(qj + wx, q_index, 4);
+    const __m256 xv = _mm256_i32gather_ps(offset_x + wx, x_index, 4);
+    const int mask = _mm256_movemask_ps(_mm256_cmp_ps(qv, one, _CMP_LT_OQ));
+    const __m256i lanes =
+        _mm256_load_si256(reinterpret_cast<const __m256i*>(kLeftPack.lanes[mask]));
+    _mm256_storeu_ps(q + count, _mm256_permutevar8x32_ps(qv, lanes));
+    _mm256_storeu_ps(ox + count, _mm256_permutevar8x32_ps(xv, lanes));
+    _mm256_storeu_ps(col_of + count, _mm256_set1_ps(float(cx)));
+    count += __builtin_popcount(unsigned(mask));
+    const float q8 = qj[size_t(8) * p + wx];
+    ox[count] = offset_x[rows[8] + wx];
+    q[count] = q8;
+    col_of[count] = float(cx);
+    count += q8 < 1.0f;
+  }
+  start[p + 2] = count;
+  return count;
+}
+
 SKYBAKE_AVX2 void nearest_row_avx2(const float* frac, const float* cell_f, const int* cell,
                                    int size, const float* ox, const float* q, const float* col,
                                    const int* start, float* out) {
@@ -159,8 +211,8 @@ void WorleyRows::eval_row(int y, int z, RowScratch& s, float* out) const {
   const int cy = cell_[y], cz = cell_[z];
   // Candidates of x column cx (cx = -1 .. p, unwrapped) are ox/q[start[cx + 1],
   // start[cx + 2]): x offset in the cell and squared y-z distance. ox/q are
-  // sized for every candidate plus one: the compaction below always writes.
-  const size_t max_candidates = size_t(p + 2) * 9 + 1;
+  // sized for every candidate plus 8: the compactions below write past the last.
+  const size_t max_candidates = size_t(p + 2) * 9 + 8;  // + 8: compact_columns_avx2
   if (s.a.size() < max_candidates) s.a.resize(max_candidates), s.b.resize(max_candidates);
   if (s.c.size() < size_t(p) * 9) s.c.resize(size_t(p) * 9);
   if (s.start.size() < size_t(p + 3)) s.start.resize(p + 3);
@@ -187,6 +239,14 @@ void WorleyRows::eval_row(int y, int z, RowScratch& s, float* out) const {
     }
   }
   // Then the compaction, column by column, of the points with q < 1.
+#if SKYBAKE_HAS_AVX2
+  if (wide_vectors()) {
+    compact_columns_avx2(qj, offset_x_.data(), rows, p, ox, q, col_of, s.start.data());
+    nearest_row_avx2(frac_.data(), cell_f_.data(), cell_.data(), size_, ox, q, col_of,
+                     s.start.data(), out);
+    return;
+  }
+#endif
   int count = 0;
   for (int col = 0; col < p + 2; ++col) {
     const int cx = col - 1, wx = cx < 0 ? cx + p : (cx >= p ? cx - p : cx);
@@ -201,13 +261,6 @@ void WorleyRows::eval_row(int y, int z, RowScratch& s, float* out) const {
     }
   }
   s.start[p + 2] = count;
-#if SKYBAKE_HAS_AVX2
-  if (wide_vectors()) {
-    nearest_row_avx2(frac_.data(), cell_f_.data(), cell_.data(), size_, ox, q, col_of,
-                     s.start.data(), out);
-    return;
-  }
-#endif
   // Voxels of one cell share their candidates: 4 voxels at a time (lanes past
   // the cell are computed and dropped). Columns c - 1, c, c + 1 are shifted by
   // -1, 0, +1 cell relative to the voxels' cell.
