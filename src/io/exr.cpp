@@ -126,6 +126,14 @@ int exr_threads() {
   return threads;
 }
 
+// The threads of a file written with `header`: none when it is not
+// compressed. Each line block is then a copy of its scanlines, and handing
+// it to the pool (a task and a semaphore post per scanline) costs more than
+// the copy; the bytes are the same either way.
+int exr_write_threads(const Imf::Header& header) {
+  return header.compression() == Imf::NO_COMPRESSION ? 0 : exr_threads();
+}
+
 // The header every part shares: channels, compression, metadata and shape.
 Imf::Header base_header(const Texture& tex, int width, int height, ExrPrecision precision,
                         const std::string& layout) {
@@ -185,7 +193,7 @@ void write_atlas(const std::string& path, const Imf::Header& header, const Textu
   std::vector<half> halves;
   const bool halve = header.channels().begin().channel().type == Imf::HALF;
   try {
-    Imf::OutputFile out(path.c_str(), header, exr_threads());
+    Imf::OutputFile out(path.c_str(), header, exr_write_threads(header));
     for (int r = 0; r < rows; ++r) {
       for (int k = 0; k < columns; ++k)
         for (int y = 0; y < tex.height; ++y) {
@@ -215,13 +223,14 @@ void write_parts(const std::string& path, std::vector<Imf::Header>& headers,
   std::vector<half> halves;
   try {
     if (headers.size() == 1) {
-      Imf::OutputFile out(path.c_str(), headers[0], exr_threads());
+      Imf::OutputFile out(path.c_str(), headers[0], exr_write_threads(headers[0]));
       out.setFrameBuffer(write_buffer(headers[0], channels, pixels[0], halves));
       out.writePixels(headers[0].dataWindow().max.y + 1);
     } else {
       for (Imf::Header& h : headers) h.setType(Imf::SCANLINEIMAGE);
       Imf::MultiPartOutputFile out(path.c_str(), headers.data(), int(headers.size()),
-                                   /*overrideSharedAttributes=*/false, exr_threads());
+                                   /*overrideSharedAttributes=*/false,
+                                   exr_write_threads(headers[0]));
       for (size_t i = 0; i < headers.size(); ++i) {
         Imf::OutputPart part(out, int(i));
         part.setFrameBuffer(write_buffer(headers[i], channels, pixels[i], halves));
