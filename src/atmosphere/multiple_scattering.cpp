@@ -83,15 +83,24 @@ glm::dvec3 compute_multiple_scattering(const Atmosphere& atm, const ScatteringSh
 // double.
 Texture bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shape,
                                  const Texture& density, int nodes, const BakeContext& ctx) {
+  Texture out;
+  std::vector<Rgb4> work;
+  bake_multiple_scattering(atm, shape, density, nodes, ctx, out, work);
+  return out;
+}
+
+void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shape,
+                              const Texture& density, int nodes, const BakeContext& ctx,
+                              Texture& out, std::vector<Rgb4>& radiance) {
   const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
   const ScatteringTexelGrid texels = scattering_texel_grid(atm, shape);
   const MuSAxis mu_s_axis(atm, shape);
-  std::vector<Rgb4> radiance(density.texel_count());
+  radiance.resize(density.texel_count());  // every texel's R, G, B written below, pads 0
   for_each_density_per_scattering(atm, shape, density,
                                   [&](size_t t, int c, float v) { radiance[t].v[c] = v; });
   const int W = shape.texture_width(), n_mu_s = shape.mu_s_size;
   auto row_of = [&](int y, int z) { return &radiance[(size_t(z) * shape.mu_size + y) * W]; };
-  Texture out(W, shape.mu_size, shape.r_size, 1, {"R", "G", "B"});
+  reuse_rgb_table(out, shape);
   const int rows = shape.r_size * shape.mu_size;
   ProgressCounter progress(ctx, size_t(rows));
   tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& range) {
@@ -146,7 +155,6 @@ Texture bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& s
       progress.tick();
     }
   });
-  return out;
 }
 
 }  // namespace skybake

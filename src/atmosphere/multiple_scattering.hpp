@@ -3,9 +3,12 @@
 // scattering_orders.hpp).
 #pragma once
 
+#include <vector>
+
 #include <glm/glm.hpp>
 
 #include "atmosphere/medium.hpp"
+#include "atmosphere/row_blend.hpp"
 #include "atmosphere/scattering_lut.hpp"
 #include "core/bake_context.hpp"
 #include "core/texture.hpp"
@@ -32,5 +35,10 @@ glm::dvec3 compute_multiple_scattering(const Atmosphere& atm, const ScatteringSh
 // DeltaS_k at every texel (RGB radiance), fast path.
 Texture bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shape,
                                  const Texture& density, int nodes, const BakeContext& ctx);
+// The same into `out`, its buffer and the work buffer (J / sigma_s as padded
+// texels, row_blend.hpp) kept from order to order (reuse_rgb_table).
+void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shape,
+                              const Texture& density, int nodes, const BakeContext& ctx,
+                              Texture& out, std::vector<Rgb4>& work);
 
 }  // namespace skybake

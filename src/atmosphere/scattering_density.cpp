@@ -75,6 +75,15 @@ glm::dvec3 compute_scattering_density(const Atmosphere& atm, const Texture& tran
 Texture bake_scattering_density(const Atmosphere& atm, const Texture& transmittance_lut,
                                 const ScatteringShape& shape, const ScatteringOrder& previous,
                                 const GroundIrradiance& ground, int bands, const BakeContext& ctx) {
+  Texture out;
+  bake_scattering_density(atm, transmittance_lut, shape, previous, ground, bands, ctx, out);
+  return out;
+}
+
+void bake_scattering_density(const Atmosphere& atm, const Texture& transmittance_lut,
+                             const ScatteringShape& shape, const ScatteringOrder& previous,
+                             const GroundIrradiance& ground, int bands, const BakeContext& ctx,
+                             Texture& out) {
   const ScatteringPhases phases = scattering_phases(atm);
   const SphereGrid grid = sphere_grid(bands);
   const ScatteringTexelGrid texels = scattering_texel_grid(atm, shape);
@@ -88,7 +97,7 @@ Texture bake_scattering_density(const Atmosphere& atm, const Texture& transmitta
     grid_w0 += grid.solid_angle[j];
     for (int e = 0; e < 6; ++e) grid_w2[e] += o[e] * grid.solid_angle[j];
   }
-  Texture out(shape.texture_width(), shape.mu_size, shape.r_size, 1, {"R", "G", "B"});
+  reuse_rgb_table(out, shape);
   // The band parts at each r texel, shared by its mu_s texels.
   std::vector<std::vector<std::vector<BandPart>>> parts(shape.r_size);
   tbb::parallel_for(0, shape.r_size,
@@ -144,7 +153,6 @@ Texture bake_scattering_density(const Atmosphere& atm, const Texture& transmitta
       progress.tick();
     }
   });
-  return out;
 }
 
 }  // namespace skybake

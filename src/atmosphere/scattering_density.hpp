@@ -24,5 +24,12 @@ glm::dvec3 compute_scattering_density(const Atmosphere& atm, const Texture& tran
 Texture bake_scattering_density(const Atmosphere& atm, const Texture& transmittance_lut,
                                 const ScatteringShape& shape, const ScatteringOrder& previous,
                                 const GroundIrradiance& ground, int bands, const BakeContext& ctx);
+// The same into `out`, whose buffer is kept when it has the table's shape
+// (every texel is written): the orders reuse one, where a fresh table each
+// order made the kernel fault in and clear its pages (scattering_orders.cpp).
+void bake_scattering_density(const Atmosphere& atm, const Texture& transmittance_lut,
+                             const ScatteringShape& shape, const ScatteringOrder& previous,
+                             const GroundIrradiance& ground, int bands, const BakeContext& ctx,
+                             Texture& out);
 
 }  // namespace skybake

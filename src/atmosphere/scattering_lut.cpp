@@ -76,6 +76,14 @@ void check_scattering_shape(const ScatteringShape& s) {
     throw Error(fmt::format("scattering table: expected mu_s_min in (-1, 0], got {}", s.mu_s_min));
 }
 
+void reuse_rgb_table(Texture& table, const ScatteringShape& shape) {
+  if (table.width == shape.texture_width() && table.height == shape.mu_size &&
+      table.depth == shape.r_size && table.layers == 1 &&
+      table.channels == std::vector<std::string>{"R", "G", "B"})
+    return;
+  table = Texture(shape.texture_width(), shape.mu_size, shape.r_size, 1, {"R", "G", "B"});
+}
+
 void set_scattering_shape_metadata(Metadata& meta, const ScatteringShape& s) {
   set_meta(meta, "r_size", s.r_size);
   set_meta(meta, "mu_size", s.mu_size);

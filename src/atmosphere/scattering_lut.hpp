@@ -69,6 +69,9 @@ struct ScatteringShape {
 
 // Throws Error ("expected ..., got ...") when the shape is unusable.
 void check_scattering_shape(const ScatteringShape& shape);
+// Makes `table` an RGB texture of the packed shape, keeping its buffer (and
+// values) when it already is one: for passes that write every texel.
+void reuse_rgb_table(Texture& table, const ScatteringShape& shape);
 // Metadata keys r_size, mu_size, mu_s_size, nu_size, mu_s_min and back.
 void set_scattering_shape_metadata(Metadata& meta, const ScatteringShape& shape);
 ScatteringShape scattering_shape_from_metadata(const Metadata& meta);

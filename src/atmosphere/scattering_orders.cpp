@@ -139,22 +139,22 @@ class BrunetonIteration {
   // Order k: DeltaS_k into the sums, E_{k-1} into the irradiance; returns
   // the residual.
   double add_next_order(int k, const BakeContext& ctx) {
-    const Texture density =
-        bake_scattering_density(atm_, lut_, shape_, density_previous(k), ground_,
-                                spec_.density_directions, stage_context(ctx, 0.0, 0.45));
+    bake_scattering_density(atm_, lut_, shape_, density_previous(k), ground_,
+                            spec_.density_directions, stage_context(ctx, 0.0, 0.45), density_);
     Texture E = bake_indirect_irradiance(atm_, shape_, previous_, spec_.irradiance_width,
                                          spec_.irradiance_height, spec_.irradiance_directions,
                                          BakeContext{});
     for (size_t i = 0; i < irradiance_.data.size(); ++i) irradiance_.data[i] += E.data[i];
-    Texture delta = bake_multiple_scattering(atm_, shape_, density, spec_.ray_nodes,
-                                             stage_context(ctx, 0.5, 1.0));
-    const OrderChange change = measure_order(accumulated_, single_.mie, phase_, delta);
+    bake_multiple_scattering(atm_, shape_, density_, spec_.ray_nodes,
+                             stage_context(ctx, 0.5, 1.0), delta_, work_);
+    const OrderChange change = measure_order(accumulated_, single_.mie, phase_, delta_);
     // The geometric tail (header): f from this order's total and the last's.
     tail_factor_ =
         k >= 3 ? geometric_tail_factor(change.sum, previous_order_sum_) : glm::dvec3(0.0);
-    add_order(accumulated_, delta, phase_, glm::dvec3(1.0));
+    add_order(accumulated_, delta_, phase_, glm::dvec3(1.0));
     previous_order_sum_ = change.sum;
-    previous_radiance_ = std::move(delta);
+    // The order before's buffer takes the next order's DeltaS.
+    std::swap(previous_radiance_, delta_);
     ground_table_ = std::move(E);
     previous_ = ScatteringOrder{nullptr, nullptr, &previous_radiance_, &phases_};
     ground_.table = &ground_table_;
@@ -207,6 +207,10 @@ class BrunetonIteration {
   Texture irradiance_;            // E_1 .. E_{k-1}
   Texture previous_radiance_;     // DeltaS of the previous order (k >= 3)
   Texture previous_per_opacity_;  // the same, ground rows per opacity
+  // Buffers every order rewrites whole, kept so that the kernel does not
+  // fault in and clear fresh pages each order (about 3% of a tolerance bake).
+  Texture density_, delta_;
+  std::vector<Rgb4> work_;
   Texture ground_table_;          // E_{k-2} for k >= 3
   ScatteringOrder previous_;      // order k - 1 as the irradiance reads it
   GroundIrradiance ground_;       // direct sunlight for order 2
