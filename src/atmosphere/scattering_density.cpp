@@ -21,11 +21,15 @@ namespace {
 
 // The view direction of (mu, nu) in the sun's frame: sun = (sin_s, 0, mu_s),
 // view = (x, y, mu) with x sin_s + mu mu_s = nu, y >= 0 (J is symmetric in y).
-glm::dvec3 view_direction(double mu, double mu_s, double nu) {
-  const double sin_view = safe_sqrt(1.0 - mu * mu), sin_sun = safe_sqrt(1.0 - mu_s * mu_s);
+// With sin_view = safe_sqrt(1 - mu^2) and sin_sun = safe_sqrt(1 - mu_s^2)
+// given, for the nu slices of one (mu, mu_s).
+glm::dvec3 view_direction(double mu, double mu_s, double nu, double sin_view, double sin_sun) {
   double x = sin_sun > 0.0 ? (nu - mu * mu_s) / sin_sun : sin_view;
   x = std::clamp(x, -sin_view, sin_view);
   return {x, safe_sqrt(sin_view * sin_view - x * x), mu};
+}
+glm::dvec3 view_direction(double mu, double mu_s, double nu) {
+  return view_direction(mu, mu_s, nu, safe_sqrt(1.0 - mu * mu), safe_sqrt(1.0 - mu_s * mu_s));
 }
 
 // The six independent entries of a symmetric 3x3 matrix: xx yy zz xy xz yz.
@@ -126,11 +130,16 @@ void bake_scattering_density(const Atmosphere& atm, const Texture& transmittance
         moment0 += Lw;
         for (int e = 0; e < 6; ++e) moment2[e] += o[e] * Lw;
       }
+      const double sin_sun = safe_sqrt(1.0 - mu_s * mu_s);
       for (int y = 0; y < shape.mu_size; ++y) {
+        // texels.at(x, y, z) of the row's nu slices, with what they share once.
+        const double mu = texels.mu[size_t(z) * shape.mu_size + y];
+        const double spread = ScatteringTexelGrid::spread(mu, mu_s);
+        const double sin_view = safe_sqrt(1.0 - mu * mu);
         for (int m = 0; m < shape.nu_size; ++m) {
           const int x = m * shape.mu_s_size + l;
-          const ScatteringParams p = texels.at(x, y, z);
-          const glm::dvec3 v = view_direction(p.mu, p.mu_s, p.nu);
+          const double nu = std::clamp(texels.nu[m], mu * mu_s - spread, mu * mu_s + spread);
+          const glm::dvec3 v = view_direction(mu, mu_s, nu, sin_view, sin_sun);
           glm::dvec3 J(0.0);
           if (rayleigh) {
             glm::dvec3 q = moment0;

@@ -203,7 +203,7 @@ ScatteringParams ScatteringTexelGrid::at(int x, int y, int z) const {
   p.mu = mu[row];
   p.ray_hits_ground = ray_hits_ground[row] != 0;
   p.mu_s = mu_s[x % shape.mu_s_size];
-  const double spread = std::sqrt((1.0 - p.mu * p.mu) * (1.0 - p.mu_s * p.mu_s));
+  const double spread = ScatteringTexelGrid::spread(p.mu, p.mu_s);
   p.nu = std::clamp(nu[x / shape.mu_s_size], p.mu * p.mu_s - spread, p.mu * p.mu_s + spread);
   return p;
 }

@@ -157,6 +157,11 @@ struct ScatteringTexelGrid {
   std::vector<char> ray_hits_ground;
 
   ScatteringParams at(int x, int y, int z) const;
+  // The clamp of nu at (mu, mu_s): mu mu_s -+ spread(mu, mu_s), which at()
+  // applies; for loops over the nu slices of one (mu, mu_s).
+  static double spread(double mu, double mu_s) {
+    return std::sqrt((1.0 - mu * mu) * (1.0 - mu_s * mu_s));
+  }
 };
 ScatteringTexelGrid scattering_texel_grid(const Atmosphere& atm, const ScatteringShape& shape);
 
