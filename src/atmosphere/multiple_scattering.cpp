@@ -112,16 +112,19 @@ void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shap
     std::vector<double> mu_s_x(W), nu_x(W), mu_s_node(W), tap_w(W);
     std::vector<int> tap_i0(W), nu_i0(W), nu_i1(W);
     std::vector<float> nu_w(W);
+    std::vector<double> spread(n_mu_s);
     const BilinearTaps taps{nu_i0.data(), nu_i1.data(), tap_i0.data(), tap_w.data(), nu_w.data()};
     for (int row = range.begin(); row != range.end(); ++row) {
       const int z = row / shape.mu_size, y = row % shape.mu_size;
-      ScatteringParams p0;
+      const ScatteringParams p0 = texels.at(0, y, z);
+      // texels.at(x, y, z) with the spread of nu once per mu_s texel.
+      for (int l = 0; l < n_mu_s; ++l) spread[l] = ScatteringTexelGrid::spread(p0.mu, texels.mu_s[l]);
       for (int x = 0; x < W; ++x) {
-        const ScatteringParams p = texels.at(x, y, z);
-        if (x == 0) p0 = p;
-        mu_s_x[x] = p.mu_s;
-        nu_x[x] = p.nu;
-        const AxisTap tn = scattering_taps(shape, {0.5 * (p.nu + 1.0), 0.5, 0.5, 0.5}).nu;
+        const int l = x % n_mu_s;
+        const double mu_mu_s = p0.mu * texels.mu_s[l];
+        mu_s_x[x] = texels.mu_s[l];
+        nu_x[x] = std::clamp(texels.nu[x / n_mu_s], mu_mu_s - spread[l], mu_mu_s + spread[l]);
+        const AxisTap tn = nu_slice_tap(0.5 * (nu_x[x] + 1.0), shape.nu_size);
         nu_i0[x] = tn.i0 * n_mu_s;
         nu_i1[x] = tn.i1 * n_mu_s;
         nu_w[x] = float(tn.w);

@@ -51,12 +51,8 @@ struct NuSlices {
   }
   // ScatteringOrder::radiance_at at nu.
   glm::dvec3 at(const ScatteringOrder& order, const ScatteringShape& shape, double nu) const {
-    // scattering_taps' nu tap (slices at u_nu = k / (nu_size - 1)).
-    const double x = std::clamp(0.5 * (clamp_cosine(nu) + 1.0), 0.0, 1.0) * (shape.nu_size - 1);
-    AxisTap tn;
-    tn.i0 = std::clamp(int(x), 0, shape.nu_size - 1);
-    tn.i1 = std::min(tn.i0 + 1, shape.nu_size - 1);
-    tn.w = tn.i0 == tn.i1 ? 0.0 : x - tn.i0;
+    // scattering_taps' nu tap of the mapping's u_nu.
+    const AxisTap tn = nu_slice_tap(0.5 * (clamp_cosine(nu) + 1.0), shape.nu_size);
     auto lerp = [&](const std::vector<glm::dvec3>& s) {
       return (1.0 - tn.w) * s[tn.i0] + tn.w * s[tn.i1];
     };

@@ -508,11 +508,7 @@ ScatteringTaps scattering_taps(const ScatteringShape& shape, glm::dvec4 uvwz) {
   t.r = axis_tap(uvwz.w, shape.r_size);
   t.mu = axis_tap(uvwz.z, shape.mu_size);
   t.mu_s = axis_tap(uvwz.y, shape.mu_s_size);
-  // nu: slices at u_nu = k / (nu_size - 1), Bruneton 2017 GetScattering.
-  const double x = std::clamp(uvwz.x, 0.0, 1.0) * (shape.nu_size - 1);
-  t.nu.i0 = std::clamp(int(x), 0, shape.nu_size - 1);  // x >= 0: int() is floor()
-  t.nu.i1 = std::min(t.nu.i0 + 1, shape.nu_size - 1);
-  t.nu.w = t.nu.i0 == t.nu.i1 ? 0.0 : x - t.nu.i0;
+  t.nu = nu_slice_tap(uvwz.x, shape.nu_size);
   return t;
 }
 

@@ -89,6 +89,16 @@ inline AxisTap axis_tap(double u, int n) {
   const int i = int(t + 1.0) - 1;
   return {std::clamp(i, 0, n - 1), std::clamp(i + 1, 0, n - 1), t - i};
 }
+// The nu axis: slices at u_nu = k / (nu_size - 1), Bruneton 2017 GetScattering.
+inline AxisTap nu_slice_tap(double u_nu, int nu_size) {
+  const double x = std::clamp(u_nu, 0.0, 1.0) * (nu_size - 1);
+  AxisTap t;
+  t.i0 = std::clamp(int(x), 0, nu_size - 1);  // x >= 0: int() is floor()
+  t.i1 = std::min(t.i0 + 1, nu_size - 1);
+  t.w = t.i0 == t.i1 ? 0.0 : x - t.i0;
+  return t;
+}
+
 // ---- Mapping (r, mu, mu_s, nu) <-> uvwz ------------------------------------
 
 // (u_nu, u_mu_s, u_mu, u_r) of the opening comment. r is clamped to [Rb, Rt],
