@@ -14,18 +14,14 @@
 #include "atmosphere/skyview_lut.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/wide_vectors.hpp"
+#include "support/wide_vectors_as.hpp"
 #include "support/test_atmospheres.hpp"
 #include "support/test_scattering_specs.hpp"
 
 namespace skybake {
 namespace {
 
-// Restores the switch however the test ends.
-struct WideVectorsAs {
-  bool before = wide_vectors();
-  explicit WideVectorsAs(bool on) { set_wide_vectors(on); }
-  ~WideVectorsAs() { set_wide_vectors(before); }
-};
+using test::WideVectorsAs;
 
 BrunetonTextures bake(const Atmosphere& atm, const Texture& lut, bool wide) {
   const WideVectorsAs as(wide);

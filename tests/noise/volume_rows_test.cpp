@@ -12,18 +12,14 @@
 #include <gtest/gtest.h>
 
 #include "core/wide_vectors.hpp"
+#include "support/wide_vectors_as.hpp"
 #include "noise/lattice_hash.hpp"
 #include "noise/worley.hpp"
 
 namespace skybake {
 namespace {
 
-// Restores the switch however the test ends.
-struct WideVectorsAs {
-  bool before = wide_vectors();
-  explicit WideVectorsAs(bool on) { set_wide_vectors(on); }
-  ~WideVectorsAs() { set_wide_vectors(before); }
-};
+using test::WideVectorsAs;
 
 // Counts the voxels of rows (y, z) whose value differs in any bit from
 // worley3_inverted at the voxel's texel centre.
