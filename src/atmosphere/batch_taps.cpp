@@ -37,10 +37,6 @@ inline __m128d clamp_pd(__m128d v, double lo, double hi) {
 #endif
 
 #if SKYBAKE_HAS_AVX2
-SKYBAKE_AVX2 inline __m256d clamp_pd4(__m256d v, double lo, double hi) {
-  return _mm256_min_pd(_mm256_set1_pd(hi), _mm256_max_pd(_mm256_set1_pd(lo), v));
-}
-
 // MuSAxis::taps' loop, four cosines at a time; returns how many it did.
 SKYBAKE_AVX2 int mu_s_taps_avx2(const double* mu_s, int n, int* i0, double* w, double mu_s_min,
                                 double rb, double rb2, double H2, double d_min, double inv_span,
@@ -52,7 +48,7 @@ SKYBAKE_AVX2 int mu_s_taps_avx2(const double* mu_s, int n, int* i0, double* w, d
   const __m256d last = _mm256_set1_pd(double(size - 1)), below_last = _mm256_set1_pd(double(size - 2));
   int k = 0;
   for (; k + 4 <= n; k += 4) {
-    const __m256d m = clamp_pd4(_mm256_loadu_pd(mu_s + k), mu_s_min, 1.0);
+    const __m256d m = clamp_lanes(_mm256_loadu_pd(mu_s + k), mu_s_min, 1.0);
     const __m256d root = _mm256_sqrt_pd(
         _mm256_max_pd(zero, _mm256_add_pd(_mm256_mul_pd(_mm256_mul_pd(rb2_4, m), m), H2_4)));
     const __m256d d = _mm256_add_pd(_mm256_mul_pd(minus_rb, m), root);
@@ -60,7 +56,7 @@ SKYBAKE_AVX2 int mu_s_taps_avx2(const double* mu_s, int n, int* i0, double* w, d
     const __m256d x = _mm256_div_pd(
         _mm256_max_pd(zero, _mm256_sub_pd(one, _mm256_mul_pd(a, inv_A4))), _mm256_add_pd(one, a));
     // store_taps
-    const __m256d t = _mm256_mul_pd(clamp_pd4(x, 0.0, 1.0), last);
+    const __m256d t = _mm256_mul_pd(clamp_lanes(x, 0.0, 1.0), last);
     const __m256d i = _mm256_min_pd(below_last, _mm256_cvtepi32_pd(_mm256_cvttpd_epi32(t)));
     _mm256_storeu_pd(w + k, _mm256_sub_pd(t, i));
     _mm_storeu_si128(reinterpret_cast<__m128i*>(i0 + k), _mm256_cvttpd_epi32(i));
@@ -89,13 +85,13 @@ SKYBAKE_AVX2 int sun_products_avx2(const SunRow& q, const double* mu_s, int n, c
   int k = 0;
   for (; k + 4 <= n; k += 4) {
     const __m256d raw = _mm256_loadu_pd(mu_s + k);
-    const __m256d mu = clamp_pd4(raw, -1.0, 1.0);
+    const __m256d mu = clamp_lanes(raw, -1.0, 1.0);
     const __m256d discriminant =
         _mm256_add_pd(_mm256_mul_pd(rr, _mm256_sub_pd(_mm256_mul_pd(mu, mu), one)), tt);
     const __m256d d = _mm256_max_pd(
         _mm256_add_pd(_mm256_mul_pd(minus_r, mu), _mm256_sqrt_pd(_mm256_max_pd(zero, discriminant))),
         zero);
-    const __m256d x = clamp_pd4(_mm256_mul_pd(_mm256_sub_pd(d, d_min), inv_span), 0.0, 1.0);
+    const __m256d x = clamp_lanes(_mm256_mul_pd(_mm256_sub_pd(d, d_min), inv_span), 0.0, 1.0);
     const __m256d t = _mm256_mul_pd(x, last);
     const __m256d i = _mm256_min_pd(below_last, _mm256_cvtepi32_pd(_mm256_cvttpd_epi32(t)));
     const __m256d w = _mm256_sub_pd(t, i);

@@ -122,15 +122,24 @@ glm::dvec3 sunlit_sum(const Atmosphere& atm, const Texture& transmittance_lut,
   return l2;
 }
 
-// Eq. 5-10 from the sum of sunlit_sum and the marches' L_f (eq. 7-8; the
-// same for every sun).
+// The sum over the rule's directions of w L_f (eq. 7-8): the same for
+// every sun.
+glm::dvec3 transfer_sum(const std::vector<DirectionMarch>& marches, const SphereRule& rule) {
+  const bool weighted = !rule.weights.empty();
+  glm::dvec3 f_ms(0.0);
+  for (size_t k = 0; k < marches.size(); ++k)
+    f_ms += (weighted ? rule.weights[k] : 1.0) * marches[k].l_f;
+  return f_ms;
+}
+
+// Eq. 5-10 from the sums of sunlit_sum and transfer_sum.
 MultiscatteringSample multiscattering_from_sums(const std::vector<DirectionMarch>& marches,
-                                                const SphereRule& rule, glm::dvec3 l2) {
+                                                const SphereRule& rule, glm::dvec3 l2,
+                                                glm::dvec3 f_ms) {
   MultiscatteringSample out;
   out.l2 = l2;
+  out.f_ms = f_ms;
   const bool weighted = !rule.weights.empty();
-  for (size_t k = 0; k < marches.size(); ++k)
-    out.f_ms += (weighted ? rule.weights[k] : 1.0) * marches[k].l_f;
   // Integral over the sphere times p_u: the weights are fractions of 4 pi;
   // without weights each direction stands for 4 pi / n.
   if (!weighted) {
@@ -149,7 +158,8 @@ MultiscatteringSample sunlit_multiscattering(const Atmosphere& atm,
                                              const std::vector<DirectionMarch>& marches,
                                              const SphereRule& rule, double mu_s) {
   return multiscattering_from_sums(marches, rule,
-                                   sunlit_sum(atm, transmittance_lut, marches, rule, mu_s));
+                                   sunlit_sum(atm, transmittance_lut, marches, rule, mu_s),
+                                   transfer_sum(marches, rule));
 }
 
 }  // namespace
@@ -328,8 +338,9 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
                                       spec.width, l2.data());
     for (int x = wide; x < spec.width; ++x)
       l2[x] = sunlit_sum(atm, transmittance_lut, marches, rule, mu_s[x]);
+    const glm::dvec3 f_ms = transfer_sum(marches, rule);
     for (int x = 0; x < spec.width; ++x) {
-      const MultiscatteringSample s = multiscattering_from_sums(marches, rule, l2[x]);
+      const MultiscatteringSample s = multiscattering_from_sums(marches, rule, l2[x], f_ms);
       const double fms = std::max({s.f_ms.x, s.f_ms.y, s.f_ms.z});
       row_fms_max[y] = std::max(row_fms_max[y], fms);
       if (fms > kMaxMultiscatteringTransfer) ++row_clamped[y];

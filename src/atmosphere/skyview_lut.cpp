@@ -122,18 +122,21 @@ Texture bake_skyview_lut(const Atmosphere& atm, const Texture& transmittance_lut
     // with altitude only): texel width - 1 - x sees the mirror image of
     // texel x, so half the row is marched and mirrored.
     const int half = (spec.width + 1) / 2;
+    // The row's view directions, the same for every layer at its radius.
     std::vector<double> cos_phi(size_t(half), 0.0), nu(size_t(half), 0.0);
+    std::vector<glm::dvec3> view(static_cast<size_t>(half));
+    for (int x = 0; x < half; ++x) {
+      const SkyviewDirection d =
+          view_from_skyview_uv(atm, r, {texel_center(x, spec.width), v}, spec.width, spec.height);
+      view[x] = skyview_vector_from_direction(d);
+      cos_phi[x] = std::cos(d.azimuth_rad);
+    }
     std::vector<glm::dvec3> luminance(static_cast<size_t>(half));
     for (int layer : layers_at[group]) {
       const double sun_zenith = spec.views[layer].sun_zenith_rad;
       const double cos_s = std::cos(sun_zenith), sin_s = std::sin(sun_zenith);
       const glm::dvec3 sun_dir(sin_s, 0.0, cos_s);
-      for (int x = 0; x < half; ++x) {
-        const SkyviewDirection d =
-            view_from_skyview_uv(atm, r, {texel_center(x, spec.width), v}, spec.width, spec.height);
-        nu[x] = clamp_cosine(glm::dot(skyview_vector_from_direction(d), sun_dir));
-        cos_phi[x] = std::cos(d.azimuth_rad);
-      }
+      for (int x = 0; x < half; ++x) nu[x] = clamp_cosine(glm::dot(view[x], sun_dir));
       skyview_row_luminance(row, atm, transmittance_lut, multiscattering_lut, cos_phi.data(),
                             nu.data(), half, cos_s, sin_s, luminance.data());
       for (int x = 0; x < half; ++x) {

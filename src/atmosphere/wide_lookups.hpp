@@ -2,11 +2,9 @@
 // multiscattering_wide.cpp): sample_bilinear_rgb and lookup_sun_transmittance
 // in each of four lanes, the same operations on the same operands in the same
 // order as the one-value functions, without FMA, so the same bits
-// (core/wide_vectors.hpp). The clamps follow batch_taps.cpp:
-// _mm256_max_pd(lo, v) is std::max(v, lo), _mm256_min_pd(hi, v) is
-// std::min(v, hi), std::max(0.0, v) is _mm256_max_pd(v, 0), signed zeros
-// included, and std::clamp(v, lo, hi) is their composition for every
-// non-NaN v. Texel reads are gathers of the same floats, widened to double as
+// (core/wide_vectors.hpp). The clamps are core/wide_intrinsics.hpp's
+// clamp_lanes, and std::max(0.0, v) is _mm256_max_pd(v, 0), signed zeros
+// included. Texel reads are gathers of the same floats, widened to double as
 // the one-value read widens them. For the .cpp files of such loops only
 // (core/wide_intrinsics.hpp).
 #pragma once
@@ -22,10 +20,6 @@ namespace skybake {
 struct RgbLanes {
   __m256d c[3];
 };
-
-SKYBAKE_AVX2 inline __m256d clamp_lanes(__m256d v, double lo, double hi) {
-  return _mm256_min_pd(_mm256_set1_pd(hi), _mm256_max_pd(_mm256_set1_pd(lo), v));
-}
 
 // sample_bilinear_rgb(tex, row, u) in each lane, tex `width` texels wide
 // (bilinear_axis without wrapping: a coordinate that is not finite reads texel 0).

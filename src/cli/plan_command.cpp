@@ -76,9 +76,7 @@ void write_or_print(const std::string& text, const std::string& file) {
   }
   // The folder it names may not exist yet (a fresh build tree).
   const fs::path parent = fs::path(file).parent_path();
-  std::error_code ec;
-  if (!parent.empty()) fs::create_directories(parent, ec);
-  if (ec) throw IoError(fmt::format("{}: cannot create folder: {}", parent.string(), ec.message()));
+  if (!parent.empty()) create_folder(parent);
   write_text_atomic(file, text);
 }
 

@@ -11,4 +11,15 @@
 #endif
 #if SKYBAKE_HAS_AVX2
 #include <immintrin.h>
+
+namespace skybake {
+
+// std::clamp(v, lo, hi) in each of four lanes, for every non-NaN v, signed
+// zeros included: _mm256_max_pd(lo, v) is std::max(v, lo) and
+// _mm256_min_pd(hi, v) is std::min(v, hi).
+SKYBAKE_AVX2 inline __m256d clamp_lanes(__m256d v, double lo, double hi) {
+  return _mm256_min_pd(_mm256_set1_pd(hi), _mm256_max_pd(_mm256_set1_pd(lo), v));
+}
+
+}  // namespace skybake
 #endif

@@ -314,6 +314,13 @@ std::optional<TemporaryOwner> temporary_owner(const std::string& filename) {
   return owner;
 }
 
+fs::path create_folder(const fs::path& folder) {
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec) throw IoError(fmt::format("{}: cannot create folder: {}", folder.string(), ec.message()));
+  return folder;
+}
+
 std::size_t sweep_stale_temporaries(const fs::path& dir, std::chrono::seconds age) {
   const TemporaryOwner me = this_process_owner();
   const std::time_t now = std::time(nullptr);

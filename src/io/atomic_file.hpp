@@ -47,6 +47,10 @@ class AtomicFile {
   bool committed_ = false;
 };
 
+// Creates `folder` and its parents where missing; throws IoError
+// "<folder>: cannot create folder: <reason>". Returns `folder`.
+std::filesystem::path create_folder(const std::filesystem::path& folder);
+
 // Writes text atomically (manifests, logs, stamps), flushed before the rename.
 // Throws IoError "<path>: cannot write: <reason>", e.g. "No space left on device".
 void write_text_atomic(const std::filesystem::path& path, const std::string& text);

@@ -115,11 +115,7 @@ class SceneBake {
   }
 
   void create_scene_dir() const {
-    std::error_code ec;
-    fs::create_directories(summary_.scene_dir, ec);
-    if (ec)
-      throw IoError(fmt::format("{}: cannot create folder: {}", summary_.scene_dir.string(),
-                                ec.message()));
+    create_folder(summary_.scene_dir);
     // Left by killed bakes, beside the outputs and beside the stamps.
     sweep_stale_temporaries(summary_.scene_dir);
     if (fs::is_directory(summary_.scene_dir / ".stamps"))

@@ -30,10 +30,7 @@ nlohmann::json sky_preview_report(const ReportInputs& in, const PreviewSetup& se
         option_double(*o, "camera_altitude_km", spec.camera_altitude_m * 1e-3) * 1e3;
   const Texture picture = bake_sky_preview(in.scene.atmosphere, in.transmittance,
                                            in.multiscattering, spec, BakeContext{});
-  std::error_code ec;
-  fs::create_directories(in.folder, ec);
-  if (ec)
-    throw IoError(fmt::format("{}: cannot create folder: {}", in.folder.string(), ec.message()));
+  create_folder(in.folder);
   const std::string name = "sky_preview.png";
   AtomicFile file(in.folder / name);
   PreviewOptions options;

@@ -66,13 +66,6 @@ nlohmann::json unmeasured_product(const std::string& product) {
            "discretisation to measure; check-tiling checks its seams"}};
 }
 
-fs::path create_folder(const fs::path& folder) {
-  std::error_code ec;
-  fs::create_directories(folder, ec);
-  if (ec) throw IoError(fmt::format("{}: cannot create folder: {}", folder.string(), ec.message()));
-  return folder;
-}
-
 // A section's JSON with the wall seconds it took ("section_seconds").
 nlohmann::json timed(const ReportSection& section, const ReportInputs& in,
                      const nlohmann::json& settings) {
