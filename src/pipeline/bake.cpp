@@ -7,7 +7,6 @@
 #include <set>
 
 #include <fmt/format.h>
-#include <tbb/global_control.h>
 
 #include "core/error.hpp"
 #include "core/metadata_json.hpp"
@@ -22,7 +21,6 @@
 #include "pipeline/product_graph.hpp"
 #include "pipeline/runtime_metadata.hpp"
 #include "pipeline/warnings.hpp"
-#include "pipeline/write_behind.hpp"
 
 namespace fs = std::filesystem;
 
@@ -52,25 +50,14 @@ ManifestEntry make_entry(const GraphNode& node, const Texture& tex,
   return e;
 }
 
-// Whether an output's writing may overlap the next one's bake: not when the
-// bake may use one thread only.
-bool write_behind_allowed() {
-  return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) > 1;
-}
-
 // One bake of one scene, in stages: decide what is stale, then for each node
 // in dependency order report it current, read it back, or compute, write and
 // record it (each output enters the manifest as soon as its files are in
 // place, so a killed bake keeps what it finished); finally the bake log.
-// An output is written while the next one computes (write_behind.hpp); the
-// rest of the stages wait for that write.
 class SceneBake {
  public:
   SceneBake(const Scene& scene, const BakeOptions& options)
-      : scene_(scene),
-        options_(options),
-        graph_(build_product_graph(scene, options.only)),
-        writer_(write_behind_allowed()) {
+      : scene_(scene), options_(options), graph_(build_product_graph(scene, options.only)) {
     summary_.scene = scene.name;
     summary_.scene_dir = options.out_dir / scene.name;
   }
@@ -90,11 +77,6 @@ class SceneBake {
       } catch (...) {
         failure = std::current_exception();
       }
-    try {
-      writer_.drain();
-    } catch (...) {  // an earlier output than a failed computation: a serial bake stops there
-      failure = std::current_exception();
-    }
     record_log();
     if (failure) std::rethrow_exception(failure);
     summary_.seconds = seconds_since(t0);
@@ -154,12 +136,11 @@ class SceneBake {
       return;
     }
     compute(i);
-    if (node.requested) writer_.run([this, i, seconds = bake_seconds_] { write(i, seconds); });
+    if (node.requested) write(i);
   }
 
   // A requested output found current: recorded as it is in the manifest.
   void report_current(size_t i) {
-    writer_.drain();  // the outputs before it are recorded first
     const GraphNode& node = graph_.nodes[i];
     if (options_.on_recorded)
       options_.on_recorded(summary_.scene_dir, node.spec.name, node.input_hash);
@@ -175,9 +156,7 @@ class SceneBake {
   // (also under --only, where it is not requested in this run).
   bool read_back(size_t i) {
     const GraphNode& node = graph_.nodes[i];
-    if (stale_[i] || !scene_.find_output(node.info->name)) return false;
-    writer_.drain();  // the check reads the bake log, which the writer updates
-    if (!freshness(i).current) return false;
+    if (stale_[i] || !scene_.find_output(node.info->name) || !freshness(i).current) return false;
     textures_[i] = read_lossless_output(before_.entries.at(node.spec.name), summary_.scene_dir);
     if (textures_[i]) summary_.loaded.push_back(node.info->name);
     return textures_[i].has_value();
@@ -211,14 +190,13 @@ class SceneBake {
   }
 
   // Writes a computed output's files, measures its error (or tiling) and
-  // decides its warnings. Runs on the writer's thread: it reads the
-  // finished textures and touches none of the members compute() changes.
-  void write(size_t i, double bake_seconds) {
+  // decides its warnings.
+  void write(size_t i) {
     const GraphNode& node = graph_.nodes[i];
     const Texture& tex = *textures_[i];
     std::vector<ManifestFile> files = write_outputs(tex, *node.info, node.spec, summary_.scene_dir);
     OutputRecord rec{node.info->name, "baked", reasons_[i],
-                     make_entry(node, tex, std::move(files), bake_seconds)};
+                     make_entry(node, tex, std::move(files), bake_seconds_)};
     const auto t_measure = Clock::now();
     if (node.info->measure_error)
       rec.entry.error = node.info->measure_error(scene_, node.spec, inputs_of(node), tex);
@@ -298,7 +276,6 @@ class SceneBake {
   BakeLog log_;
   std::set<std::string> log_touched_;  // entries this bake changed
   double bake_seconds_ = 0.0;
-  WriteBehind writer_;  // last: joined before the members its job uses go
 };
 
 }  // namespace
