@@ -22,7 +22,10 @@ void update_stamp(const fs::path& scene_dir, const std::string& name, const std:
   const FileText read = read_regular_file(stamp, 4096);
   const std::string old = read.text.substr(0, read.text.find('\n'));
   if (read.status == ReadStatus::ok && old == hash) return;
-  write_text_atomic(stamp, hash + "\n");
+  // Renamed, not flushed: a stamp lost to a power cut makes ninja run the
+  // bake again, which finds the outputs current and writes it anew; a stamp
+  // is only written after the manifest that lists its output is flushed.
+  write_text_atomic(stamp, hash + "\n", Durability::renamed);
 }
 
 }  // namespace skybake

@@ -253,18 +253,26 @@ void AtomicFile::write(const std::function<void(const fs::path& temp)>& writer) 
   }
 }
 
-void AtomicFile::commit() {
+void AtomicFile::commit(FolderFlush folder) {
   if (const int err = sync_path(temp_, false)) fail_write(final_, errno_text(err));
+  rename_into_place();
+  if (folder == FolderFlush::now) flush_folder_of(final_);
+}
+
+void AtomicFile::rename_into_place() {
   if (::rename(temp_.c_str(), final_.c_str()) != 0) fail_write(final_, errno_text(errno));
   committed_ = true;
   unregister_temporary(slot_);
   slot_ = -1;
-  const fs::path dir = final_.parent_path().empty() ? fs::path(".") : final_.parent_path();
-  if (const int err = sync_path(dir, true))
-    fail_write(final_, "renamed, but the folder cannot be flushed: " + errno_text(err));
 }
 
-void write_text_atomic(const fs::path& path, const std::string& text) {
+void flush_folder_of(const fs::path& final_path) {
+  const fs::path dir = final_path.parent_path().empty() ? fs::path(".") : final_path.parent_path();
+  if (const int err = sync_path(dir, true))
+    fail_write(final_path, "renamed, but the folder cannot be flushed: " + errno_text(err));
+}
+
+void write_text_atomic(const fs::path& path, const std::string& text, Durability durability) {
   AtomicFile out(path);
   const int fd = ::open(out.temp_path().c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
   if (fd < 0) fail_write(path, errno_text(errno));
@@ -283,7 +291,8 @@ void write_text_atomic(const fs::path& path, const std::string& text) {
   }
   if (::close(fd) != 0 && err == 0) err = errno;
   if (err) fail_write(path, errno_text(err));
-  out.commit();
+  if (durability == Durability::flushed) out.commit();
+  else out.rename_into_place();
 }
 
 bool is_temporary_name(const std::string& filename) {

@@ -38,7 +38,13 @@ class AtomicFile {
 
   // Flushes the temporary to disk (fsync), renames it onto the final name and
   // flushes the folder; throws IoError "<final>: cannot write: <reason>".
-  void commit();
+  // FolderFlush::by_caller leaves the folder to the caller, who renames
+  // several files and then calls flush_folder_of once for all of them.
+  enum class FolderFlush { now, by_caller };
+  void commit(FolderFlush folder = FolderFlush::now);
+
+  // Renames the temporary onto the final name without any flush.
+  void rename_into_place();
 
  private:
   std::filesystem::path final_;
@@ -51,9 +57,22 @@ class AtomicFile {
 // "<folder>: cannot create folder: <reason>". Returns `folder`.
 std::filesystem::path create_folder(const std::filesystem::path& folder);
 
-// Writes text atomically (manifests, logs, stamps), flushed before the rename.
-// Throws IoError "<path>: cannot write: <reason>", e.g. "No space left on device".
-void write_text_atomic(const std::filesystem::path& path, const std::string& text);
+// Flushes the folder holding `final_path`, making the renames into it
+// durable; throws IoError "<final>: renamed, but the folder cannot be
+// flushed: <reason>".
+void flush_folder_of(const std::filesystem::path& final_path);
+
+// How durable write_text_atomic makes a file. `flushed`: the text is on disk
+// before the rename and the rename after it (manifests, logs). `renamed`:
+// atomic for the process only, no fsync: after a power cut the file may be
+// the old one, missing or empty, for files whose loss only costs a redo
+// (stamps; docs/architecture.md "Files on disk").
+enum class Durability { flushed, renamed };
+
+// Writes text atomically, flushed as `durability` says. Throws IoError
+// "<path>: cannot write: <reason>", e.g. "No space left on device".
+void write_text_atomic(const std::filesystem::path& path, const std::string& text,
+                       Durability durability = Durability::flushed);
 
 // True for names skybake uses for temporaries (so cleanup and listings skip them).
 bool is_temporary_name(const std::string& filename);

@@ -112,7 +112,10 @@ std::vector<ManifestFile> write_outputs(const Texture& tex, const ProductInfo& i
     });
     files.push_back(record);
   }
-  for (auto& p : pending) p->commit();
+  // Each file reaches the disk before its name does; one folder flush then
+  // makes all the renames durable, before the manifest can name them.
+  for (auto& p : pending) p->commit(AtomicFile::FolderFlush::by_caller);
+  if (!pending.empty()) flush_folder_of(pending.back()->final_path());
   return files;
 }
 

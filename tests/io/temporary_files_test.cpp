@@ -10,12 +10,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
 #include <set>
+#include <vector>
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
@@ -251,9 +253,12 @@ TEST(TemporaryFiles, AFullDiskWhileWritingTheManifestSaysSo) {
   EXPECT_EQ(all_names(dir), std::vector<std::string>{"filler"}) << "no temporary, no manifest";
 }
 
-// The calls around the rename, as strace sees them: the temporary is
-// flushed before it is renamed, the folder after.
-TEST(TemporaryFiles, EveryWriteIsFlushedBeforeTheRenameAndTheFolderAfter) {
+// The calls around the renames, as strace sees them (docs/architecture.md
+// "Files on disk"): every output file and the manifest are flushed before
+// their rename; one folder flush follows the output's renames and comes
+// before the manifest's rename, another follows the manifest's and comes
+// before the stamp's, which is renamed unflushed.
+TEST(TemporaryFiles, FilesAreFlushedBeforeTheirRenameAndTheFolderBeforeTheManifestNamesThem) {
   const fs::path dir = test::fresh_dir("temp_fsync");
   const fs::path trace = dir / "trace.txt";
   const std::string cmd = "strace -f -e trace=openat,fsync,rename,renameat,renameat2 -o '" +
@@ -261,14 +266,15 @@ TEST(TemporaryFiles, EveryWriteIsFlushedBeforeTheRenameAndTheFolderAfter) {
                           test::source_path("presets/earth.json").string() + "' --only transmittance -q -o '" +
                           (dir / "out").string() + "' -j 1 >/dev/null 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << "strace must be installed: " << cmd;
+  const fs::path scene = dir / "out" / "earth";
+  // The flushes and renames in order: "sync <path>" / "rename <final path>".
+  std::vector<std::string> events;
+  std::set<std::string> synced;
   std::ifstream in(trace);
   std::map<std::string, std::string> fd_path;   // "<pid> <fd>" -> path
   std::map<std::string, std::string> opening;   // pid -> path of an unfinished openat
-  std::set<std::string> synced;
-  bool folder_synced_after = false;
-  size_t renames = 0;
-  const auto quoted = [](const std::string& line) {
-    const size_t q = line.find('"');
+  const auto quoted = [](const std::string& line, size_t from = 0) {
+    const size_t q = line.find('"', from);
     return q == std::string::npos ? std::string() : line.substr(q + 1, line.find('"', q + 1) - q - 1);
   };
   const auto number_after = [](const std::string& line, size_t at) {
@@ -287,14 +293,36 @@ TEST(TemporaryFiles, EveryWriteIsFlushedBeforeTheRenameAndTheFolderAfter) {
     } else if (line.find("fsync(") != std::string::npos) {
       const std::string path = fd_path[pid + " " + number_after(line, line.find("fsync(") + 6)];
       synced.insert(path);
-      if (renames > 0 && path == (dir / "out" / "earth").string()) folder_synced_after = true;
+      events.push_back("sync " + path);
     } else if (line.find("rename") != std::string::npos && !quoted(line).empty()) {
-      EXPECT_TRUE(synced.count(quoted(line))) << "renamed before its fsync: " << quoted(line);
-      ++renames;
+      const std::string from = quoted(line);
+      const std::string to = quoted(line, line.find(from) + from.size() + 1);
+      if (to.find("/.stamps/") == std::string::npos) {
+        EXPECT_TRUE(synced.count(from)) << "renamed before its fsync: " << to;
+      }
+      events.push_back("rename " + to);
     }
   }
-  EXPECT_GE(renames, 3u) << "transmittance.exr, .dds and manifest.json at least";
-  EXPECT_TRUE(folder_synced_after) << "the folder is flushed after a rename";
+  const auto at = [&](const std::string& event) {
+    return size_t(std::find(events.begin(), events.end(), event) - events.begin());
+  };
+  const size_t exr = at("rename " + (scene / "transmittance.exr").string());
+  const size_t dds = at("rename " + (scene / "transmittance.dds").string());
+  const size_t manifest = at("rename " + (scene / "manifest.json").string());
+  const size_t stamp = at("rename " + (scene / ".stamps" / "transmittance.stamp").string());
+  ASSERT_LT(std::max(exr, dds), manifest) << "the output's files, then the manifest";
+  ASSERT_LT(manifest, stamp) << "the manifest, then the stamp";
+  std::ptrdiff_t folder_syncs_before_manifest = 0;
+  for (size_t i = std::max(exr, dds); i < manifest; ++i)
+    folder_syncs_before_manifest += events[i] == "sync " + scene.string();
+  EXPECT_EQ(folder_syncs_before_manifest, 1) << "one folder flush for both files, before the manifest";
+  EXPECT_EQ(std::count(events.begin() + std::ptrdiff_t(std::min(exr, dds)),
+                       events.begin() + std::ptrdiff_t(std::max(exr, dds)), "sync " + scene.string()),
+            0) << "no folder flush between the two files' renames";
+  EXPECT_NE(std::find(events.begin() + std::ptrdiff_t(manifest), events.begin() + std::ptrdiff_t(stamp),
+                      "sync " + scene.string()),
+            events.begin() + std::ptrdiff_t(stamp))
+      << "the manifest's rename is flushed before a stamp claims its output";
 }
 
 }  // namespace
