@@ -28,7 +28,7 @@ void one_layer_densities(const DensityLayer& l, const double* h, double* density
   }
   if (exp_kind == NodeExp::block) {
     for (size_t j = 0; j < n; ++j) density[j] = l.exp_scale_per_m * h[j];
-    exp_in_place(density, n);
+    exp_block(density, n);
     for (size_t j = 0; j < n; ++j) {
       const double e = l.exp_term * density[j];
       density[j] =
@@ -43,11 +43,11 @@ void one_layer_densities(const DensityLayer& l, const double* h, double* density
   }
 }
 
-// sum_j w[j] exp(b h[j]) with exp_in_place, two partial sums to shorten
+// sum_j w[j] exp(b h[j]) with exp_block, two partial sums to shorten
 // the chain of additions; scratch holds the exponentials.
 double weighted_exp_sum(double b, const double* h, const double* w, double* scratch, size_t n) {
   for (size_t j = 0; j < n; ++j) scratch[j] = b * h[j];
-  exp_in_place(scratch, n);
+  exp_block(scratch, n);
   double even = 0.0, odd = 0.0;
   size_t j = 0;
   for (; j + 1 < n; j += 2) {

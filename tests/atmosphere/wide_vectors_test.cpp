@@ -1,7 +1,8 @@
 // The AVX2 loops of the 4D orders (the density's Mie loop, the mu_s taps
 // and the row blends of the multiple-scattering pass) against their SSE2
 // twins, and the four-texel loops of the sky-view and multiple-scattering
-// tables against their one-texel ones: the same bits (core/wide_vectors.hpp).
+// tables against their one-texel ones, and the transmittance table's
+// exponentials: the same bits (core/wide_vectors.hpp).
 // Sizes that leave remainders for every loop: 15 texels per row (nu 3 x
 // mu_s 5), 25 direction pairs (5 zenith bands) padded to 32, sky-view rows
 // of 11 texels (22 mirrored) and multiple-scattering rows of 11.
@@ -47,6 +48,28 @@ TEST(WideVectors, OrdersHaveTheSameBitsInAvx2AndSse2) {
   EXPECT_TRUE(same_bits(sse2.single_mie, avx2.single_mie));
   EXPECT_TRUE(same_bits(sse2.irradiance, avx2.irradiance));
   EXPECT_EQ(sse2.residuals, avx2.residuals);
+}
+
+// The transmittance table's exponentials and node altitudes four at a time
+// (core/exp_block.hpp, transmittance_lut.cpp): the same bits.
+TEST(WideVectors, TransmittanceHasTheSameBitsInAvx2AndSse2) {
+  {
+    const WideVectorsAs probe(true);
+    if (!wide_vectors()) GTEST_SKIP() << "this CPU has no AVX2: only the SSE2 loops run";
+  }
+  for (const Atmosphere& atm : {fixtures::earth_atmosphere(), fixtures::tiny_planet_atmosphere()}) {
+    const TransmittanceLutSpec spec{64, 16, 6};
+    Texture sse2, avx2;
+    {
+      const WideVectorsAs as(false);
+      sse2 = bake_transmittance_lut(atm, spec, BakeContext{});
+    }
+    {
+      const WideVectorsAs as(true);
+      avx2 = bake_transmittance_lut(atm, spec, BakeContext{});
+    }
+    EXPECT_TRUE(same_bits(sse2, avx2)) << "top radius " << atm.top_radius_m;
+  }
 }
 
 TEST(WideVectors, SkyviewHasTheSameBitsInAvx2AndOneTexelAtATime) {

@@ -2,6 +2,7 @@
 #include "core/exp_block.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -40,6 +41,29 @@ TEST(ExpInPlace, OddLengthsAndEmpty) {
     for (size_t i = 0; i < n; ++i) EXPECT_NEAR(y[i] / std::exp(x[i]), 1.0, 4e-16) << n << " " << i;
   }
 }
+
+#if SKYBAKE_HAS_AVX2
+// The AVX2 loop gives every element the bits of the SSE2 one (the tables'
+// bytes must not depend on the CPU), at every length and alignment the
+// vectorized loop's head and tail can take.
+TEST(ExpInPlace, Avx2TwinHasTheSameBits) {
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "this CPU has no AVX2";
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> wide(-708.0, 708.0), narrow(-40.0, 0.0);
+  std::vector<double> x(4096 + 3);
+  for (size_t i = 0; i < x.size(); ++i) x[i] = i % 3 ? narrow(rng) : wide(rng);
+  for (size_t offset : {0u, 1u, 2u, 3u}) {
+    for (size_t n : {size_t(0), size_t(1), size_t(3), size_t(5), size_t(48), size_t(4096)}) {
+      std::vector<double> a(x.begin() + offset, x.begin() + offset + n), b = a;
+      exp_in_place(a.data(), n);
+      exp_in_place_avx2(b.data(), n);
+      for (size_t i = 0; i < n; ++i)
+        ASSERT_EQ(std::memcmp(&a[i], &b[i], sizeof(double)), 0)
+            << "x = " << x[offset + i] << ": " << a[i] << " vs " << b[i];
+    }
+  }
+}
+#endif
 
 }  // namespace
 }  // namespace skybake
