@@ -11,7 +11,9 @@
 #     smallest); 1.00 = linear, above 1 = grows faster than the texels;
 #   - the 1 -> 2 thread speed-up at the largest size (wall of the bake),
 #     of the medians and of the fastest runs (on a shared machine the
-#     fastest run of each is the one least slowed by other processes).
+#     fastest run of each is the one least slowed by other processes);
+#   - the machine's ceiling: two CPU-bound processes against one, the most
+#     any bake can show on it.
 #
 #   bench/scaling.sh [SKYBAKE]              (default: build/skybake)
 #   env: RUNS (3), FAMILIES (space-separated subset of the names below)
@@ -77,9 +79,24 @@ def bake_seconds(path, threads, n):
     log = json.load(open(os.path.join(out, "scaling", "bake_log.json")))
     return log["outputs"][family]["bake_seconds"]
 
+# What two threads can give on this machine at all: two processes of a
+# CPU-bound loop (no memory traffic, no synchronisation) against one. On a
+# VM whose two vCPUs share a core or are stolen by other guests this is
+# below 2, and no bake can scale past it.
+import time
+SPIN = [sys.executable, "-c", "s = 0\nfor i in range(3_000_000): s += i * i"]
+def spin_wall(copies):
+    start = time.perf_counter()
+    procs = [subprocess.Popen(SPIN) for _ in range(copies)]
+    for p in procs:
+        p.wait()
+    return time.perf_counter() - start
+ceiling = []
+
 cells = {}
 n = 0
 for _ in range(runs):
+    ceiling.append(2 * spin_wall(1) / spin_wall(2))
     for family, (extra, sizes) in families.items():
         for i, size in enumerate(sizes):
             path = preset(family, extra, size)
@@ -103,4 +120,7 @@ for family, (extra, sizes) in families.items():
     names = ", ".join("x".join(map(str, s)) for s in sizes)
     print(f"| {family} | {names} | {per[0]:.3g} | {per[1]:.3g} | {per[2]:.3g} | "
           f"{(t[2] / t[0]) / (texels[2] / texels[0]):.2f} | {t[2] / t2:.2f}x | {best:.2f}x |")
+print()
+print(f"machine ceiling (two CPU-bound processes against one, {runs} runs): median "
+      f"{statistics.median(ceiling):.2f}x, best {max(ceiling):.2f}x")
 EOF
