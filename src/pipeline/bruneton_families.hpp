@@ -19,4 +19,9 @@ std::shared_ptr<const Scattering3dTextures> scattering3d_family(const Scene& sce
                                                                 const ProductInputs& in,
                                                                 const BakeContext& ctx);
 
+// Empties both caches, so that the next request bakes again: for a benchmark
+// that bakes one scene several times in a process (bench/error_records_cpu.cpp),
+// where every bake after the first would time a cache hit.
+void forget_families();
+
 }  // namespace skybake

@@ -76,11 +76,24 @@ class FamilyCache {
     cache_[key] = made;
     return made;
   }
+  void clear() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    cache_.clear();
+  }
 
  private:
   std::mutex mutex_;
   std::map<std::string, std::shared_ptr<const Textures>> cache_;
 };
+
+FamilyCache<BrunetonTextures>& bruneton_cache() {
+  static FamilyCache<BrunetonTextures> cache;
+  return cache;
+}
+FamilyCache<Scattering3dTextures>& scattering3d_cache() {
+  static FamilyCache<Scattering3dTextures> cache;
+  return cache;
+}
 
 std::string family_key(const Scene& scene, const OutputSpec& spec) {
   Hasher h;
@@ -94,7 +107,6 @@ std::string family_key(const Scene& scene, const OutputSpec& spec) {
 
 std::shared_ptr<const BrunetonTextures> bruneton_family(const Scene& scene, const ProductInputs& in,
                                                         const BakeContext& ctx) {
-  static FamilyCache<BrunetonTextures> cache;
   const OutputSpec spec = spec_of(scene, "scattering");
   const OutputSpec irradiance = spec_of(scene, "irradiance");
   BrunetonSpec b = bruneton_spec(spec);
@@ -102,19 +114,23 @@ std::shared_ptr<const BrunetonTextures> bruneton_family(const Scene& scene, cons
   b.irradiance_height = irradiance.size.at(1);
   const std::string key = family_key(scene, spec) + "/" + std::to_string(b.irradiance_width) + "x" +
                           std::to_string(b.irradiance_height);
-  return cache.get(
+  return bruneton_cache().get(
       key, [&] { return bake_bruneton(scene.atmosphere, *in.at("transmittance"), b, ctx); });
 }
 
 std::shared_ptr<const Scattering3dTextures> scattering3d_family(const Scene& scene,
                                                                 const ProductInputs& in,
                                                                 const BakeContext& ctx) {
-  static FamilyCache<Scattering3dTextures> cache;
   const OutputSpec spec = spec_of(scene, "scattering3d");
-  return cache.get(family_key(scene, spec), [&] {
+  return scattering3d_cache().get(family_key(scene, spec), [&] {
     return bake_scattering3d(scene.atmosphere, *in.at("transmittance"), scattering3d_spec(spec),
                              ctx);
   });
+}
+
+void forget_families() {
+  bruneton_cache().clear();
+  scattering3d_cache().clear();
 }
 
 namespace {
