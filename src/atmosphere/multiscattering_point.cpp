@@ -6,6 +6,7 @@
 
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/phase.hpp"
+#include "atmosphere/ring_sun_wide.hpp"
 #include "atmosphere/sky_integrator.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/math.hpp"
@@ -23,6 +24,7 @@ struct RingMarch {
   bool ground = false;                           // the ray ends on the ground
   double length = 0.0;                           // to the ground or the top
   glm::dvec3 ground_transmittance{1.0};          // T from the point to the ground
+  std::vector<glm::dvec3> sun_sums;              // lit_ring's scratch: the azimuths' sum
 };
 
 // Zenith cosines and the fraction of 4 pi each ring stands for: mu = mu_h -+
@@ -119,19 +121,28 @@ void march_ring(const Atmosphere& atm, const Texture& transmittance_lut, double 
 // direction whose cosine with the sun is cosines[j]: a sample at distance t
 // sees the sun at zenith cosine (r mu_s + t c) / r_t, since the point is
 // (0, 0, r). Per sample the azimuths' sun transmittances are summed first
-// and scaled by the sun-independent `scattered` once.
-glm::dvec3 lit_ring(const Atmosphere& atm, const Texture& transmittance_lut, const RingMarch& m,
+// and scaled by the sun-independent `scattered` once; four azimuths (the
+// record's rule) are summed in one AVX2 group (ring_sun_wide.hpp).
+glm::dvec3 lit_ring(const Atmosphere& atm, const Texture& transmittance_lut, RingMarch& m,
                     double r, double mu_s, const std::vector<double>& cosines) {
   const double rb = atm.bottom_radius_m;
   const double height = r * mu_s;
   glm::dvec3 l_prime(0.0);
-  for (size_t i = 0; i < m.distances.size(); ++i) {
-    glm::dvec3 sun(0.0);
-    for (double c : cosines)
-      sun += lookup_sun_transmittance(transmittance_lut, m.sun_reads[i], rb,
-                                      (height + m.distances[i] * c) * m.inverse_radii[i]);
-    l_prime += m.scattered[i] * sun;
+  const size_t n = m.distances.size();
+  std::vector<glm::dvec3>& sums = m.sun_sums;
+  sums.resize(n);
+  if (cosines.size() != 4 ||
+      !ring_sun_sums_wide(transmittance_lut, rb, m.sun_reads.data(), m.distances.data(),
+                          m.inverse_radii.data(), n, height, cosines.data(), sums.data())) {
+    for (size_t i = 0; i < n; ++i) {
+      glm::dvec3 sun(0.0);
+      for (double c : cosines)
+        sun += lookup_sun_transmittance(transmittance_lut, m.sun_reads[i], rb,
+                                        (height + m.distances[i] * c) * m.inverse_radii[i]);
+      sums[i] = sun;
+    }
   }
+  for (size_t i = 0; i < n; ++i) l_prime += m.scattered[i] * sums[i];
   l_prime *= isotropic_phase();
   if (!m.ground) return l_prime;
   for (double c : cosines) {
