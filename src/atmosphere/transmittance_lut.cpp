@@ -65,10 +65,12 @@ std::vector<double> kink_altitudes(const Atmosphere& atm, bool closed_form_linea
 // ray nor their densities are sampled; else every component is sampled.
 struct RayQuadrature {
   RayQuadrature(const Atmosphere& atm, bool closed_form_linear)
+      : RayQuadrature(atm, closed_form_linear,
+                      closed_form_linear ? NodeExp::block : NodeExp::libm) {}
+  RayQuadrature(const Atmosphere& atm, bool closed_form_linear, NodeExp exp_kind)
       : table_rule(closed_form_linear),
         kinks(kink_altitudes(atm, closed_form_linear)),
-        extinction(atm, closed_form_linear,
-                   closed_form_linear ? NodeExp::block : NodeExp::libm),
+        extinction(atm, closed_form_linear, exp_kind),
         linear(closed_form_linear ? LinearLayerDepth(atm) : LinearLayerDepth(Atmosphere{})) {}
   bool table_rule;  // the 8-point rule's cuts and grading (docs/reference.md)
   std::vector<double> kinks;
@@ -365,9 +367,10 @@ glm::dvec3 compute_transmittance_to_top(const Atmosphere& atm, double r, double 
 
 std::vector<glm::dvec3> compute_transmittances_to_top(const Atmosphere& atm,
                                                       const std::vector<glm::dvec2>& rays,
-                                                      int steps, SegmentRule rule) {
+                                                      int steps, SegmentRule rule,
+                                                      NodeExp exp_kind) {
   std::vector<glm::dvec3> out(rays.size());
-  const RayQuadrature shared(atm, rule == SegmentRule::gauss8);
+  const RayQuadrature shared(atm, rule == SegmentRule::gauss8, exp_kind);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 16),
                     [&](const tbb::blocked_range<size_t>& range) {
                       RayQuadrature q = shared;  // scratch arrays of this task

@@ -33,7 +33,8 @@ nlohmann::json measure_transmittance_error(const Scene& scene, const OutputSpec&
     reads[i].first = lookup_transmittance_to_top(lut, atm, q.r, q.mu);
   }
   const std::vector<glm::dvec3> reference =
-      compute_transmittances_to_top(atm, rays, kTransmittanceReferenceSteps);
+      compute_transmittances_to_top(atm, rays, kTransmittanceReferenceSteps,
+                                    SegmentRule::gauss3, NodeExp::block);
   for (size_t i = 0; i < reads.size(); ++i) reads[i].second = reference[i];
   return error_record(
       reads,
