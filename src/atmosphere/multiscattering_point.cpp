@@ -5,11 +5,14 @@
 #include <vector>
 
 #include "atmosphere/geometry.hpp"
+#include "atmosphere/medium_block.hpp"
 #include "atmosphere/phase.hpp"
 #include "atmosphere/ring_sun_wide.hpp"
 #include "atmosphere/sky_integrator.hpp"
 #include "atmosphere/transmittance_lut.hpp"
+#include "core/exp_block.hpp"
 #include "core/math.hpp"
+#include "core/wide_vectors.hpp"
 
 namespace skybake {
 namespace {
@@ -24,7 +27,11 @@ struct RingMarch {
   bool ground = false;                           // the ray ends on the ground
   double length = 0.0;                           // to the ground or the top
   glm::dvec3 ground_transmittance{1.0};          // T from the point to the ground
-  std::vector<glm::dvec3> sun_sums;              // lit_ring's scratch: the azimuths' sum
+  // Scratch: segment ends, midpoint altitudes, media, expm1s (ring_media),
+  // the azimuths' sums of the sun (lit_ring).
+  std::vector<double> ends, altitudes, expm1s;
+  MediumBlock media;
+  std::vector<glm::dvec3> sun_sums;
 };
 
 // Zenith cosines and the fraction of 4 pi each ring stands for: mu = mu_h -+
@@ -78,14 +85,47 @@ void segment_ends(double r, double mu, double length, int steps, std::vector<dou
 // 1 / sigma from the segment's start where the segment is optically thick,
 // so the sun is read where the light scatters, not at a midpoint it never
 // reaches (the stiff extreme presets).
-double weight_centroid(glm::dvec3 extinction, double dt) {
+double weight_centroid(glm::dvec3 extinction, double dt, double expm1_x) {
   const double x = (extinction.x + extinction.y + extinction.z) / 3.0 * dt;
-  const double fraction = x < 1e-4 ? 0.5 - x / 12.0 : 1.0 / x - 1.0 / std::expm1(x);
+  const double fraction = x < 1e-4 ? 0.5 - x / 12.0 : 1.0 / x - 1.0 / expm1_x;
   return fraction * dt;
 }
 
+// The ring's segments' media and the four expm1 of each (segment_weights'
+// three, weight_centroid's one) in blocks: one pass per component and one
+// of expm1 over the ring, vectorized where the AVX2 loops run
+// (medium_block.hpp, core/exp_block.hpp: within 1e-15 relative of libm);
+// else std::exp and std::expm1 one at a time, the same bits as
+// sample_medium, segment_weights and std::expm1 per segment.
+void ring_media(const Atmosphere& atm, double r, double mu, RingMarch& out) {
+  const std::vector<double>& ends = out.ends;
+  const size_t n = ends.size() - 1;
+  const double rb = atm.bottom_radius_m;
+  out.altitudes.resize(n);
+  for (size_t i = 0; i < n; ++i)  // the medium at the midpoint, as the table's march samples it
+    out.altitudes[i] = std::max(radius_after(r, mu, 0.5 * (ends[i] + ends[i + 1])), rb) - rb;
+  const bool wide = wide_vectors();
+  sample_medium_block(atm, out.altitudes.data(), n, wide ? NodeExp::block : NodeExp::libm,
+                      out.media);
+  out.expm1s.resize(4 * n);
+  for (size_t i = 0; i < n; ++i) {
+    const double dt = ends[i + 1] - ends[i];
+    const glm::dvec3& e = out.media.extinction[i];
+    for (int c = 0; c < 3; ++c) out.expm1s[4 * i + c] = -e[c] * dt;
+    out.expm1s[4 * i + 3] = (e.x + e.y + e.z) / 3.0 * dt;
+  }
+  if (wide) {
+    // expm1_block's range: beyond it the weights' -1 and the centroid's
+    // 1 / expm1 change by less than 1e-307.
+    for (double& x : out.expm1s) x = std::clamp(x, -708.0, 708.0);
+    expm1_block(out.expm1s.data(), out.expm1s.size());
+  } else {
+    for (double& x : out.expm1s) x = std::expm1(x);
+  }
+}
+
 void march_ring(const Atmosphere& atm, const Texture& transmittance_lut, double r, double mu,
-                int steps, std::vector<double>& ends, RingMarch& out) {
+                int steps, RingMarch& out) {
   out.distances.clear();
   out.inverse_radii.clear();
   out.scattered.clear();
@@ -95,17 +135,23 @@ void march_ring(const Atmosphere& atm, const Texture& transmittance_lut, double 
   out.ground = ray_intersects_ground(rb, r, mu);
   out.length = distance_to_nearest_boundary(rb, atm.top_radius_m, r, mu, out.ground);
   glm::dvec3 transmittance(1.0);
-  segment_ends(r, mu, out.length, std::max(steps, 1), ends);
+  const std::vector<double>& ends = out.ends;
+  segment_ends(r, mu, out.length, std::max(steps, 1), out.ends);
+  ring_media(atm, r, mu, out);
   for (size_t i = 0; i + 1 < ends.size(); ++i) {
     const double dt = ends[i + 1] - ends[i];
     if (!(dt > 0.0)) continue;
-    // The medium at the segment's midpoint, as the table's march samples it.
-    const double radius = std::max(radius_after(r, mu, 0.5 * (ends[i] + ends[i + 1])), rb);
-    const MediumSample medium = sample_medium(atm, radius - rb);
-    if (medium.extinction == glm::dvec3(0.0)) continue;
-    const SegmentWeights w = segment_weights(medium.extinction, dt);
-    const glm::dvec3 scattered = transmittance * medium.scattering * w.weight;
-    const double lit_at = ends[i] + weight_centroid(medium.extinction, dt);
+    const glm::dvec3& extinction = out.media.extinction[i];
+    if (extinction == glm::dvec3(0.0)) continue;
+    // segment_weights with the block's expm1(-sigma_t dt).
+    SegmentWeights w;
+    for (int c = 0; c < 3; ++c) {
+      const double em = out.expm1s[4 * i + c];
+      w.weight[c] = extinction[c] > 0.0 ? -em / extinction[c] : dt;
+      w.transmittance[c] = 1.0 + em;
+    }
+    const glm::dvec3 scattered = transmittance * out.media.scattering[i] * w.weight;
+    const double lit_at = ends[i] + weight_centroid(extinction, dt, out.expm1s[4 * i + 3]);
     const double lit_radius = std::max(radius_after(r, mu, lit_at), rb);
     out.distances.push_back(lit_at);
     out.inverse_radii.push_back(1.0 / lit_radius);
@@ -173,14 +219,14 @@ MultiscatteringSample multiscattering_at_point(const Atmosphere& atm,
   r = std::clamp(r, atm.bottom_radius_m, atm.top_radius_m);
   mu_s = clamp_cosine(mu_s);
   const double ratio = atm.bottom_radius_m / r;
-  std::vector<double> mus, ring_weights, ends, cosines;
+  std::vector<double> mus, ring_weights, cosines;
   zenith_rule(rule, -safe_sqrt(1.0 - ratio * ratio), mus, ring_weights);
   const int azimuths = rule.quadrature.azimuths;
   const double sun_x = safe_sqrt(1.0 - mu_s * mu_s);
   MultiscatteringSample out;
   RingMarch march;
   for (size_t k = 0; k < mus.size(); ++k) {
-    march_ring(atm, transmittance_lut, r, mus[k], rule.quadrature.steps, ends, march);
+    march_ring(atm, transmittance_lut, r, mus[k], rule.quadrature.steps, march);
     const double sin_zenith = safe_sqrt(1.0 - mus[k] * mus[k]);
     cosines.clear();
     for (int j = 0; j < azimuths; ++j)

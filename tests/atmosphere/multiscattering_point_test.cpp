@@ -14,6 +14,7 @@
 #include "core/math.hpp"
 #include "pipeline/error_references.hpp"
 #include "support/test_atmospheres.hpp"
+#include "support/wide_vectors_as.hpp"
 
 namespace skybake {
 namespace {
@@ -104,6 +105,36 @@ TEST(MultiscatteringAtPoint, RecordRuleConvergedOnStiffMedia) {
   const ErrorStats tiny = against_finer(fixtures::tiny_planet_atmosphere());
   EXPECT_LT(tiny.max_rel, 1e-2);
   EXPECT_LT(tiny.rms_rel, 2.5e-3);
+}
+
+TEST(MultiscatteringAtPoint, WideLoopsWithinRoundingOfTheOneValueLoops) {
+  // The AVX2 path (block exponentials, four azimuths' reads at once) against
+  // the one-value path (std::exp, std::expm1, one read at a time) at the
+  // record's points: rounding only (expm1_in_place within 1e-15 relative of
+  // std::expm1, core/exp_block.hpp), not a change of rule.
+  {
+    const test::WideVectorsAs probe(true);
+    if (!wide_vectors()) GTEST_SKIP() << "this CPU has no AVX2: only the one-value loops run";
+  }
+  Atmosphere dense = fixtures::earth_atmosphere();
+  for (MediumComponent& c : dense.components)
+    if (c.name == "rayleigh") c.scattering_per_m *= 1000.0;
+  for (const Atmosphere& atm :
+       {fixtures::earth_atmosphere(), fixtures::tiny_planet_atmosphere(), dense}) {
+    const Texture t = bake_transmittance_lut(atm, {64, 16, 8}, {});
+    std::vector<glm::dvec3> one, wide;
+    {
+      const test::WideVectorsAs as(false);
+      one = at_queries(atm, t, kRecord);
+    }
+    {
+      const test::WideVectorsAs as(true);
+      wide = at_queries(atm, t, kRecord);
+    }
+    const ErrorStats s = compare(wide, one);
+    EXPECT_LT(s.max_rel, 1e-13);
+    EXPECT_GT(one.front().x, 0.0);
+  }
 }
 
 TEST(MultiscatteringAtPoint, AgreesWithTheTableIntegratorAtManyRays) {

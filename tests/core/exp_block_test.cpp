@@ -65,5 +65,51 @@ TEST(ExpInPlace, Avx2TwinHasTheSameBits) {
 }
 #endif
 
+// expm1_in_place against std::expm1: relative error at tiny x (where
+// exp(x) - 1 would lose every digit), at the reduction's edges and over
+// the range the precondition allows.
+TEST(Expm1InPlace, MatchesStdExpm1OverItsRange) {
+  std::vector<double> x;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> wide(-708.0, 708.0), narrow(-3.0, 3.0);
+  std::uniform_real_distribution<double> exponent(-300.0, -1.0);
+  for (int i = 0; i < 100000; ++i) {
+    x.push_back(i % 3 == 0 ? wide(rng) : narrow(rng));
+    const double tiny = std::pow(10.0, exponent(rng));
+    x.push_back(i % 2 ? tiny : -tiny);
+  }
+  for (int k = -1020; k <= 1020; ++k) {
+    const double edge = (k + 0.5) * std::log(2.0);
+    if (std::abs(edge) <= 708.0)
+      for (double d : {-1e-12, 0.0, 1e-12}) x.push_back(edge + d);
+  }
+  for (double v : {0.0, 1e-300, -1e-300, 708.0, -708.0, 1.0, -1.0}) x.push_back(v);
+  std::vector<double> y = x;
+  expm1_in_place(y.data(), y.size());
+  for (size_t i = 0; i < x.size(); ++i) {
+    const double want = std::expm1(x[i]);
+    if (want == 0.0)
+      ASSERT_EQ(y[i], 0.0) << "x = " << x[i];
+    else
+      ASSERT_NEAR(y[i] / want, 1.0, 1e-15) << "x = " << x[i];
+  }
+}
+
+#if SKYBAKE_HAS_AVX2
+TEST(Expm1InPlace, Avx2TwinHasTheSameBits) {
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "this CPU has no AVX2";
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> wide(-708.0, 708.0), narrow(-1.0, 1.0);
+  for (size_t n : {size_t(1), size_t(3), size_t(5), size_t(4099)}) {
+    std::vector<double> a(n);
+    for (size_t i = 0; i < n; ++i) a[i] = i % 3 ? narrow(rng) : wide(rng);
+    std::vector<double> b = a;
+    expm1_in_place(a.data(), n);
+    expm1_in_place_avx2(b.data(), n);
+    for (size_t i = 0; i < n; ++i) ASSERT_EQ(std::memcmp(&a[i], &b[i], sizeof(double)), 0) << i;
+  }
+}
+#endif
+
 }  // namespace
 }  // namespace skybake
