@@ -64,13 +64,11 @@ std::vector<double> kink_altitudes(const Atmosphere& atm, bool closed_form_linea
 // components are integrated in closed form and neither their kinks cut the
 // ray nor their densities are sampled; else every component is sampled.
 struct RayQuadrature {
-  RayQuadrature(const Atmosphere& atm, bool closed_form_linear)
-      : RayQuadrature(atm, closed_form_linear,
-                      closed_form_linear ? NodeExp::block : NodeExp::libm) {}
-  RayQuadrature(const Atmosphere& atm, bool closed_form_linear, NodeExp exp_kind)
+  // The table's rule takes its exponentials in blocks; the other, `exp_kind`'s.
+  RayQuadrature(const Atmosphere& atm, bool closed_form_linear, NodeExp exp_kind = NodeExp::libm)
       : table_rule(closed_form_linear),
         kinks(kink_altitudes(atm, closed_form_linear)),
-        extinction(atm, closed_form_linear, exp_kind),
+        extinction(atm, closed_form_linear, closed_form_linear ? NodeExp::block : exp_kind),
         linear(closed_form_linear ? LinearLayerDepth(atm) : LinearLayerDepth(Atmosphere{})) {}
   bool table_rule;  // the 8-point rule's cuts and grading (docs/reference.md)
   std::vector<double> kinks;

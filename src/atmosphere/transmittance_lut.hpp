@@ -97,8 +97,9 @@ glm::dvec3 compute_transmittance_to_top(const Atmosphere& atm, double r, double 
 // bit for bit, with the kinks, the extinction profile and the scratch arrays
 // worked out once per task instead of per ray (a quarter of the error
 // record's time went to that set-up). Parallel over the rays. With
-// NodeExp::block the nodes' exponentials are exp_in_place's (within 3e-16
-// relative of std::exp, extinction_profile.hpp), no longer the same bits.
+// NodeExp::block the gauss3 rule's node exponentials are exp_block's (within
+// 3e-16 relative of std::exp, extinction_profile.hpp), no longer the same
+// bits; gauss8 takes exp_block's either way, as the one-ray function.
 std::vector<glm::dvec3> compute_transmittances_to_top(const Atmosphere& atm,
                                                       const std::vector<glm::dvec2>& rays,
                                                       int steps,

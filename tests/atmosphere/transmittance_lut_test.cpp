@@ -409,6 +409,24 @@ TEST(ComputeTransmittance, ManyRaysAreTheOneRayValuesBitForBit) {
   }
 }
 
+TEST(ComputeTransmittance, ManyRaysWithBlockExponentialsWithinRounding) {
+  // The error record's reference takes the nodes' exponentials in blocks
+  // (exp_block, within 3e-16 relative of std::exp): the optical depth moves
+  // by rounding, T = exp(-tau) by about tau times that.
+  for (const Atmosphere& atm : {fixtures::earth_atmosphere(), fixtures::tiny_planet_atmosphere()}) {
+    std::vector<glm::dvec2> rays;
+    for (const Ray& ray : domain_rays(atm)) rays.push_back({ray.r, ray.mu});
+    const std::vector<glm::dvec3> libm = compute_transmittances_to_top(atm, rays, 24);
+    const std::vector<glm::dvec3> block =
+        compute_transmittances_to_top(atm, rays, 24, SegmentRule::gauss3, NodeExp::block);
+    for (size_t i = 0; i < rays.size(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        const double tau = -std::log(libm[i][c]);
+        ASSERT_NEAR(block[i][c], libm[i][c], 2e-15 * (1.0 + tau) * libm[i][c] + 1e-300) << i;
+      }
+  }
+}
+
 TEST(ComputeTransmittance, MonotoneInMuAndR) {
   // A lower ray crosses more air at every altitude: T does not increase as
   // mu goes from the zenith to the horizon. Going up along the vertical
