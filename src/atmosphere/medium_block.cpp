@@ -7,38 +7,51 @@
 
 namespace skybake {
 
+void density_block(const DensityProfile& profile, const double* h, size_t n, NodeExp exp_kind,
+                   MediumBlock& scratch, double* density) {
+  if (profile.layers.empty()) {
+    std::fill(density, density + n, 0.0);
+    return;
+  }
+  const std::vector<DensityLayer>& layers = profile.layers;
+  scratch.exponent.resize(n);
+  scratch.layer.resize(n);
+  // density_at's layer: the first whose top lies above h, else the last.
+  for (size_t i = 0; i < n; ++i) {
+    double layer_bottom = 0.0;
+    size_t k = 0;
+    for (; k + 1 < layers.size(); ++k) {
+      if (h[i] < layer_bottom + layers[k].width_m) break;
+      layer_bottom += layers[k].width_m;
+    }
+    scratch.layer[i] = &layers[k];
+    scratch.exponent[i] = layers[k].exp_scale_per_m * h[i];
+  }
+  if (exp_kind == NodeExp::block) {
+    for (size_t i = 0; i < n; ++i)
+      scratch.exponent[i] = std::min(std::max(scratch.exponent[i], -708.0), 708.0);
+    exp_block(scratch.exponent.data(), n);
+  } else {
+    for (size_t i = 0; i < n; ++i) scratch.exponent[i] = std::exp(scratch.exponent[i]);
+  }
+  for (size_t i = 0; i < n; ++i) {
+    const DensityLayer& l = *scratch.layer[i];
+    const double e = l.exp_term == 0.0 ? 0.0 : l.exp_term * scratch.exponent[i];
+    density[i] = std::clamp(e + l.linear_term_per_m * h[i] + l.constant_term, 0.0, 1.0);
+  }
+}
+
 void sample_medium_block(const Atmosphere& atm, const double* h, size_t n, NodeExp exp_kind,
                          MediumBlock& out) {
   out.scattering.assign(n, glm::dvec3(0.0));
   out.extinction.assign(n, glm::dvec3(0.0));
-  out.exponent.resize(n);
-  out.layer.resize(n);
+  out.density.resize(n);
   for (const MediumComponent& c : atm.components) {
     if (c.density.layers.empty()) continue;  // density_at is 0: sample_medium adds nothing
-    const std::vector<DensityLayer>& layers = c.density.layers;
-    // density_at's layer: the first whose top lies above h, else the last.
-    for (size_t i = 0; i < n; ++i) {
-      double layer_bottom = 0.0;
-      size_t k = 0;
-      for (; k + 1 < layers.size(); ++k) {
-        if (h[i] < layer_bottom + layers[k].width_m) break;
-        layer_bottom += layers[k].width_m;
-      }
-      out.layer[i] = &layers[k];
-      out.exponent[i] = layers[k].exp_scale_per_m * h[i];
-    }
-    if (exp_kind == NodeExp::block) {
-      for (size_t i = 0; i < n; ++i)
-        out.exponent[i] = std::min(std::max(out.exponent[i], -708.0), 708.0);
-      exp_block(out.exponent.data(), n);
-    } else {
-      for (size_t i = 0; i < n; ++i) out.exponent[i] = std::exp(out.exponent[i]);
-    }
+    density_block(c.density, h, n, exp_kind, out, out.density.data());
     const glm::dvec3 sigma_t = c.scattering_per_m + c.absorption_per_m;
     for (size_t i = 0; i < n; ++i) {
-      const DensityLayer& l = *out.layer[i];
-      const double e = l.exp_term == 0.0 ? 0.0 : l.exp_term * out.exponent[i];
-      const double d = std::clamp(e + l.linear_term_per_m * h[i] + l.constant_term, 0.0, 1.0);
+      const double d = out.density[i];
       if (d == 0.0) continue;
       out.scattering[i] += d * c.scattering_per_m;
       out.extinction[i] += d * sigma_t;

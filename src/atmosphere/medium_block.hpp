@@ -17,9 +17,14 @@ namespace skybake {
 
 struct MediumBlock {
   std::vector<glm::dvec3> scattering, extinction;  // per altitude, as MediumSample
-  std::vector<double> exponent;                    // scratch
+  std::vector<double> density, exponent;           // scratch
   std::vector<const DensityLayer*> layer;          // scratch
 };
+
+// density[i] = density_at(profile, h[i]), i < n, the exponentials as below;
+// `scratch`'s exponent and layer arrays are used.
+void density_block(const DensityProfile& profile, const double* h, size_t n, NodeExp exp_kind,
+                   MediumBlock& scratch, double* density);
 
 // out.scattering[i] and out.extinction[i] = sample_medium(atm, h[i]), i < n.
 // NodeExp::libm: the same bits (std::exp, the same operations in the same

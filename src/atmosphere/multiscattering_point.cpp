@@ -169,8 +169,8 @@ void march_ring(const Atmosphere& atm, const Texture& transmittance_lut, double 
 // (0, 0, r). Per sample the azimuths' sun transmittances are summed first
 // and scaled by the sun-independent `scattered` once; four azimuths (the
 // record's rule) are summed in one AVX2 group (ring_sun_wide.hpp).
-glm::dvec3 lit_ring(const Atmosphere& atm, const Texture& transmittance_lut, RingMarch& m,
-                    double r, double mu_s, const std::vector<double>& cosines) {
+glm::dvec3 lit_ring(const Atmosphere& atm, const Texture& transmittance_lut, RingMarch& m, double r,
+                    double mu_s, const std::vector<double>& cosines) {
   const double rb = atm.bottom_radius_m;
   const double height = r * mu_s;
   glm::dvec3 l_prime(0.0);

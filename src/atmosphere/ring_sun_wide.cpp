@@ -16,10 +16,10 @@ SKYBAKE_AVX2 void ring_sun_sums_avx2(const Texture& lut, double bottom_m,
   alignas(32) double lanes[3][4];
   for (size_t i = 0; i < n; ++i) {
     // (height + distance c) / r, then clamp_cosine, as the one-value read.
-    const __m256d mu = clamp_lanes(
-        _mm256_mul_pd(_mm256_add_pd(h, _mm256_mul_pd(_mm256_set1_pd(distances[i]), c)),
-                      _mm256_set1_pd(inverse_radii[i])),
-        -1.0, 1.0);
+    const __m256d mu =
+        clamp_lanes(_mm256_mul_pd(_mm256_add_pd(h, _mm256_mul_pd(_mm256_set1_pd(distances[i]), c)),
+                                  _mm256_set1_pd(inverse_radii[i])),
+                    -1.0, 1.0);
     const RgbLanes t = sun_transmittance_lanes(reads[i], lut.width, bottom_m, mu);
     for (int ch = 0; ch < 3; ++ch) _mm256_store_pd(lanes[ch], t.c[ch]);
     glm::dvec3 sum(0.0);

@@ -4,9 +4,11 @@
 #include <cmath>
 
 #include "atmosphere/geometry.hpp"
+#include "atmosphere/medium_block.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/phase.hpp"
 #include "atmosphere/transmittance_lut.hpp"
+#include "core/exp_block.hpp"
 #include "core/math.hpp"
 
 namespace skybake {
@@ -20,6 +22,13 @@ struct RayComponent {
   glm::dvec3 scattering;
   glm::dvec3 extinction;
   glm::dvec3 scattering_phase;
+};
+
+// segments_block's arrays, one entry per segment.
+struct BlockScratch {
+  MediumBlock medium;
+  std::vector<double> h, r, mu_s, density, em;
+  std::vector<glm::dvec3> sigma_s, sigma_t, sigma_s_phase;
 };
 
 struct MarchState {
@@ -71,7 +80,8 @@ class RayMarcher {
     if (sigma_t == glm::dvec3(0.0)) return;  // empty here: no source, no attenuation
     const double mu_s = clamp_cosine(glm::dot(p, sun_) / r);
     glm::dvec3 source = lookup_sun_transmittance(tlut_, atm_, r, mu_s) * sigma_s_phase;
-    if (mslut_) source += lookup_multiscattering(*mslut_, msmap_, atm_, r, mu_s) * sigma_s;  // eq. 11
+    if (mslut_)
+      source += lookup_multiscattering(*mslut_, msmap_, atm_, r, mu_s) * sigma_s;  // eq. 11
     const SegmentWeights w = segment_weights(sigma_t, dt);
     st.luminance += st.transmittance * atm_.sun_illuminance * source * w.weight;
     st.transmittance *= w.transmittance;
@@ -79,10 +89,19 @@ class RayMarcher {
 
   // n segments over [t0, t1] placed by `dist`; a segment that holds one of
   // the ascending distances `cuts` is integrated as two (or more) pieces.
+  // With `block`, segments_block integrates them.
   void march(double t0, double t1, int n, StepDistribution dist, MarchState& st,
-             const std::vector<double>& cuts = {}) const {
+             const std::vector<double>& cuts = {}, bool block = false) const {
     if (empty() || !(t1 > t0)) return;
     n = std::max(n, 1);
+    std::vector<double> ends;  // block: the segments' ends, t0 first
+    if (block) ends.push_back(t0);
+    const auto emit = [&](double a, double b) {
+      if (block)
+        ends.push_back(b);
+      else
+        segment(a, b, st);
+    };
     double a = t0;
     size_t cut = 0;
     for (int i = 1; i <= n; ++i) {
@@ -91,11 +110,63 @@ class RayMarcher {
       const double b = i == n ? t1 : t0 + (t1 - t0) * x;
       for (; cut < cuts.size() && cuts[cut] < b; ++cut)
         if (cuts[cut] > a) {
-          segment(a, cuts[cut], st);
+          emit(a, cuts[cut]);
           a = cuts[cut];
         }
-      segment(a, b, st);
+      emit(a, b);
       a = b;
+    }
+    if (block) segments_block(ends, st);
+  }
+
+  // segment() over [ends[i], ends[i + 1]] for every i, in order, with the
+  // media's exponentials and the weights' expm1s taken in blocks
+  // (IntegrationOptions::block_exponentials).
+  void segments_block(const std::vector<double>& ends, MarchState& st) const {
+    const size_t n = ends.size() - 1;
+    // Scratch kept by each thread from march to march (no allocation per ray).
+    thread_local BlockScratch b;
+    MediumBlock& scratch = b.medium;
+    std::vector<double>&h = b.h, &r = b.r, &mu_s = b.mu_s, &density = b.density, &em = b.em;
+    std::vector<glm::dvec3>&sigma_s = b.sigma_s, &sigma_t = b.sigma_t,
+    &sigma_s_phase = b.sigma_s_phase;
+    for (std::vector<double>* v : {&h, &r, &mu_s, &density}) v->resize(n);
+    em.resize(3 * n);
+    for (std::vector<glm::dvec3>* v : {&sigma_s, &sigma_t, &sigma_s_phase})
+      v->assign(n, glm::dvec3(0.0));
+    for (size_t i = 0; i < n; ++i) {
+      const glm::dvec3 p = origin_ + (0.5 * (ends[i] + ends[i + 1])) * dir_;
+      r[i] = std::max(glm::length(p), atm_.bottom_radius_m);
+      h[i] = r[i] - atm_.bottom_radius_m;
+      mu_s[i] = clamp_cosine(glm::dot(p, sun_) / r[i]);
+    }
+    for (const RayComponent& c : components_) {
+      density_block(*c.density, h.data(), n, NodeExp::block, scratch, density.data());
+      for (size_t i = 0; i < n; ++i) {
+        const double d = density[i];
+        if (d == 0.0) continue;
+        sigma_s[i] += d * c.scattering;
+        sigma_t[i] += d * c.extinction;
+        sigma_s_phase[i] += d * c.scattering_phase;
+      }
+    }
+    for (size_t i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c)
+        em[3 * i + c] = std::clamp(-sigma_t[i][c] * (ends[i + 1] - ends[i]), -708.0, 708.0);
+    expm1_block(em.data(), em.size());
+    for (size_t i = 0; i < n; ++i) {
+      const double dt = ends[i + 1] - ends[i];
+      if (!(dt > 0.0) || sigma_t[i] == glm::dvec3(0.0)) continue;
+      glm::dvec3 source = lookup_sun_transmittance(tlut_, atm_, r[i], mu_s[i]) * sigma_s_phase[i];
+      if (mslut_)
+        source += lookup_multiscattering(*mslut_, msmap_, atm_, r[i], mu_s[i]) * sigma_s[i];
+      SegmentWeights w;  // segment_weights with the block's expm1s
+      for (int c = 0; c < 3; ++c) {
+        w.weight[c] = sigma_t[i][c] > 0.0 ? -em[3 * i + c] / sigma_t[i][c] : dt;
+        w.transmittance[c] = 1.0 + em[3 * i + c];
+      }
+      st.luminance += st.transmittance * atm_.sun_illuminance * source * w.weight;
+      st.transmittance *= w.transmittance;
     }
   }
 
@@ -173,7 +244,8 @@ ScatteringResult integrate_scattered_luminance(const Atmosphere& atm,
                            sun_dir);
   MarchState st;
   marcher.march(span.t_enter, t_end, steps, options.distribution, st,
-                options.cut_at_shadow ? marcher.shadow_crossings() : std::vector<double>{});
+                options.cut_at_shadow ? marcher.shadow_crossings() : std::vector<double>{},
+                options.block_exponentials);
   if (options.lit_ground && span.exits_on_ground && t_end >= span.t_exit)
     marcher.lit_ground(span.t_exit, st);
   return {st.luminance, st.transmittance};

@@ -60,6 +60,12 @@ struct IntegrationOptions {
   // as h^2 on every ray, where a straddled jump costs h (the error records'
   // references, pipeline/atmosphere_errors.cpp). The tables do not cut.
   bool cut_at_shadow = false;
+  // Take the segments' density exponentials and their weights' expm1s in
+  // blocks (core/exp_block.hpp: four at a time in AVX2, within 1e-15
+  // relative of libm) instead of one libm call each: the same march to
+  // rounding (the error records' references, pipeline/atmosphere_errors.cpp;
+  // the tables and the preview keep libm's bits).
+  bool block_exponentials = false;
 };
 
 struct ScatteringResult {

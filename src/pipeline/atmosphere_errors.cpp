@@ -112,6 +112,7 @@ QueryReads skyview_reads(
         more_light) {
   IntegrationOptions options;
   options.distribution = baked.distribution;
+  options.block_exponentials = true;
   QueryReads reads(kSkyviewQueries);
   tbb::parallel_for(size_t(0), reads.size(), [&](size_t i) {
     const SkyviewQueryPoint q = skyview_query(atm, baked.views, i);
@@ -171,6 +172,8 @@ nlohmann::json measure_aerial_perspective_error(const Scene& scene, const Output
   const Atmosphere& atm = scene.atmosphere;
   const AerialPerspectiveSpec baked = aerial_perspective_spec(spec);
   const glm::dvec3 sun = sun_direction(baked.sun_zenith_rad, baked.sun_azimuth_rad);
+  IntegrationOptions options;
+  options.block_exponentials = true;
   QueryReads reads(kAerialQueries);
   tbb::parallel_for(size_t(0), reads.size(), [&](size_t i) {
     const AerialQueryPoint q = aerial_query(atm, baked, i);
@@ -180,7 +183,7 @@ nlohmann::json measure_aerial_perspective_error(const Scene& scene, const Output
         kAerialMinSteps, int(std::ceil(kAerialReferenceSteps * q.distance_m / baked.depth_range_m)));
     reads[i].second = integrate_scattered_luminance(atm, *in.at("transmittance"),
                                                     in.at("multiscattering"), q.position,
-                                                    q.view_dir, sun, q.distance_m, steps)
+                                                    q.view_dir, sun, q.distance_m, steps, options)
                           .luminance;
   });
   return error_record(

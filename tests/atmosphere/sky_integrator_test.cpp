@@ -183,6 +183,42 @@ TEST(Integrator, ShadowCutsOnlyWhereTheRayCrossesTheShadow) {
   EXPECT_LT(extrapolated, plain(200));
 }
 
+TEST(Integrator, BlockExponentialsAreTheMarchToRounding) {
+  // The references' block exponentials (IntegrationOptions::
+  // block_exponentials) against libm's per segment: the same march within
+  // rounding, on Earth with its multiple-scattering table and the tiny
+  // planet's stiff sky, lit and shadowed rays, cut and plain, both step
+  // distributions, viewers on the ground and in space.
+  for (const Atmosphere& atm : {earth_atmosphere(), fixtures::tiny_planet_atmosphere()}) {
+    const fixtures::SkyLutInputs l = fixtures::bake_sky_lut_inputs(atm);
+    const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+    for (double r : {rb + 0.01 * (rt - rb), rb + 0.5 * (rt - rb), 1.5 * rt})
+      for (double elevation : {-0.9, -0.05, 0.02, 0.4, 1.4})
+        for (double sun_elevation : {-0.1, 0.05, 0.8})
+          for (bool cut : {false, true}) {
+            IntegrationOptions options;
+            options.cut_at_shadow = cut;
+            options.distribution = cut ? StepDistribution::quadratic : StepDistribution::uniform;
+            options.lit_ground = true;
+            const glm::dvec3 p(0.0, 0.0, r);
+            const glm::dvec3 dir(std::cos(elevation), 0.0, std::sin(elevation));
+            const glm::dvec3 sun(std::cos(sun_elevation) * 0.6, std::cos(sun_elevation) * 0.8,
+                                 std::sin(sun_elevation));
+            const ScatteringResult one = integrate_scattered_luminance(
+                atm, l.transmittance, &l.multiscattering, p, dir, sun, INFINITY, 41, options);
+            options.block_exponentials = true;
+            const ScatteringResult block = integrate_scattered_luminance(
+                atm, l.transmittance, &l.multiscattering, p, dir, sun, INFINITY, 41, options);
+            for (int c = 0; c < 3; ++c) {
+              ASSERT_NEAR(block.luminance[c], one.luminance[c], 1e-13 * one.luminance[c])
+                  << r << " " << elevation << " " << sun_elevation << " " << cut;
+              ASSERT_NEAR(block.transmittance[c], one.transmittance[c],
+                          1e-13 * one.transmittance[c] + 1e-300);
+            }
+          }
+  }
+}
+
 TEST(Integrator, LitGroundSeenThroughEmptyAtmosphereIsLambertian) {
   // No medium: looking straight down from 1 km sees albedo / pi * E * mu_s.
   Atmosphere atm = empty_atmosphere();
