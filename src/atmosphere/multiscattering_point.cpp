@@ -101,6 +101,11 @@ void ring_media(const Atmosphere& atm, double r, double mu, RingMarch& out) {
   const std::vector<double>& ends = out.ends;
   const size_t n = ends.size() - 1;
   const double rb = atm.bottom_radius_m;
+  if (atm.components.empty()) {  // vacuum: every segment is skipped, no expm1 is read
+    out.media.scattering.assign(n, glm::dvec3(0.0));
+    out.media.extinction.assign(n, glm::dvec3(0.0));
+    return;
+  }
   out.altitudes.resize(n);
   for (size_t i = 0; i < n; ++i)  // the medium at the midpoint, as the table's march samples it
     out.altitudes[i] = std::max(radius_after(r, mu, 0.5 * (ends[i] + ends[i + 1])), rb) - rb;
@@ -225,12 +230,15 @@ MultiscatteringSample multiscattering_at_point(const Atmosphere& atm,
   const double sun_x = safe_sqrt(1.0 - mu_s * mu_s);
   MultiscatteringSample out;
   RingMarch march;
+  std::vector<double> azimuth_cosines;  // the same for every ring
+  for (int j = 0; j < azimuths; ++j)
+    azimuth_cosines.push_back(std::cos(kPi * (j + 0.5) / azimuths));
   for (size_t k = 0; k < mus.size(); ++k) {
     march_ring(atm, transmittance_lut, r, mus[k], rule.quadrature.steps, march);
     const double sin_zenith = safe_sqrt(1.0 - mus[k] * mus[k]);
     cosines.clear();
     for (int j = 0; j < azimuths; ++j)
-      cosines.push_back(sin_zenith * std::cos(kPi * (j + 0.5) / azimuths) * sun_x + mus[k] * mu_s);
+      cosines.push_back(sin_zenith * azimuth_cosines[j] * sun_x + mus[k] * mu_s);
     out.l2 +=
         ring_weights[k] / azimuths * lit_ring(atm, transmittance_lut, march, r, mu_s, cosines);
     out.f_ms += ring_weights[k] * march.l_f;
