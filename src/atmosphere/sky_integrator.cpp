@@ -38,14 +38,16 @@ struct MarchState {
 
 class RayMarcher {
  public:
+  // `mapping`: the multiscattering table's, parsed by the caller, or null.
   RayMarcher(const Atmosphere& atm, const Texture& transmittance_lut,
              const Texture* multiscattering_lut, glm::dvec3 origin, glm::dvec3 dir,
-             glm::dvec3 sun_dir)
+             glm::dvec3 sun_dir, const MultiscatteringMapping* mapping = nullptr)
       : atm_(atm),
         tlut_(transmittance_lut),
         mslut_(multiscattering_lut),
-        msmap_(multiscattering_lut ? multiscattering_mapping_of(*multiscattering_lut)
-                                   : MultiscatteringMapping{}),
+        msmap_(!multiscattering_lut ? MultiscatteringMapping{}
+               : mapping            ? *mapping
+                                    : multiscattering_mapping_of(*multiscattering_lut)),
         origin_(origin),
         dir_(dir),
         sun_(sun_dir) {
@@ -241,7 +243,7 @@ ScatteringResult integrate_scattered_luminance(const Atmosphere& atm,
   if (!span.hits_atmosphere) return {};
   const double t_end = std::min(span.t_exit, std::max(max_distance_m, 0.0));
   const RayMarcher marcher(atm, transmittance_lut, multiscattering_lut, position_m, view_dir,
-                           sun_dir);
+                           sun_dir, options.multiscattering_mapping);
   MarchState st;
   marcher.march(span.t_enter, t_end, steps, options.distribution, st,
                 options.cut_at_shadow ? marcher.shadow_crossings() : std::vector<double>{},

@@ -41,6 +41,8 @@
 
 namespace skybake {
 
+struct MultiscatteringMapping;  // multiscattering_lut.hpp
+
 // Where segment boundaries fall on a ray of length t_max cut into n segments.
 //   uniform:   t_i = t_max i / n
 //   quadratic: t_i = t_max (i / n)^2, short segments near the viewer where a
@@ -66,6 +68,9 @@ struct IntegrationOptions {
   // rounding (the error records' references, pipeline/atmosphere_errors.cpp;
   // the tables and the preview keep libm's bits).
   bool block_exponentials = false;
+  // The multiple-scattering table's mapping (multiscattering_mapping_of),
+  // parsed once by a caller that marches many rays; null: parsed per ray.
+  const MultiscatteringMapping* multiscattering_mapping = nullptr;
 };
 
 struct ScatteringResult {

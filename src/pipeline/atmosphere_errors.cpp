@@ -113,6 +113,9 @@ QueryReads skyview_reads(
   IntegrationOptions options;
   options.distribution = baked.distribution;
   options.block_exponentials = true;
+  const MultiscatteringMapping mapping =
+      multiscattering ? multiscattering_mapping_of(*multiscattering) : MultiscatteringMapping{};
+  options.multiscattering_mapping = &mapping;
   QueryReads reads(kSkyviewQueries);
   tbb::parallel_for(size_t(0), reads.size(), [&](size_t i) {
     const SkyviewQueryPoint q = skyview_query(atm, baked.views, i);
@@ -174,6 +177,10 @@ nlohmann::json measure_aerial_perspective_error(const Scene& scene, const Output
   const glm::dvec3 sun = sun_direction(baked.sun_zenith_rad, baked.sun_azimuth_rad);
   IntegrationOptions options;
   options.block_exponentials = true;
+  const Texture* multiscattering = in.at("multiscattering");
+  const MultiscatteringMapping mapping =
+      multiscattering ? multiscattering_mapping_of(*multiscattering) : MultiscatteringMapping{};
+  options.multiscattering_mapping = &mapping;
   QueryReads reads(kAerialQueries);
   tbb::parallel_for(size_t(0), reads.size(), [&](size_t i) {
     const AerialQueryPoint q = aerial_query(atm, baked, i);

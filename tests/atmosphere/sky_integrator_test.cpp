@@ -219,6 +219,28 @@ TEST(Integrator, BlockExponentialsAreTheMarchToRounding) {
   }
 }
 
+TEST(Integrator, MappingParsedOnceIsTheMappingParsedPerRay) {
+  // A caller's parsed multiple-scattering mapping (IntegrationOptions::
+  // multiscattering_mapping) gives the march's bits; a wrong one would not.
+  const Atmosphere atm = earth_atmosphere();
+  const fixtures::SkyLutInputs l = fixtures::bake_sky_lut_inputs(atm);
+  const MultiscatteringMapping parsed = multiscattering_mapping_of(l.multiscattering);
+  MultiscatteringMapping wrong = parsed;
+  wrong.altitude = parsed.altitude == AltitudeMapping::linear ? AltitudeMapping::quadratic
+                                                              : AltitudeMapping::linear;
+  const glm::dvec3 p(0.0, 0.0, atm.bottom_radius_m + 500.0), dir(0.8, 0.0, 0.6);
+  const glm::dvec3 sun(0.6, 0.0, 0.8);
+  const auto march = [&](const MultiscatteringMapping* mapping) {
+    IntegrationOptions options;
+    options.multiscattering_mapping = mapping;
+    return integrate_scattered_luminance(atm, l.transmittance, &l.multiscattering, p, dir, sun,
+                                         INFINITY, 40, options)
+        .luminance;
+  };
+  EXPECT_EQ(march(&parsed), march(nullptr));
+  EXPECT_NE(march(&wrong), march(nullptr));
+}
+
 TEST(Integrator, LitGroundSeenThroughEmptyAtmosphereIsLambertian) {
   // No medium: looking straight down from 1 km sees albedo / pi * E * mu_s.
   Atmosphere atm = empty_atmosphere();
