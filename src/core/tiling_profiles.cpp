@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/tiling_rgba.hpp"
+
 namespace skybake {
 
 namespace {
@@ -165,6 +167,7 @@ SKYBAKE_WIDE_VECTORS void add_line(const double* __restrict x, int len, LineScra
 }  // namespace
 
 std::vector<TilingProfiles> compute_tiling_profiles(const Texture& t, int layer, int axis) {
+  if (t.channels.size() == 4) return compute_tiling_profiles_rgba(t, layer, axis);
   const int n[3] = {t.width, t.height, t.depth};
   const int len = n[axis];
   const int u_axis = axis == 0 ? 1 : 0, v_axis = axis == 2 ? 1 : 2;
