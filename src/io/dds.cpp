@@ -69,7 +69,7 @@ Shape level_shape(Shape top, int level) {
 
 // Refuses anything that would not make a valid DDS file, before any I/O.
 void check_writable(const std::string& path, const MipLevels& mips, const FormatInfo& format,
-                    DdsHeader header) {
+                    DdsHeader header, FiniteCheck level0) {
   if (mips.empty()) throw IoError(path + ": expected at least one mip level, got none");
   const Texture& top = *mips[0];
   if (top.width < 1 || top.height < 1 || top.depth < 1 || top.layers < 1)
@@ -109,7 +109,8 @@ void check_writable(const std::string& path, const MipLevels& mips, const Format
     if (m.data.size() != m.texel_count() * m.channels.size())
       throw IoError(fmt::format("{}: mip {}: expected {} values, got {}", path, i,
                                 m.texel_count() * m.channels.size(), m.data.size()));
-    check_finite(m, i == 0 ? path : fmt::format("{}: mip {}", path, i));
+    if (i > 0 || level0 == FiniteCheck::run)
+      check_finite(m, i == 0 ? path : fmt::format("{}: mip {}", path, i));
   }
 }
 
@@ -428,16 +429,16 @@ std::string four_cc_string(uint32_t four_cc) {
 }
 
 void write_dds(const std::string& path, const std::vector<Texture>& mips, DdsFormat format,
-               DdsHeader header_kind) {
+               DdsHeader header_kind, FiniteCheck level0) {
   MipLevels levels;
   for (const Texture& m : mips) levels.push_back(&m);
-  write_dds(path, levels, format, header_kind);
+  write_dds(path, levels, format, header_kind, level0);
 }
 
 void write_dds(const std::string& path, const MipLevels& mips, DdsFormat format,
-               DdsHeader header_kind) {
+               DdsHeader header_kind, FiniteCheck level0) {
   const FormatInfo& f = info(format);
-  check_writable(path, mips, f, header_kind);
+  check_writable(path, mips, f, header_kind, level0);
   const std::vector<uint8_t> header = make_header(mips, f, header_kind);
 
   std::ofstream out(path, std::ios::binary | std::ios::trunc);

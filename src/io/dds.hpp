@@ -41,6 +41,7 @@
 #include <string>
 #include <vector>
 
+#include "core/finite_check.hpp"
 #include "core/texture.hpp"
 
 namespace skybake {
@@ -90,12 +91,12 @@ bool dds_has_legacy_form(DdsFormat format);
 // a refusal. Throws IoError on a bad input or a failed write. Block formats
 // are encoded with tbb::parallel_for (bytes independent of the thread count).
 void write_dds(const std::string& path, const std::vector<Texture>& mips, DdsFormat format,
-               DdsHeader header = DdsHeader::dx10);
+               DdsHeader header = DdsHeader::dx10, FiniteCheck level0 = FiniteCheck::run);
 // The same from levels held elsewhere (level 0 need not be copied next to
 // the levels built from it).
 using MipLevels = std::vector<const Texture*>;
 void write_dds(const std::string& path, const MipLevels& mips, DdsFormat format,
-               DdsHeader header = DdsHeader::dx10);
+               DdsHeader header = DdsHeader::dx10, FiniteCheck level0 = FiniteCheck::run);
 
 struct DdsImage {
   std::vector<Texture> mips;  // decoded float values; channels R, G, B, A as the format has

@@ -76,7 +76,8 @@ std::vector<std::string> split_channels(const std::string& s) {
 }
 
 // Refuses what the file could not represent, before anything is created.
-void check_writable(const std::string& path, const Texture& tex, ExrPrecision precision) {
+void check_writable(const std::string& path, const Texture& tex, ExrPrecision precision,
+                    FiniteCheck finite) {
   if (tex.width < 1 || tex.height < 1 || tex.depth < 1 || tex.layers < 1 || tex.channels.empty())
     throw IoError(fmt::format("{}: expected a non-empty texture, got {} with {} channels", path,
                               tex.shape_string(), tex.channels.size()));
@@ -94,7 +95,7 @@ void check_writable(const std::string& path, const Texture& tex, ExrPrecision pr
     if (is_reserved(key))
       throw Error(fmt::format("{}: expected a metadata key other than the reserved '{}{}'", path,
                               kPrefix, key));
-  check_finite(tex, path);
+  if (finite == FiniteCheck::run) check_finite(tex, path);
   if (precision == ExrPrecision::half)
     for (float v : tex.data)
       if (std::fabs(v) >= kHalfOverflow)
@@ -261,8 +262,8 @@ int exr_atlas_columns(int depth) {
 }
 
 void write_exr(const std::string& path, const Texture& tex, ExrPrecision precision,
-               ExrVolumeLayout layout, ExrCompression compression) {
-  check_writable(path, tex, precision);
+               ExrVolumeLayout layout, ExrCompression compression, FiniteCheck finite) {
+  check_writable(path, tex, precision, finite);
   std::vector<Imf::Header> specs;
   std::vector<const float*> pixels;
   if (tex.is_volume() && layout == ExrVolumeLayout::atlas) {

@@ -35,6 +35,7 @@
 
 #include <string>
 
+#include "core/finite_check.hpp"
 #include "core/texture.hpp"
 
 namespace skybake {
@@ -56,7 +57,8 @@ ExrCompression exr_compression_from_name(const std::string& name);
 // allowed parallelism (--threads).
 void write_exr(const std::string& path, const Texture& tex, ExrPrecision precision,
                ExrVolumeLayout layout = ExrVolumeLayout::atlas,
-               ExrCompression compression = ExrCompression::zip);
+               ExrCompression compression = ExrCompression::zip,
+               FiniteCheck finite = FiniteCheck::run);
 
 // Reads an EXR written by write_exr back into a Texture (shape, channel order
 // and metadata, with the "skybake:" prefix stripped and the structural

@@ -42,6 +42,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/finite_check.hpp"
 #include "core/texture.hpp"
 #include "io/ktx2_dfd.hpp"
 #include "io/ktx2_format.hpp"
@@ -62,7 +63,8 @@ constexpr const char* kMetaPrefix = "skybake.";
 // metadata keys, check_finite of every level) before the file is opened, so a
 // refused texture creates no file. Throws IoError on a bad input or a failed
 // write; Error on a reserved metadata key ("channels"). Single-threaded.
-void write_ktx2(const std::string& path, const std::vector<Texture>& mips, Ktx2Format format);
+void write_ktx2(const std::string& path, const std::vector<Texture>& mips, Ktx2Format format,
+                FiniteCheck level0 = FiniteCheck::run);
 
 struct Ktx2LevelIndex {
   uint64_t byte_offset = 0, byte_length = 0, uncompressed_byte_length = 0;

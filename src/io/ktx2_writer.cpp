@@ -69,7 +69,7 @@ void check_metadata(const std::string& path, const Metadata& meta) {
 
 // Refuses anything that would not make a valid file, before any I/O.
 void check_writable(const std::string& path, const std::vector<Texture>& mips,
-                    const Ktx2FormatInfo& f) {
+                    const Ktx2FormatInfo& f, FiniteCheck level0) {
   if (mips.empty()) throw IoError(path + ": expected at least one mip level, got none");
   const Texture& top = mips[0];
   if (top.width < 1 || top.height < 1 || top.depth < 1 || top.layers < 1)
@@ -99,7 +99,8 @@ void check_writable(const std::string& path, const std::vector<Texture>& mips,
     if (m.data.size() != m.texel_count() * m.channels.size())
       throw IoError(fmt::format("{}: mip {}: expected {} values, got {}", path, i,
                                 m.texel_count() * m.channels.size(), m.data.size()));
-    check_finite(m, i == 0 ? path : fmt::format("{}: mip {}", path, i));
+    if (i > 0 || level0 == FiniteCheck::run)
+      check_finite(m, i == 0 ? path : fmt::format("{}: mip {}", path, i));
   }
   check_metadata(path, top.metadata);
 }
@@ -202,9 +203,10 @@ std::vector<uint8_t> level_bytes(const Texture& m, const Ktx2FormatInfo& f, size
 
 }  // namespace
 
-void write_ktx2(const std::string& path, const std::vector<Texture>& mips, Ktx2Format format) {
+void write_ktx2(const std::string& path, const std::vector<Texture>& mips, Ktx2Format format,
+                FiniteCheck level0) {
   const Ktx2FormatInfo& f = ktx2_format_info(format);
-  check_writable(path, mips, f);
+  check_writable(path, mips, f, level0);
   const std::vector<uint8_t> head = file_head(mips, f);
 
   std::ofstream out(path, std::ios::binary | std::ios::trunc);

@@ -252,7 +252,7 @@ void write_png_preview(const std::string& path, const Texture& tex, const Previe
   if (tex.is_volume() && tex.is_array())
     throw IoError(fmt::format("{}: expected a volume or a 2D array, got both ({})", path,
                               tex.shape_string()));
-  check_finite(tex, path);
+  if (opt.finite == FiniteCheck::run) check_finite(tex, path);
   const PreviewLayout layout = preview_layout(tex, opt);
   const Exposure e =
       opt.exposure ? Exposure{*opt.exposure} : auto_exposure(tex, layout, shown_channels(tex, opt));

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "core/finite_check.hpp"
 #include "core/texture.hpp"
 
 namespace skybake {
@@ -42,6 +43,7 @@ struct PreviewOptions {
   int max_columns = 8;          // panels per row before wrapping to the next row (>= 1)
   bool tile_2x2 = false;        // repeat each panel 2x2
   bool split_channels = false;  // one grey sub-panel per channel instead of colour
+  FiniteCheck finite = FiniteCheck::run;  // core/finite_check.hpp
 };
 
 // Where the panels go; write_png_preview draws exactly this.

@@ -94,7 +94,8 @@ std::vector<std::string> grid_names_of(const std::string& path, const Texture& t
   return names;
 }
 
-void check_writable(const std::string& path, const Texture& tex, double voxel_size) {
+void check_writable(const std::string& path, const Texture& tex, double voxel_size,
+                    FiniteCheck finite) {
   if (tex.width < 1 || tex.height < 1 || tex.depth < 1 || tex.channels.empty())
     throw IoError(fmt::format("{}: expected a non-empty texture, got {} with {} channels", path,
                               tex.shape_string(), tex.channels.size()));
@@ -118,7 +119,7 @@ void check_writable(const std::string& path, const Texture& tex, double voxel_si
     if (tex.metadata.count(key))
       throw Error(fmt::format("{}: expected a metadata key other than the reserved '{}{}'", path,
                               kPrefix, key));
-  check_finite(tex, path);
+  if (finite == FiniteCheck::run) check_finite(tex, path);
 }
 
 // A metadata value as the VDB metadata type of its type: int32, double,
@@ -265,7 +266,7 @@ std::string string_meta(const openvdb::GridBase& grid, const std::string& name) 
 
 void write_vdb_file(const std::string& path, const Texture& tex, const VdbWriteOptions& options) {
   const double voxel_size = options.voxel_size;
-  check_writable(path, tex, voxel_size);
+  check_writable(path, tex, voxel_size, options.finite);
   const std::vector<std::string> names = grid_names_of(path, tex, options);
   init_openvdb();
   auto xform = openvdb::math::Transform::createLinearTransform(voxel_size);

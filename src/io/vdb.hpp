@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "core/finite_check.hpp"
 #include "core/texture.hpp"
 
 namespace skybake {
@@ -56,6 +57,7 @@ struct VdbWriteOptions {
   // so viewers shade it as a volume; GRID_UNKNOWN otherwise.
   VdbGridClass grid_class = VdbGridClass::unknown;
   VdbCompression compression = VdbCompression::blosc;
+  FiniteCheck finite = FiniteCheck::run;  // core/finite_check.hpp
 };
 
 // True when `name` is a grid name VdbWriteOptions accepts. Inline: both

@@ -26,6 +26,7 @@ namespace {
 // "VDB grid names"); fog-volume class for density volumes.
 VdbWriteOptions vdb_options(const Texture& tex, const ProductInfo& info, const OutputSpec& spec) {
   VdbWriteOptions options;
+  options.finite = FiniteCheck::already_checked;
   options.voxel_size = 1.0 / tex.width;
   if (spec.options.contains("grid_names")) {
     options.grid_names = spec.options["grid_names"].get<std::vector<std::string>>();
@@ -39,14 +40,16 @@ VdbWriteOptions vdb_options(const Texture& tex, const ProductInfo& info, const O
   return options;
 }
 
-// Writes `tex` to `tmp` in one format; returns the encoding it used.
+// Writes `tex` to `tmp` in one format; returns the encoding it used. The
+// caller has run check_finite on `tex` (write_outputs: once for every format).
 std::string write_format(const std::string& format, const std::string& tmp, const Texture& tex,
                          const ProductInfo& info, const OutputSpec& spec) {
   if (format == "exr") {
     const bool half = spec.precision == "half";
     write_exr(tmp, tex, half ? ExrPrecision::half : ExrPrecision::float32, ExrVolumeLayout::atlas,
               exr_compression_from_name(
-                  option_string(spec, "exr_compression", info.default_exr_compression)));
+                  option_string(spec, "exr_compression", info.default_exr_compression)),
+              FiniteCheck::already_checked);
     return half ? "half" : "float";
   }
   if (format == "dds") {
@@ -56,13 +59,14 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
                                             : std::vector<Texture>();
     MipLevels levels{&tex};
     for (const Texture& level : lower) levels.push_back(&level);
-    write_dds(tmp, levels, dds, output_dds_header(spec));
+    write_dds(tmp, levels, dds, output_dds_header(spec), FiniteCheck::already_checked);
     return dxgi_format_name(dds);
   }
   if (format == "ktx2") {
     const Ktx2Format ktx2 = output_ktx2_format(spec, info, tex.channel_count());
     const bool mips = spec.options.value("mips", info.default_mips);
-    write_ktx2(tmp, mips ? build_mip_chain(tex, MipEdge::wrap) : std::vector<Texture>{tex}, ktx2);
+    write_ktx2(tmp, mips ? build_mip_chain(tex, MipEdge::wrap) : std::vector<Texture>{tex}, ktx2,
+               FiniteCheck::already_checked);
     return ktx2_format_name(ktx2);
   }
   if (format == "vdb") {
@@ -73,6 +77,7 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
     PreviewOptions preview;
     preview.tile_2x2 = info.preview_tiled;
     preview.split_channels = info.preview_split;
+    preview.finite = FiniteCheck::already_checked;
     if (info.preview_split) {  // channels side by side, two slices stacked: stays readable
       preview.max_slices = 2;
       preview.max_columns = 1;
@@ -105,6 +110,9 @@ std::vector<ManifestFile> write_outputs(const Texture& tex, const ProductInfo& i
     record.format = spec.formats[i];
     // Errors name the output, not its temporary.
     pending.back()->write([&](const std::filesystem::path& tmp) {
+      // Once for every format, by the first one's writer as before (the same
+      // message, naming its file); the writers then skip it.
+      if (i == 0) check_finite(tex, tmp.string());
       record.encoding = write_format(spec.formats[i], tmp.string(), tex, info, spec);
       // Size and content as written, so freshness notices a truncated or edited file.
       record.size = stat_file(tmp).size;

@@ -206,6 +206,32 @@ TEST(OutputWriter, AFailingFormatLeavesNoFileOfThatOutput) {
   EXPECT_TRUE(test::list_files(dir).empty()) << "first file: " << test::list_files(dir).front();
 }
 
+TEST(OutputWriter, ANonFiniteTextureIsRefusedOnceForEveryFormatNamingTheFirst) {
+  // The writers leave check_finite to write_outputs (once per texture): a
+  // NaN is still refused before any file, named by the first format's file
+  // and its texel, whichever format comes first.
+  Texture tex = rgba_volume();
+  tex.at(5, 2, 1, 0, 2) = std::nanf("");
+  for (const std::vector<std::string>& formats :
+       {std::vector<std::string>{"dds", "exr", "vdb", "png"},
+        std::vector<std::string>{"png", "vdb", "exr", "dds"},
+        std::vector<std::string>{"vdb", "dds"}}) {
+    const fs::path dir = test::fresh_dir("output_writer_non_finite");
+    const std::string first = output_files(spec_of("table", formats)).front();
+    try {
+      write_outputs(tex, volume_product(), spec_of("table", formats), dir);
+      ADD_FAILURE() << "a NaN was written as " << first;
+    } catch (const IoError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find((dir / first).string()), std::string::npos) << what;
+      EXPECT_NE(what.find("non-finite value (nan) at texel x=5 y=2 z=1 layer=0 channel B"),
+                std::string::npos)
+          << what;
+    }
+    EXPECT_TRUE(test::list_files(dir).empty()) << "first file: " << test::list_files(dir).front();
+  }
+}
+
 TEST(OutputWriter, AFailingFormatLeavesTheOldVersionWhole) {
   // An output written before, then re-written with a format that fails: the
   // old files stay as they were, none replaced by the new version.
