@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -187,7 +188,8 @@ openvdb::FloatGrid::Ptr make_grid(const Texture& tex, int c, const std::string& 
   // grid.
   const size_t w = size_t(tex.width), h = size_t(tex.height), d = size_t(tex.depth);
   constexpr size_t kTile = 8;
-  std::vector<float> plane(texels);
+  // Not zero-filled: the loops below write every element.
+  const std::unique_ptr<float[]> plane(new float[texels]);
   for (size_t y = 0; y < h; ++y)
     for (size_t z0 = 0; z0 < d; z0 += kTile)
       for (size_t x0 = 0; x0 < w; x0 += kTile)
@@ -197,7 +199,7 @@ openvdb::FloatGrid::Ptr make_grid(const Texture& tex, int c, const std::string& 
   const openvdb::CoordBBox box(openvdb::Coord(0),
                                openvdb::Coord(tex.width - 1, tex.height - 1, tex.depth - 1));
   auto grid = openvdb::FloatGrid::create(0.0f);
-  openvdb::tools::copyFromDense(DenseZYX(box, plane.data()), *grid, 0.0f);
+  openvdb::tools::copyFromDense(DenseZYX(box, plane.get()), *grid, 0.0f);
   // copyFromDense leaves voxels equal to the background inactive; the union
   // with an all-active box activates them without changing any value, so the
   // grid is dense (vdb.hpp: every voxel of the domain is active) and viewers
