@@ -52,7 +52,8 @@ struct Texture {
 };
 
 // Throws IoError naming `what` and the first offending texel when any value
-// is NaN or infinite. Every writer calls this before it opens a file.
+// is NaN or infinite. Every writer calls this before it opens a file, unless
+// its caller already has (core/finite_check.hpp).
 void check_finite(const Texture& tex, const std::string& what);
 
 }  // namespace skybake
