@@ -12,6 +12,7 @@
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/ray_transfer.hpp"
 #include "atmosphere/row_blend.hpp"
+#include "atmosphere/row_node.hpp"
 #include "core/math.hpp"
 
 namespace skybake {
@@ -113,26 +114,42 @@ void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shap
     std::vector<int> tap_i0(W), nu_i0(W), nu_i1(W);
     std::vector<float> nu_w(W);
     std::vector<double> spread(n_mu_s);
-    const BilinearTaps taps{nu_i0.data(), nu_i1.data(), tap_i0.data(), tap_w.data(), nu_w.data()};
+    std::vector<float> lw(W);
+    std::vector<int> at0(W), at1(W), slot(W);
+    auto node_row = [&](double r, double s, double inv_r_i) {
+      return NodeRow{r,           s,           inv_r_i,         mu_s_x.data(), nu_x.data(),
+                     nu_i0.data(), nu_i1.data(), nu_w.data(), at0.data(),    at1.data(),
+                     lw.data()};
+    };
     for (int row = range.begin(); row != range.end(); ++row) {
       const int z = row / shape.mu_size, y = row % shape.mu_size;
       const ScatteringParams p0 = texels.at(0, y, z);
       // texels.at(x, y, z) with the spread of nu once per mu_s texel.
       for (int l = 0; l < n_mu_s; ++l) spread[l] = ScatteringTexelGrid::spread(p0.mu, texels.mu_s[l]);
+      // Slices clamped to the same nu are the same texel: computed once,
+      // in `slot` of the arrays (n of them).
+      int n = 0;
       for (int x = 0; x < W; ++x) {
-        const int l = x % n_mu_s;
+        const int l = x % n_mu_s, below = x - n_mu_s;
         const double mu_mu_s = p0.mu * texels.mu_s[l];
-        mu_s_x[x] = texels.mu_s[l];
-        nu_x[x] = std::clamp(texels.nu[x / n_mu_s], mu_mu_s - spread[l], mu_mu_s + spread[l]);
-        const AxisTap tn = nu_slice_tap(0.5 * (nu_x[x] + 1.0), shape.nu_size);
-        nu_i0[x] = tn.i0 * n_mu_s;
-        nu_i1[x] = tn.i1 * n_mu_s;
-        nu_w[x] = float(tn.w);
+        const double nu = std::clamp(texels.nu[x / n_mu_s], mu_mu_s - spread[l], mu_mu_s + spread[l]);
+        if (below >= 0 && nu_x[slot[below]] == nu) {
+          slot[x] = slot[below];
+          continue;
+        }
+        slot[x] = n;
+        mu_s_x[n] = texels.mu_s[l];
+        nu_x[n] = nu;
+        const AxisTap tn = nu_slice_tap(0.5 * (nu + 1.0), shape.nu_size);
+        nu_i0[n] = tn.i0 * n_mu_s;
+        nu_i1[n] = tn.i1 * n_mu_s;
+        nu_w[n] = float(tn.w);
+        ++n;
       }
       const double r = p0.r, mu = p0.mu;
       const bool hits = p0.ray_hits_ground;
       ray_transfer(atm, r, mu, distance_to_nearest_boundary(rb, rt, r, mu, hits), nodes, transfer);
-      std::fill(sum.begin(), sum.end(), Rgb4{});
+      std::fill(sum.begin(), sum.begin() + n, Rgb4{});
       for (const TransferNode& q : transfer.nodes) {
         const glm::dvec3 wS = q.weight * sample_medium(atm, q.r - rb).scattering;
         if (wS == glm::dvec3(0.0)) continue;
@@ -148,13 +165,20 @@ void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shap
         const float w4[4] = {float((1.0 - tr.w) * (1.0 - tm.w)), float((1.0 - tr.w) * tm.w),
                              float(tr.w * (1.0 - tm.w)), float(tr.w * tm.w)};
         blend_rows(rows4, w4, W, slice.data());
-        mu_s_at_node(r, q.s, r_i, mu_s_x.data(), nu_x.data(), W, mu_s_node.data());
-        mu_s_axis.taps(mu_s_node.data(), W, tap_i0.data(), tap_w.data());
-        add_bilinear_row(slice.data(), taps, wS4, W, sum.data());
+        // The texels' mu_s at the node, its taps and the reads: in one
+        // pass where it can (row_node.hpp), the rest in three.
+        const double inv_r_i = 1.0 / r_i;
+        const int k =
+            add_node_row(node_row(r, q.s, inv_r_i), mu_s_axis, slice.data(), wS4, n, sum.data());
+        mu_s_at_node(r, q.s, inv_r_i, mu_s_x.data() + k, nu_x.data() + k, n - k, mu_s_node.data() + k);
+        mu_s_axis.taps(mu_s_node.data() + k, n - k, tap_i0.data() + k, tap_w.data() + k);
+        const BilinearTaps rest{nu_i0.data() + k, nu_i1.data() + k, tap_i0.data() + k,
+                                tap_w.data() + k, nu_w.data() + k};
+        add_bilinear_row(slice.data(), rest, wS4, n - k, sum.data() + k);
       }
       float* texels_out = out.texel(0, y, z);
       for (int x = 0; x < W; ++x)
-        for (int c = 0; c < 3; ++c) texels_out[3 * x + c] = sum[x].v[c];
+        for (int c = 0; c < 3; ++c) texels_out[3 * x + c] = sum[slot[x]].v[c];
       progress.tick();
     }
   });

@@ -29,15 +29,15 @@ SKYBAKE_AVX2 int blend_rows_avx2(const Rgb4* const rows[4], const float w[4], in
 // mu_s_at_node four cosines at a time: _mm256_max_pd(lo, v) is
 // std::max(v, lo) and _mm256_min_pd(hi, v) std::min(v, hi), signed zeros
 // included (batch_taps.cpp). Returns how many it did.
-SKYBAKE_AVX2 int mu_s_at_node_avx2(double r, double s, double r_i, const double* mu_s,
+SKYBAKE_AVX2 int mu_s_at_node_avx2(double r, double s, double inv_r_i, const double* mu_s,
                                    const double* nu, int n, double* out) {
-  const __m256d r4 = _mm256_set1_pd(r), s4 = _mm256_set1_pd(s), r_i4 = _mm256_set1_pd(r_i);
+  const __m256d r4 = _mm256_set1_pd(r), s4 = _mm256_set1_pd(s), inv_r_i4 = _mm256_set1_pd(inv_r_i);
   const __m256d lo = _mm256_set1_pd(-1.0), hi = _mm256_set1_pd(1.0);
   int x = 0;
   for (; x + 4 <= n; x += 4) {
-    const __m256d c = _mm256_div_pd(_mm256_add_pd(_mm256_mul_pd(r4, _mm256_loadu_pd(mu_s + x)),
+    const __m256d c = _mm256_mul_pd(_mm256_add_pd(_mm256_mul_pd(r4, _mm256_loadu_pd(mu_s + x)),
                                                   _mm256_mul_pd(s4, _mm256_loadu_pd(nu + x))),
-                                    r_i4);
+                                    inv_r_i4);
     _mm256_storeu_pd(out + x, _mm256_min_pd(hi, _mm256_max_pd(lo, c)));
   }
   return x;
@@ -115,14 +115,14 @@ void blend_rows(const Rgb4* const rows[4], const float w[4], int n, Rgb4* out) {
 #endif
 }
 
-void mu_s_at_node(double r, double s, double r_i, const double* mu_s, const double* nu, int n,
+void mu_s_at_node(double r, double s, double inv_r_i, const double* mu_s, const double* nu, int n,
                   double* out) {
   int first = 0;
 #if SKYBAKE_HAS_AVX2
-  if (wide_vectors()) first = mu_s_at_node_avx2(r, s, r_i, mu_s, nu, n, out);
+  if (wide_vectors()) first = mu_s_at_node_avx2(r, s, inv_r_i, mu_s, nu, n, out);
 #endif
   for (int x = first; x < n; ++x)
-    out[x] = std::min(std::max((r * mu_s[x] + s * nu[x]) / r_i, -1.0), 1.0);
+    out[x] = std::min(std::max((r * mu_s[x] + s * nu[x]) * inv_r_i, -1.0), 1.0);
 }
 
 void add_bilinear_row(const Rgb4* slice, const BilinearTaps& t, const Rgb4& wS, int n,

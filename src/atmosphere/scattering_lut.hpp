@@ -143,6 +143,14 @@ class MuSAxis {
   // time mispredicted its clamps and could not be vectorized (std::sqrt sets
   // errno).
   void taps(const double* mu_s, int n, int* i0, double* w) const;
+  // The constants of x(mu_s), for loops that inline taps() (row_node.cpp).
+  struct Constants {
+    double rb, rb2, H2, d_min, inv_span, inv_A, mu_s_min;
+    int size;
+  };
+  Constants constants() const {
+    return {rb_, rb2_, H2_, d_min_, inv_span_, inv_A_, mu_s_min_, size_};
+  }
 
  private:
   // std::min / std::max rather than std::clamp: the same value for every
