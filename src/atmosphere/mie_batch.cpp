@@ -59,8 +59,25 @@ void mie_sums_sse2(const MieLoop& q, MieLanes lanes) {
 #endif
 
 #if SKYBAKE_HAS_AVX2
-// mie_sums_sse2 with its two halves in one register.
-SKYBAKE_AVX2 void mie_sums_avx2(const MieLoop& q, MieLanes lanes) {
+// MieBatch::sums' sum of the lanes, ((s0 + s1) + (s2 + s3)) + ((s4 + s5) +
+// (s6 + s7)) in double, for the four sums at once: the same additions of
+// the same operands.
+// (c0 + c1) + (c2 + c3) of four lanes of each sum c = r, g, b, w.
+SKYBAKE_AVX2 inline __m256d half_sums(__m128 r, __m128 g, __m128 b, __m128 w) {
+  const __m256d rg = _mm256_hadd_pd(_mm256_cvtps_pd(r), _mm256_cvtps_pd(g));  // r01 g01 r23 g23
+  const __m256d bw = _mm256_hadd_pd(_mm256_cvtps_pd(b), _mm256_cvtps_pd(w));
+  return _mm256_add_pd(_mm256_permute2f128_pd(rg, bw, 0x20), _mm256_permute2f128_pd(rg, bw, 0x31));
+}
+SKYBAKE_AVX2 inline void add_lanes_avx2(__m256 sr, __m256 sg, __m256 sb, __m256 sw, double out[4]) {
+  const __m256d low = half_sums(_mm256_castps256_ps128(sr), _mm256_castps256_ps128(sg),
+                                _mm256_castps256_ps128(sb), _mm256_castps256_ps128(sw));
+  const __m256d high = half_sums(_mm256_extractf128_ps(sr, 1), _mm256_extractf128_ps(sg, 1),
+                                 _mm256_extractf128_ps(sb, 1), _mm256_extractf128_ps(sw, 1));
+  _mm256_storeu_pd(out, _mm256_add_pd(low, high));
+}
+
+// mie_sums_sse2 with its two halves in one register, and the lanes summed.
+SKYBAKE_AVX2 void mie_sums_avx2(const MieLoop& q, double out[4]) {
   const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
   const __m256 a = _mm256_set1_ps(q.a), b = _mm256_set1_ps(q.b), cs = _mm256_set1_ps(q.cs);
   const __m256 vx = _mm256_set1_ps(q.vx), vy = _mm256_set1_ps(q.vy), vz = _mm256_set1_ps(q.vz);
@@ -85,10 +102,7 @@ SKYBAKE_AVX2 void mie_sums_avx2(const MieLoop& q, MieLanes lanes) {
     sb = _mm256_add_ps(sb, _mm256_mul_ps(p, _mm256_loadu_ps(q.lb + j)));
     sw = _mm256_add_ps(sw, _mm256_mul_ps(p, _mm256_loadu_ps(q.dw + j)));
   }
-  _mm256_storeu_ps(lanes[0], sr);
-  _mm256_storeu_ps(lanes[1], sg);
-  _mm256_storeu_ps(lanes[2], sb);
-  _mm256_storeu_ps(lanes[3], sw);
+  add_lanes_avx2(sr, sg, sb, sw, out);
 }
 #endif
 
@@ -144,13 +158,14 @@ void MieBatch::sums(const MieKernel& k, const glm::dvec3& v, double out[4]) cons
   const MieLoop q{float(v.x),  float(v.y),  float(v.z),  float(k.a),  float(k.b),
                   k.cornette_shanks ? 1.0f : 0.0f,      x.data(),    y.data(),
                   z.data(),    dw.data(),   lr.data(),  lg.data(),  lb.data(), n};
-  MieLanes lanes;
 #if SKYBAKE_HAS_AVX2
-  if (wide_vectors())
-    mie_sums_avx2(q, lanes);
-  else
-    mie_sums_sse2(q, lanes);
-#elif defined(__SSE2__)
+  if (wide_vectors()) {
+    mie_sums_avx2(q, out);
+    return;
+  }
+#endif
+  MieLanes lanes;
+#if defined(__SSE2__)
   mie_sums_sse2(q, lanes);
 #else
   mie_sums_plain(q, lanes);

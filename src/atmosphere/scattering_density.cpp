@@ -136,9 +136,16 @@ void bake_scattering_density(const Atmosphere& atm, const Texture& transmittance
         const double mu = texels.mu[size_t(z) * shape.mu_size + y];
         const double spread = ScatteringTexelGrid::spread(mu, mu_s);
         const double sin_view = safe_sqrt(1.0 - mu * mu);
+        double nu_before = 0.0;
         for (int m = 0; m < shape.nu_size; ++m) {
           const int x = m * shape.mu_s_size + l;
           const double nu = std::clamp(texels.nu[m], mu * mu_s - spread, mu * mu_s + spread);
+          // A slice clamped to the nu of the one before is its view: its J.
+          if (m > 0 && nu == nu_before) {
+            std::copy_n(out.texel(x - shape.mu_s_size, y, z), 3, out.texel(x, y, z));
+            continue;
+          }
+          nu_before = nu;
           const glm::dvec3 v = view_direction(mu, mu_s, nu, sin_view, sin_sun);
           glm::dvec3 J(0.0);
           if (rayleigh) {
