@@ -73,7 +73,7 @@ struct SunRow {
   int width, stride;
 };
 SKYBAKE_AVX2 int sun_products_avx2(const SunRow& q, const double* mu_s, int n, const double a[6],
-                                   double* const sums[6]) {
+                                   double* const sums[6], int* i0, double* wt, double* vis) {
   const __m256d one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd(), three = _mm256_set1_pd(3.0),
                 two = _mm256_set1_pd(2.0);
   const __m256d minus_r = _mm256_set1_pd(-q.r);
@@ -82,8 +82,10 @@ SKYBAKE_AVX2 int sun_products_avx2(const SunRow& q, const double* mu_s, int n, c
   const __m256d edge = _mm256_set1_pd(q.sun_edge), inv_width = _mm256_set1_pd(q.inv_sun_width);
   const __m256d last = _mm256_set1_pd(double(q.width - 1));
   const __m256d below_last = _mm256_set1_pd(double(q.width - 2)), wy = _mm256_set1_pd(q.wy);
-  int k = 0;
-  for (; k + 4 <= n; k += 4) {
+  const int count = n / 4 * 4;
+  // First every sun's taps and visible fraction (the square roots), then
+  // the reads: in one loop each read waited on its square root's latency.
+  for (int k = 0; k < count; k += 4) {
     const __m256d raw = _mm256_loadu_pd(mu_s + k);
     const __m256d mu = clamp_lanes(raw, -1.0, 1.0);
     const __m256d discriminant =
@@ -94,20 +96,24 @@ SKYBAKE_AVX2 int sun_products_avx2(const SunRow& q, const double* mu_s, int n, c
     const __m256d x = clamp_lanes(_mm256_mul_pd(_mm256_sub_pd(d, d_min), inv_span), 0.0, 1.0);
     const __m256d t = _mm256_mul_pd(x, last);
     const __m256d i = _mm256_min_pd(below_last, _mm256_cvtepi32_pd(_mm256_cvttpd_epi32(t)));
-    const __m256d w = _mm256_sub_pd(t, i);
+    _mm256_storeu_pd(wt + k, _mm256_sub_pd(t, i));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(i0 + k), _mm256_cvttpd_epi32(i));
     const __m256d s = _mm256_mul_pd(_mm256_sub_pd(raw, edge), inv_width);
     const __m256d smooth = _mm256_mul_pd(_mm256_mul_pd(s, s), _mm256_sub_pd(three, _mm256_mul_pd(two, s)));
     const __m256d full = _mm256_cmp_pd(s, one, _CMP_GE_OQ), none = _mm256_cmp_pd(s, zero, _CMP_LE_OQ);
-    const __m256d visible = _mm256_or_pd(_mm256_and_pd(full, one),
-                                         _mm256_andnot_pd(_mm256_or_pd(full, none), smooth));
+    _mm256_storeu_pd(vis + k, _mm256_or_pd(_mm256_and_pd(full, one),
+                                           _mm256_andnot_pd(_mm256_or_pd(full, none), smooth)));
+  }
+  for (int k = 0; k < count; k += 4) {
+    const __m256d visible = _mm256_loadu_pd(vis + k);
     // A sun below the horizon at this node for all four: T = 0 adds +0 to
     // sums that are >= +0, which leaves them as they are.
     if (_mm256_movemask_pd(_mm256_cmp_pd(visible, zero, _CMP_NEQ_UQ)) == 0) continue;
+    const __m256d w = _mm256_loadu_pd(wt + k);
     // Each lane's texels i0 and i0 + 1 of both LUT rows: R G B at positions
     // 0-2 of a load at the first and 1-3 of a load ending at the second's
     // blue (any stride >= 3, never past the row), transposed into lanes.
-    alignas(16) int at[4];
-    _mm_store_si128(reinterpret_cast<__m128i*>(at), _mm256_cvttpd_epi32(i));
+    const int* at = i0 + k;
     __m128 lo[2][4], hi[2][4];
     for (int y = 0; y < 2; ++y) {
       const float* row = y == 0 ? q.row0 : q.row1;
@@ -132,7 +138,7 @@ SKYBAKE_AVX2 int sun_products_avx2(const SunRow& q, const double* mu_s, int n, c
       }
     }
   }
-  return k;
+  return count;
 }
 #endif
 
@@ -140,15 +146,17 @@ SKYBAKE_AVX2 int sun_products_avx2(const SunRow& q, const double* mu_s, int n, c
 
 int TransmittanceReader::add_sun_products(const Row& row, const double* mu_s, int n,
                                           const glm::dvec3& a_rayleigh, const glm::dvec3& a_mie,
-                                          double* const sums[6]) const {
+                                          double* const sums[6], int* i0, double* w,
+                                          double* visible) const {
 #if SKYBAKE_HAS_AVX2
   if (!wide_vectors() || stride_ < 3) return 0;
   const SunRow q{row.row0,    row.row1,  row.r,         rt_,         row.d_min, row.inv_span,
                  row.sun_edge, row.inv_sun_width, row.wy, lut_.width, stride_};
   const double a[6] = {a_rayleigh.r, a_rayleigh.g, a_rayleigh.b, a_mie.r, a_mie.g, a_mie.b};
-  return sun_products_avx2(q, mu_s, n, a, sums);
+  return sun_products_avx2(q, mu_s, n, a, sums, i0, w, visible);
 #else
-  (void)row, (void)mu_s, (void)n, (void)a_rayleigh, (void)a_mie, (void)sums;
+  (void)row, (void)mu_s, (void)n, (void)a_rayleigh, (void)a_mie, (void)sums, (void)i0, (void)w,
+      (void)visible;
   return 0;
 #endif
 }

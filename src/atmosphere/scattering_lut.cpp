@@ -428,7 +428,8 @@ void SingleScatteringRay::at_suns(const TransmittanceReader& reader, const doubl
     for (int k = 0; k < n; ++k)
       scratch.mu_s[k] = std::min(std::max((r * mu_s[k] + node.s * nu[k]) * node.inv_r, -1.0), 1.0);
     wide = reader.add_sun_products(node.sun_row, scratch.mu_s.data(), n, node.a_rayleigh,
-                                   node.a_mie, sums);
+                                   node.a_mie, sums, scratch.i0.data(), scratch.w.data(),
+                                   scratch.visible.data());
     const int rest = n - wide;
     reader.sun_taps(node.sun_row, scratch.mu_s.data() + wide, rest, scratch.i0.data(),
                     scratch.w.data(), scratch.visible.data());

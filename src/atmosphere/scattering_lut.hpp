@@ -292,8 +292,10 @@ class TransmittanceReader {
   // operations per lane), for the first cosines in AVX2 (four at a time,
   // batch_taps.cpp); returns how many it did: a multiple of 4, 0 without
   // AVX2. Single scattering's hottest loop (SingleScatteringRay::at_suns).
+  // i0, w and visible: work arrays of at least n (the taps of a first pass).
   int add_sun_products(const Row& row, const double* mu_s, int n, const glm::dvec3& a_rayleigh,
-                       const glm::dvec3& a_mie, double* const sums[6]) const;
+                       const glm::dvec3& a_mie, double* const sums[6], int* i0, double* w,
+                       double* visible) const;
   // Between (r, mu) and the point at distance d along the ray.
   glm::dvec3 between(double r, double mu, double d, bool ray_hits_ground) const;
   // To the sun of zenith cosine mu_s, with the fraction of the sun's disk
