@@ -6,6 +6,8 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "atmosphere/geometric_tail.hpp"
 #include "atmosphere/phase.hpp"
@@ -127,10 +129,15 @@ void assemble_bruneton_outputs(const Atmosphere& atm, const BrunetonSpec& spec,
                            spec.combined_mie_alpha ? std::vector<std::string>{"R", "G", "B", "A"}
                                                    : std::vector<std::string>{"R", "G", "B"});
   const int channels = out.scattering.channel_count();
-  for (size_t t = 0; t < texel_count; ++t) {
-    for (int c = 0; c < 3; ++c) out.scattering.data[channels * t + c] = accumulated.data[3 * t + c];
-    if (spec.combined_mie_alpha) out.scattering.data[channels * t + 3] = single_mie.data[3 * t];
-  }
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, texel_count, size_t(1) << 14),
+                    [&](const tbb::blocked_range<size_t>& ts) {
+                      for (size_t t = ts.begin(); t != ts.end(); ++t) {
+                        for (int c = 0; c < 3; ++c)
+                          out.scattering.data[channels * t + c] = accumulated.data[3 * t + c];
+                        if (spec.combined_mie_alpha)
+                          out.scattering.data[channels * t + 3] = single_mie.data[3 * t];
+                      }
+                    });
   out.single_mie = std::move(single_mie);
   out.irradiance = std::move(irradiance);
   set_scattering_metadata(out.scattering.metadata, atm, spec, out, phases, false);

@@ -58,6 +58,15 @@ TexelPhases texel_phases(const Atmosphere& atm, const ScatteringShape& shape,
   return out;
 }
 
+// to = from, both of one size, in parallel blocks.
+void parallel_copy(const std::vector<float>& from, std::vector<float>& to) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, from.size(), size_t(1) << 16),
+                    [&](const tbb::blocked_range<size_t>& b) {
+                      std::copy(from.begin() + b.begin(), from.begin() + b.end(),
+                                to.begin() + b.begin());
+                    });
+}
+
 // What one order changes: its residual (header) and its total per channel,
 // the geometric tail's ratio of this order to the last.
 struct OrderChange {
@@ -188,8 +197,13 @@ class BrunetonIteration {
     if (k < 3)
       return ScatteringOrder{&single_r_per_opacity_, &single_m_per_opacity_, nullptr, &phases_,
                              true};
-    // Copied into the buffer of the order before: no fresh pages to fault in.
-    previous_per_opacity_ = previous_radiance_;
+    // Copied into the buffer of the order before (no fresh pages to fault
+    // in), in parallel: a serial copy of the table each order held back the
+    // second thread.
+    if (previous_per_opacity_.data.size() != previous_radiance_.data.size())
+      previous_per_opacity_ = previous_radiance_;
+    else
+      parallel_copy(previous_radiance_.data, previous_per_opacity_.data);
     divide_ground_rows_by_opacity_in_place(previous_per_opacity_, shape_, opacity_);
     return ScatteringOrder{nullptr, nullptr, &previous_per_opacity_, &phases_, true};
   }
