@@ -85,24 +85,66 @@ glm::dvec3 compute_multiple_scattering(const Atmosphere& atm, const ScatteringSh
 Texture bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shape,
                                  const Texture& density, int nodes, const BakeContext& ctx) {
   Texture out;
-  std::vector<Rgb4> work;
+  MultipleScatteringWork work;
   bake_multiple_scattering(atm, shape, density, nodes, ctx, out, work);
   return out;
 }
 
+namespace {
+
+// The nodes of row (y, z) that scatter, as MultipleScatteringWork keeps them.
+void make_row_nodes(const Atmosphere& atm, const ScatteringShape& shape, const ScatteringParams& p0,
+                    int nodes, RayTransfer& transfer,
+                    std::vector<MultipleScatteringWork::Node>& out) {
+  const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+  const double r = p0.r, mu = p0.mu;
+  const bool hits = p0.ray_hits_ground;
+  ray_transfer(atm, r, mu, distance_to_nearest_boundary(rb, rt, r, mu, hits), nodes, transfer);
+  out.clear();
+  for (const TransferNode& q : transfer.nodes) {
+    const glm::dvec3 wS = q.weight * sample_medium(atm, q.r - rb).scattering;
+    if (wS == glm::dvec3(0.0)) continue;
+    const double r_i = q.r, mu_i = mu_after(r, mu, q.s, r_i);
+    const glm::dvec2 u_mu_r = scattering_u_mu_r(atm, shape, r_i, mu_i, hits);
+    // J / sigma_s at (r_i, mu_i) for every (mu_s, nu) texel: the bilinear
+    // blend of four rows of the table, shared by the row's texels.
+    const AxisTap tr = axis_tap(u_mu_r.y, shape.r_size), tm = axis_tap(u_mu_r.x, shape.mu_size);
+    MultipleScatteringWork::Node n;
+    n.s = q.s;
+    n.inv_r_i = 1.0 / r_i;
+    n.wS = Rgb4{{float(wS.r), float(wS.g), float(wS.b), 0.0f}};
+    const int row0 = tr.i0 * shape.mu_size, row1 = tr.i1 * shape.mu_size;
+    const int rows[4] = {row0 + tm.i0, row0 + tm.i1, row1 + tm.i0, row1 + tm.i1};
+    const float w[4] = {float((1.0 - tr.w) * (1.0 - tm.w)), float((1.0 - tr.w) * tm.w),
+                        float(tr.w * (1.0 - tm.w)), float(tr.w * tm.w)};
+    std::copy_n(rows, 4, n.rows);
+    std::copy_n(w, 4, n.w);
+    out.push_back(n);
+  }
+}
+
+bool same_shape(const ScatteringShape& a, const ScatteringShape& b) {
+  return a.r_size == b.r_size && a.mu_size == b.mu_size && a.mu_s_size == b.mu_s_size &&
+         a.nu_size == b.nu_size && a.mu_s_min == b.mu_s_min;
+}
+
+}  // namespace
+
 void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shape,
                               const Texture& density, int nodes, const BakeContext& ctx,
-                              Texture& out, std::vector<Rgb4>& radiance) {
-  const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+                              Texture& out, MultipleScatteringWork& work) {
   const ScatteringTexelGrid texels = scattering_texel_grid(atm, shape);
+  std::vector<Rgb4>& radiance = work.radiance;
   const MuSAxis mu_s_axis(atm, shape);
   radiance.resize(density.texel_count());  // every texel's R, G, B written below, pads 0
   for_each_density_per_scattering(atm, shape, density,
                                   [&](size_t t, int c, float v) { radiance[t].v[c] = v; });
   const int W = shape.texture_width(), n_mu_s = shape.mu_s_size;
-  auto row_of = [&](int y, int z) { return &radiance[(size_t(z) * shape.mu_size + y) * W]; };
   reuse_rgb_table(out, shape);
   const int rows = shape.r_size * shape.mu_size;
+  const bool make_nodes = work.nodes_per_ray != nodes || !same_shape(work.shape, shape) ||
+                          work.nodes.size() != size_t(rows);
+  if (make_nodes) work.nodes.assign(size_t(rows), {});
   ProgressCounter progress(ctx, size_t(rows));
   tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& range) {
     RayTransfer transfer;
@@ -146,35 +188,22 @@ void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shap
         nu_w[n] = float(tn.w);
         ++n;
       }
-      const double r = p0.r, mu = p0.mu;
-      const bool hits = p0.ray_hits_ground;
-      ray_transfer(atm, r, mu, distance_to_nearest_boundary(rb, rt, r, mu, hits), nodes, transfer);
+      if (make_nodes) make_row_nodes(atm, shape, p0, nodes, transfer, work.nodes[size_t(row)]);
       std::fill(sum.begin(), sum.begin() + n, Rgb4{});
-      for (const TransferNode& q : transfer.nodes) {
-        const glm::dvec3 wS = q.weight * sample_medium(atm, q.r - rb).scattering;
-        if (wS == glm::dvec3(0.0)) continue;
-        const Rgb4 wS4{{float(wS.r), float(wS.g), float(wS.b), 0.0f}};
-        const double r_i = q.r, mu_i = mu_after(r, mu, q.s, r_i);
-        const glm::dvec2 u_mu_r = scattering_u_mu_r(atm, shape, r_i, mu_i, hits);
-        // J / sigma_s at (r_i, mu_i) for every (mu_s, nu) texel: the
-        // bilinear blend of four rows of the table, shared by the row's W
-        // texels.
-        const AxisTap tr = axis_tap(u_mu_r.y, shape.r_size), tm = axis_tap(u_mu_r.x, shape.mu_size);
-        const Rgb4* rows4[4] = {row_of(tm.i0, tr.i0), row_of(tm.i1, tr.i0), row_of(tm.i0, tr.i1),
-                                row_of(tm.i1, tr.i1)};
-        const float w4[4] = {float((1.0 - tr.w) * (1.0 - tm.w)), float((1.0 - tr.w) * tm.w),
-                             float(tr.w * (1.0 - tm.w)), float(tr.w * tm.w)};
-        blend_rows(rows4, w4, W, slice.data());
+      for (const MultipleScatteringWork::Node& a : work.nodes[size_t(row)]) {
+        const Rgb4* rows4[4];
+        for (int i = 0; i < 4; ++i) rows4[i] = &radiance[size_t(a.rows[i]) * W];
+        blend_rows(rows4, a.w, W, slice.data());
         // The texels' mu_s at the node, its taps and the reads: in one
         // pass where it can (row_node.hpp), the rest in three.
-        const double inv_r_i = 1.0 / r_i;
         const int k =
-            add_node_row(node_row(r, q.s, inv_r_i), mu_s_axis, slice.data(), wS4, n, sum.data());
-        mu_s_at_node(r, q.s, inv_r_i, mu_s_x.data() + k, nu_x.data() + k, n - k, mu_s_node.data() + k);
+            add_node_row(node_row(p0.r, a.s, a.inv_r_i), mu_s_axis, slice.data(), a.wS, n, sum.data());
+        mu_s_at_node(p0.r, a.s, a.inv_r_i, mu_s_x.data() + k, nu_x.data() + k, n - k,
+                     mu_s_node.data() + k);
         mu_s_axis.taps(mu_s_node.data() + k, n - k, tap_i0.data() + k, tap_w.data() + k);
         const BilinearTaps rest{nu_i0.data() + k, nu_i1.data() + k, tap_i0.data() + k,
                                 tap_w.data() + k, nu_w.data() + k};
-        add_bilinear_row(slice.data(), rest, wS4, n - k, sum.data() + k);
+        add_bilinear_row(slice.data(), rest, a.wS, n - k, sum.data() + k);
       }
       float* texels_out = out.texel(0, y, z);
       for (int x = 0; x < W; ++x)
@@ -182,6 +211,10 @@ void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shap
       progress.tick();
     }
   });
+  if (make_nodes) {
+    work.nodes_per_ray = nodes;
+    work.shape = shape;
+  }
 }
 
 }  // namespace skybake

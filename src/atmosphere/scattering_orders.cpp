@@ -224,7 +224,7 @@ class BrunetonIteration {
   // Buffers every order rewrites whole, kept so that the kernel does not
   // fault in and clear fresh pages each order (about 3% of a tolerance bake).
   Texture density_, delta_;
-  std::vector<Rgb4> work_;
+  MultipleScatteringWork work_;   // J / sigma_s and the rows' nodes
   Texture ground_table_;          // E_{k-2} for k >= 3
   ScatteringOrder previous_;      // order k - 1 as the irradiance reads it
   GroundIrradiance ground_;       // direct sunlight for order 2
