@@ -74,11 +74,13 @@ struct OrderChange {
   glm::dvec3 sum{0.0};
 };
 
-// Residual (header): peak of L_{<=k}, then the largest relative change.
+// Residual (header): peak of L_{<=k}, then the largest relative change;
+// then the order added to the sums (add_order with a factor of 1, in the
+// same pass: each texel is measured before it is added).
 // In parallel over runs of texels (an r slice each), the totals added run
 // by run in order: the same values for any thread count.
-OrderChange measure_order(const Texture& accumulated, const Texture& single_mie,
-                          const TexelPhases& phase, const Texture& delta) {
+OrderChange measure_and_add_order(Texture& accumulated, const Texture& single_mie,
+                                  const TexelPhases& phase, const Texture& delta) {
   const size_t runs = size_t(std::max(accumulated.depth, 1));
   const size_t per_run = accumulated.texel_count() / runs;
   auto radiance = [&](size_t t, int c) {
@@ -98,9 +100,12 @@ OrderChange measure_order(const Texture& accumulated, const Texture& single_mie,
   const double floor = std::max(1e-6 * peak, std::numeric_limits<double>::min());
   tbb::parallel_for(size_t(0), runs, [&](size_t run) {
     for (size_t t = run * per_run; t < (run + 1) * per_run; ++t)
-      for (int c = 0; c < 3; ++c)
+      for (int c = 0; c < 3; ++c) {
         residuals[run] = std::max(residuals[run], double(delta.data[3 * t + c]) /
                                                       std::max(radiance(t, c), floor));
+        accumulated.data[3 * t + c] = float(accumulated.data[3 * t + c] +
+                                            1.0 * double(delta.data[3 * t + c]) / phase.rayleigh[t]);
+      }
   });
   OrderChange change;
   for (size_t run = 0; run < runs; ++run) change.sum += sums[run];
@@ -156,11 +161,10 @@ class BrunetonIteration {
     for (size_t i = 0; i < irradiance_.data.size(); ++i) irradiance_.data[i] += E.data[i];
     bake_multiple_scattering(atm_, shape_, density_, spec_.ray_nodes,
                              stage_context(ctx, 0.5, 1.0), delta_, work_);
-    const OrderChange change = measure_order(accumulated_, single_.mie, phase_, delta_);
+    const OrderChange change = measure_and_add_order(accumulated_, single_.mie, phase_, delta_);
     // The geometric tail (header): f from this order's total and the last's.
     tail_factor_ =
         k >= 3 ? geometric_tail_factor(change.sum, previous_order_sum_) : glm::dvec3(0.0);
-    add_order(accumulated_, delta_, phase_, glm::dvec3(1.0));
     previous_order_sum_ = change.sum;
     // The order before's buffer takes the next order's DeltaS.
     std::swap(previous_radiance_, delta_);
