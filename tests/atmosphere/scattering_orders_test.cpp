@@ -299,6 +299,32 @@ TEST(MultipleScattering, FastPassEqualsTheDirectQuadrature) {
       }
 }
 
+TEST(MultipleScattering, WorkKeptAcrossPassesGivesAFreshPassesTable) {
+  // The nodes a pass keeps (MultipleScatteringWork) serve the next pass of
+  // the same rays, and are made again when the shape or the nodes per ray
+  // change: every pass equals one with fresh work, bit for bit.
+  const Orders o(fixtures::earth_atmosphere());
+  const Texture J = bake_scattering_density(o.atm, o.lut, kSmall, o.order1, {}, 8, BakeContext{});
+  Texture J2 = J;
+  for (float& v : J2.data) v *= 0.5f;
+  const ScatteringShape other{8, 32, 12, 4, kBrunetonMuSMin};
+  Texture J_other(other.texture_width(), other.mu_size, other.r_size, 1, {"R", "G", "B"});
+  for (size_t i = 0; i < J_other.data.size(); ++i) J_other.data[i] = 1e-6f * float(1 + i % 97);
+  MultipleScatteringWork work;
+  Texture out;
+  auto kept = [&](const ScatteringShape& shape, const Texture& density, int nodes) {
+    bake_multiple_scattering(o.atm, shape, density, nodes, BakeContext{}, out, work);
+    return out.data;
+  };
+  auto fresh = [&](const ScatteringShape& shape, const Texture& density, int nodes) {
+    return bake_multiple_scattering(o.atm, shape, density, nodes, BakeContext{}).data;
+  };
+  EXPECT_TRUE(kept(kSmall, J2, 30) == fresh(kSmall, J2, 30));
+  EXPECT_TRUE(kept(kSmall, J, 30) == fresh(kSmall, J, 30));    // the nodes read back
+  EXPECT_TRUE(kept(kSmall, J, 20) == fresh(kSmall, J, 20));    // fewer nodes per ray
+  EXPECT_TRUE(kept(other, J_other, 20) == fresh(other, J_other, 20));  // another shape
+}
+
 TEST(MultipleScattering, ConstantDensityInAUniformSlab) {
   // J = J0 everywhere in a slab of constant sigma_t:
   //   DeltaS = J0 int_0^d exp(-sigma_t s) ds = J0 (1 - exp(-sigma_t d)) / sigma_t,
