@@ -106,7 +106,9 @@ TEST(RuntimeMetadata, EveryExrTableRecordsTheSunAndItsSampler) {
     EXPECT_EQ(exr_value<Imf::StringAttribute>(h, "wrap_v"), "clamp");
     const bool volume = file == "scattering.exr";
     EXPECT_EQ(h.find("skybake:wrap_w") != h.end(), volume);
-    if (volume) EXPECT_EQ(exr_value<Imf::StringAttribute>(h, "wrap_w"), "clamp");
+    if (volume) {
+      EXPECT_EQ(exr_value<Imf::StringAttribute>(h, "wrap_w"), "clamp");
+    }
     // Transmittance and the isotropic multiple-scattering transfer do not
     // depend on the Mie phase; the others record it.
     const bool mie = file != "transmittance.exr" && file != "multiscattering.exr";
