@@ -7,6 +7,7 @@
 #include "atmosphere/medium_block.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/phase.hpp"
+#include "atmosphere/segment_sources.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/exp_block.hpp"
 #include "core/math.hpp"
@@ -24,11 +25,11 @@ struct RayComponent {
   glm::dvec3 scattering_phase;
 };
 
-// segments_block's arrays, one entry per segment.
+// segments_block's arrays, one entry per segment (end_sun, end_ms: per end).
 struct BlockScratch {
   MediumBlock medium;
   std::vector<double> h, r, mu_s, density, em;
-  std::vector<glm::dvec3> sigma_s, sigma_t, sigma_s_phase;
+  std::vector<glm::dvec3> sigma_s, sigma_t, sigma_s_phase, end_sun, end_ms;
 };
 
 struct MarchState {
@@ -91,9 +92,10 @@ class RayMarcher {
 
   // n segments over [t0, t1] placed by `dist`; a segment that holds one of
   // the ascending distances `cuts` is integrated as two (or more) pieces.
-  // With `block`, segments_block integrates them.
+  // With `block` or `at_ends`, segments_block integrates them.
   void march(double t0, double t1, int n, StepDistribution dist, MarchState& st,
-             const std::vector<double>& cuts = {}, bool block = false) const {
+             const std::vector<double>& cuts = {}, bool block = false, bool at_ends = false) const {
+    block = block || at_ends;
     if (empty() || !(t1 > t0)) return;
     n = std::max(n, 1);
     std::vector<double> ends;  // block: the segments' ends, t0 first
@@ -118,16 +120,27 @@ class RayMarcher {
       emit(a, b);
       a = b;
     }
-    if (block) segments_block(ends, st);
+    if (block) segments_block(ends, st, at_ends);
   }
 
   // segment() over [ends[i], ends[i + 1]] for every i, in order, with the
   // media's exponentials and the weights' expm1s taken in blocks
-  // (IntegrationOptions::block_exponentials).
-  void segments_block(const std::vector<double>& ends, MarchState& st) const {
-    const size_t n = ends.size() - 1;
+  // (IntegrationOptions::block_exponentials); `at_ends`: the sources read at
+  // the ends instead (IntegrationOptions::sources_at_ends).
+  void segments_block(const std::vector<double>& ends, MarchState& st, bool at_ends) const {
     // Scratch kept by each thread from march to march (no allocation per ray).
     thread_local BlockScratch b;
+    media_block(ends, b);
+    if (at_ends)
+      light_at_ends(ends, b, st);
+    else
+      light_at_midpoints(ends, b, st);
+  }
+
+  // The segments' midpoints, media (sigma_s, sigma_t, sigma_s_phase) and the
+  // expm1(-sigma_t dt) of each channel, in blocks.
+  void media_block(const std::vector<double>& ends, BlockScratch& b) const {
+    const size_t n = ends.size() - 1;
     MediumBlock& scratch = b.medium;
     std::vector<double>&h = b.h, &r = b.r, &mu_s = b.mu_s, &density = b.density, &em = b.em;
     std::vector<glm::dvec3>&sigma_s = b.sigma_s, &sigma_t = b.sigma_t,
@@ -156,6 +169,16 @@ class RayMarcher {
       for (int c = 0; c < 3; ++c)
         em[3 * i + c] = std::clamp(-sigma_t[i][c] * (ends[i + 1] - ends[i]), -708.0, 708.0);
     expm1_block(em.data(), em.size());
+  }
+
+  // segment()'s sums over media_block's segments, the sources read at the
+  // midpoints.
+  void light_at_midpoints(const std::vector<double>& ends, const BlockScratch& b,
+                          MarchState& st) const {
+    const size_t n = ends.size() - 1;
+    const std::vector<double>&r = b.r, &mu_s = b.mu_s, &em = b.em;
+    const std::vector<glm::dvec3>&sigma_s = b.sigma_s, &sigma_t = b.sigma_t,
+    &sigma_s_phase = b.sigma_s_phase;
     for (size_t i = 0; i < n; ++i) {
       const double dt = ends[i + 1] - ends[i];
       if (!(dt > 0.0) || sigma_t[i] == glm::dvec3(0.0)) continue;
@@ -169,6 +192,43 @@ class RayMarcher {
       }
       st.luminance += st.transmittance * atm_.sun_illuminance * source * w.weight;
       st.transmittance *= w.transmittance;
+    }
+  }
+
+  // The sums over media_block's segments with the sun's transmittance and
+  // Psi_ms read at the segments' ends and each channel's source integrated
+  // linear between them (segment_sources.hpp).
+  void light_at_ends(const std::vector<double>& ends, BlockScratch& b, MarchState& st) const {
+    const size_t n = ends.size() - 1;
+    b.end_sun.resize(n + 1);
+    b.end_ms.resize(n + 1);
+    // |origin + t dir|^2 and its dot with the sun, expanded (dir is unit).
+    const double oo = glm::dot(origin_, origin_), od = glm::dot(origin_, dir_);
+    const double os = glm::dot(origin_, sun_), ds = glm::dot(dir_, sun_);
+    for (size_t k = 0; k <= n; ++k) {
+      const double t = ends[k];
+      const double r =
+          std::max(std::sqrt(std::max(oo + t * (2.0 * od + t), 0.0)), atm_.bottom_radius_m);
+      const double mu_s = clamp_cosine((os + t * ds) / r);
+      b.end_sun[k] = lookup_sun_transmittance(tlut_, atm_, r, mu_s);
+      if (mslut_) b.end_ms[k] = lookup_multiscattering(*mslut_, msmap_, atm_, r, mu_s);
+    }
+    for (size_t i = 0; i < n; ++i) {
+      const double dt = ends[i + 1] - ends[i];
+      if (!(dt > 0.0) || b.sigma_t[i] == glm::dvec3(0.0)) continue;
+      glm::dvec3 scattered, transmittance;
+      for (int c = 0; c < 3; ++c) {
+        const double em = b.em[3 * i + c];
+        transmittance[c] = 1.0 + em;
+        const EndSourceWeights w = end_source_weights(b.sigma_t[i][c] * dt, em, dt);
+        scattered[c] =
+            b.sigma_s_phase[i][c] * end_source_integral(b.end_sun[i][c], b.end_sun[i + 1][c], w);
+        if (mslut_)  // eq. 11
+          scattered[c] +=
+              b.sigma_s[i][c] * end_source_integral(b.end_ms[i][c], b.end_ms[i + 1][c], w);
+      }
+      st.luminance += st.transmittance * atm_.sun_illuminance * scattered;
+      st.transmittance *= transmittance;
     }
   }
 
@@ -247,7 +307,7 @@ ScatteringResult integrate_scattered_luminance(const Atmosphere& atm,
   MarchState st;
   marcher.march(span.t_enter, t_end, steps, options.distribution, st,
                 options.cut_at_shadow ? marcher.shadow_crossings() : std::vector<double>{},
-                options.block_exponentials);
+                options.block_exponentials, options.sources_at_ends);
   if (options.lit_ground && span.exits_on_ground && t_end >= span.t_exit)
     marcher.lit_ground(span.t_exit, st);
   return {st.luminance, st.transmittance};

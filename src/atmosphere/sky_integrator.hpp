@@ -68,6 +68,16 @@ struct IntegrationOptions {
   // rounding (the error records' references, pipeline/atmosphere_errors.cpp;
   // the tables and the preview keep libm's bits).
   bool block_exponentials = false;
+  // Read the sun's transmittance and Psi_ms at each segment's two ends and
+  // integrate each channel's source linear between them against the
+  // segment's exponential weight (segment_sources.hpp), instead of constant
+  // at the midpoint; the medium stays sampled at the midpoint. In optically
+  // thick segments the light comes from near the segment's start, where a
+  // midpoint read is far off (the aerial record's reference,
+  // pipeline/atmosphere_errors.cpp; docs/decisions.md "Aerial-perspective
+  // record: converged on stiff media"). n + 1 reads of each table for n
+  // segments. Takes the block path (block_exponentials).
+  bool sources_at_ends = false;
   // The multiple-scattering table's mapping (multiscattering_mapping_of),
   // parsed once by a caller that marches many rays; null: parsed per ray.
   const MultiscatteringMapping* multiscattering_mapping = nullptr;

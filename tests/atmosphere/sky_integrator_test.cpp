@@ -1,5 +1,6 @@
 // Tests of the sky ray march (atmosphere/sky_integrator.hpp): the segment
-// integral's closed form, clipping rays to the shell, an empty atmosphere,
+// integral's closed form (a constant source, and a linear one between the
+// segment's ends: segment_sources.hpp), clipping rays to the shell, an empty atmosphere,
 // single scattering in a uniform slab against its closed form, the planet's
 // shadow, the lit ground, viewers in space, the cumulative profile and stiff
 // media.
@@ -12,6 +13,7 @@
 
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/phase.hpp"
+#include "atmosphere/segment_sources.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "support/test_atmospheres.hpp"
 
@@ -45,6 +47,25 @@ TEST(IntegrateSegment, MatchesClosedFormAndLimits) {
   // Tiny optical depth keeps full precision (expm1): S d (1 - s d / 2).
   const glm::dvec3 thin = integrate_segment(glm::dvec3(1.0), glm::dvec3(1e-15), 1.0);
   EXPECT_NEAR(thin.x, 1.0, 1e-15);
+}
+
+TEST(EndSources, LinearSourceIntegralMatchesQuadrature) {
+  // integral_0^dt exp(-sigma s) (a + (b - a) s / dt) ds by composite Simpson
+  // (400000 intervals: (x / n)^4 / 180 < 1e-13 relative even at x = 750), on
+  // both sides of the series' threshold and in thick and thin segments.
+  const double dt = 100.0, a = 2.0, b = 5.0;
+  for (double x : {0.0, 1e-7, 9.99e-4, 1.001e-3, 0.3, 10.0, 750.0}) {
+    const double sigma = x / dt;
+    const auto f = [&](double s) { return std::exp(-sigma * s) * (a + (b - a) * s / dt); };
+    const int n = 400000;
+    double sum = f(0.0) + f(dt);
+    for (int k = 1; k < n; ++k) sum += (k % 2 ? 4.0 : 2.0) * f(dt * k / n);
+    const double quadrature = sum * dt / n / 3.0;
+    const EndSourceWeights w = end_source_weights(x, std::expm1(-x), dt);
+    EXPECT_NEAR(end_source_integral(a, b, w), quadrature, 1e-12 * quadrature) << x;
+    // A constant source: the energy-conserving weight of segment_weights.
+    EXPECT_NEAR(w.weight, segment_weights(glm::dvec3(sigma), dt).weight.x, 1e-14 * w.weight) << x;
+  }
 }
 
 TEST(ClipRay, GroundViewerZenithAndNadir) {
