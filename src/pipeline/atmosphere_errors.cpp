@@ -175,8 +175,7 @@ nlohmann::json measure_aerial_perspective_error(const Scene& scene, const Output
   const Atmosphere& atm = scene.atmosphere;
   const AerialPerspectiveSpec baked = aerial_perspective_spec(spec);
   const glm::dvec3 sun = sun_direction(baked.sun_zenith_rad, baked.sun_azimuth_rad);
-  IntegrationOptions options;
-  options.block_exponentials = true;
+  IntegrationOptions options = aerial_reference_options();
   const Texture* multiscattering = in.at("multiscattering");
   const MultiscatteringMapping mapping =
       multiscattering ? multiscattering_mapping_of(*multiscattering) : MultiscatteringMapping{};
@@ -186,8 +185,7 @@ nlohmann::json measure_aerial_perspective_error(const Scene& scene, const Output
     const AerialQueryPoint q = aerial_query(atm, baked, i);
     reads[i].first =
         glm::dvec3(lookup_aerial_perspective(lut, baked.depth_range_m, q.screen_uv, q.distance_m));
-    const int steps = std::max(
-        kAerialMinSteps, int(std::ceil(kAerialReferenceSteps * q.distance_m / baked.depth_range_m)));
+    const int steps = aerial_reference_segments(q.distance_m, baked.depth_range_m);
     reads[i].second = integrate_scattered_luminance(atm, *in.at("transmittance"),
                                                     in.at("multiscattering"), q.position,
                                                     q.view_dir, sun, q.distance_m, steps, options)
@@ -198,8 +196,9 @@ nlohmann::json measure_aerial_perspective_error(const Scene& scene, const Output
       fmt::format("lookup_aerial_perspective (trilinear, RGB) at a uniform screen position and "
                   "a distance uniform up to the nearer of the depth range and the ground, "
                   "against the same march from the camera in uniform steps, {} over the depth "
-                  "range (at least {} a query), reading the same transmittance and "
-                  "multiple-scattering tables",
+                  "range (at least {} a query), the sun's transmittance and Psi_ms read at each "
+                  "step's ends and integrated linear across it against the step's exponential "
+                  "weight, reading the same transmittance and multiple-scattering tables",
                   kAerialReferenceSteps, kAerialMinSteps));
 }
 
