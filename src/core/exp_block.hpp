@@ -30,8 +30,13 @@
 
 namespace skybake {
 
-// exp(v) for |v| <= 708, the arithmetic of every element of the loops below.
-inline __attribute__((always_inline)) double exp_one(double v) {
+// The Cody & Waite reduction of v (|v| <= 708, see the top): y = v - k ln 2
+// and scale = 2^k, shared by exp_one and expm1_one.
+struct ExpReduced {
+  double y;
+  double scale;
+};
+inline __attribute__((always_inline)) ExpReduced exp_reduce(double v) {
   constexpr double kLog2e = 1.4426950408889634;
   constexpr double kShifter = 0x1.8p52;  // adding it rounds to an integer in the low bits
   constexpr double kLn2Hi = 0x1.62e42fee00000p-1;   // 32 significant bits: k * it is exact
@@ -39,6 +44,20 @@ inline __attribute__((always_inline)) double exp_one(double v) {
   const double t = v * kLog2e + kShifter;
   const double k = t - kShifter;
   const double y = (v - k * kLn2Hi) - k * kLn2Lo;
+  // The low bits of t hold k (two's complement); shifted into the
+  // exponent field with its bias they are 2^k.
+  uint64_t bits;
+  std::memcpy(&bits, &t, sizeof bits);
+  const uint64_t scale_bits = (bits + 1023) << 52;
+  double scale;
+  std::memcpy(&scale, &scale_bits, sizeof scale);
+  return {y, scale};
+}
+
+// exp(v) for |v| <= 708, the arithmetic of every element of the loops below.
+inline __attribute__((always_inline)) double exp_one(double v) {
+  const ExpReduced r = exp_reduce(v);
+  const double y = r.y;
   // Estrin's scheme: independent pairs, then powers of y, for a short
   // chain of dependent operations.
   const double y2 = y * y, y4 = y2 * y2;
@@ -49,14 +68,7 @@ inline __attribute__((always_inline)) double exp_one(double v) {
   const double c1213 = 1.0 / 479001600.0 + y * (1.0 / 6227020800.0);
   const double c0_3 = c01 + y2 * c23, c4_7 = c45 + y2 * c67, c8_11 = c89 + y2 * c1011;
   const double p = c0_3 + y4 * (c4_7 + y4 * (c8_11 + y4 * c1213));
-  // The low bits of t hold k (two's complement); shifted into the
-  // exponent field with its bias they are 2^k.
-  uint64_t bits;
-  std::memcpy(&bits, &t, sizeof bits);
-  const uint64_t scale_bits = (bits + 1023) << 52;
-  double scale;
-  std::memcpy(&scale, &scale_bits, sizeof scale);
-  return p * scale;
+  return p * r.scale;
 }
 
 inline void exp_in_place(double* x, size_t n) {
@@ -82,13 +94,8 @@ inline void exp_block(double* x, size_t n) {
 
 // expm1(v) for |v| <= 708 (see the top).
 inline __attribute__((always_inline)) double expm1_one(double v) {
-  constexpr double kLog2e = 1.4426950408889634;
-  constexpr double kShifter = 0x1.8p52;
-  constexpr double kLn2Hi = 0x1.62e42fee00000p-1;
-  constexpr double kLn2Lo = 0x1.a39ef35793c76p-33;
-  const double t = v * kLog2e + kShifter;
-  const double k = t - kShifter;
-  const double y = (v - k * kLn2Hi) - k * kLn2Lo;
+  const ExpReduced r = exp_reduce(v);
+  const double y = r.y;
   const double y2 = y * y, y4 = y2 * y2, y8 = y4 * y4;
   const double c01 = 1.0 + y * 0.5, c23 = 1.0 / 6.0 + y * (1.0 / 24.0);
   const double c45 = 1.0 / 120.0 + y * (1.0 / 720.0), c67 = 1.0 / 5040.0 + y * (1.0 / 40320.0);
@@ -96,12 +103,7 @@ inline __attribute__((always_inline)) double expm1_one(double v) {
   const double c1011 = 1.0 / 39916800.0 + y * (1.0 / 479001600.0);
   const double c12 = 1.0 / 6227020800.0;
   const double q = (c01 + y2 * c23) + y4 * (c45 + y2 * c67) + y8 * ((c89 + y2 * c1011) + y4 * c12);
-  uint64_t bits;
-  std::memcpy(&bits, &t, sizeof bits);
-  const uint64_t scale_bits = (bits + 1023) << 52;
-  double scale;
-  std::memcpy(&scale, &scale_bits, sizeof scale);
-  return scale * (y * q) + (scale - 1.0);
+  return r.scale * (y * q) + (r.scale - 1.0);
 }
 
 inline void expm1_in_place(double* x, size_t n) {

@@ -1,6 +1,7 @@
 #include "core/tiling_rgba.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 
 #include "core/wide_vectors.hpp"
@@ -94,7 +95,9 @@ SKYBAKE_BODY void fill_lines(const PlaneLines& pl, int u0, int n, Scratch& s) {
   }
   for (int i = -kPadBefore; i < len + kPadAfter; ++i) {
     const float* row = pl.rows[wrap_index(i, len)] + 4 * size_t(u0);
-    for (int g = 0; g < n; ++g) x[size_t(g) * s.stride + i] = SKYBAKE_LOAD_TEXEL(row + 4 * g);
+    // Signed: i runs from -kPadBefore, and an unsigned offset would wrap.
+    for (int g = 0; g < n; ++g)
+      x[std::ptrdiff_t(g) * std::ptrdiff_t(s.stride) + i] = SKYBAKE_LOAD_TEXEL(row + 4 * g);
   }
 }
 
@@ -163,7 +166,7 @@ SKYBAKE_BODY void add_faces(const Scratch& s, int len, int m, FaceSums& sums) {
   for (int f = 0; f < len; ++f) {
     v4d j = jump[f], js = jump_side[f], t = turn[f], ts = turn_side[f];
     for (int g = 0; g < m; ++g) {
-      const size_t o = size_t(g) * st + size_t(f);
+      const std::ptrdiff_t o = std::ptrdiff_t(g) * std::ptrdiff_t(st) + f;  // o - 3 may be < 0
       j += ad[o];
       js += SKYBAKE_MAX_LANES(p[o - 2], p[o + 1]) / 2;
       t += k[o];
