@@ -29,20 +29,6 @@ double radius_excess_integral(double p, double x0, double r0, double x1, double 
   return 0.5 * (length * (r1 - R) + x0 * dr + p * p * log_ratio - R * length);
 }
 
-namespace {
-
-// The layer of `profile` that holds altitude h (medium.cpp density_at's choice).
-const DensityLayer& layer_at(const DensityProfile& profile, double h) {
-  double bottom = 0.0;
-  for (size_t i = 0; i + 1 < profile.layers.size(); ++i) {
-    if (h < bottom + profile.layers[i].width_m) return profile.layers[i];
-    bottom += profile.layers[i].width_m;
-  }
-  return profile.layers.back();
-}
-
-}  // namespace
-
 LinearLayerDepth::LinearLayerDepth(const Atmosphere& atm) : bottom_radius_(atm.bottom_radius_m) {
   const double top_h = atm.top_radius_m - atm.bottom_radius_m;
   std::vector<const MediumComponent*> linear;

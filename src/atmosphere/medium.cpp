@@ -5,18 +5,20 @@
 
 namespace skybake {
 
-double density_at(const DensityProfile& profile, double h) {
+const DensityLayer& layer_at(const DensityProfile& profile, double h) {
   double layer_bottom = 0.0;
-  for (size_t i = 0; i < profile.layers.size(); ++i) {
-    const DensityLayer& l = profile.layers[i];
-    const bool last = i + 1 == profile.layers.size();
-    if (last || h < layer_bottom + l.width_m) {
-      const double e = l.exp_term == 0.0 ? 0.0 : l.exp_term * std::exp(l.exp_scale_per_m * h);
-      return std::clamp(e + l.linear_term_per_m * h + l.constant_term, 0.0, 1.0);
-    }
-    layer_bottom += l.width_m;
+  size_t k = 0;
+  for (; k + 1 < profile.layers.size(); ++k) {
+    if (h < layer_bottom + profile.layers[k].width_m) break;
+    layer_bottom += profile.layers[k].width_m;
   }
-  return 0.0;
+  return profile.layers[k];
+}
+
+double density_at(const DensityProfile& profile, double h) {
+  if (profile.layers.empty()) return 0.0;
+  const DensityLayer& l = layer_at(profile, h);
+  return layer_density(l, h, l.exp_term == 0.0 ? 0.0 : std::exp(l.exp_scale_per_m * h));
 }
 
 DensityProfile exponential_profile(double scale_height_m) {

@@ -14,6 +14,8 @@
 // the layer's bottom), as in Bruneton's model.
 #pragma once
 
+#include <algorithm>
+
 #include <string>
 #include <vector>
 
@@ -35,6 +37,17 @@ struct DensityProfile {
 
 // Profile density at altitude h (metres), in [0, 1].
 double density_at(const DensityProfile& profile, double altitude_m);
+
+// density_at's two halves, for callers that take the exponentials in blocks
+// (medium_block.hpp): the layer holding altitude h (the first whose top lies
+// above it, else the last; the profile must have a layer), and that layer's
+// clamped density at h given exponential = exp(l.exp_scale_per_m h) (read
+// only where l.exp_term != 0).
+const DensityLayer& layer_at(const DensityProfile& profile, double altitude_m);
+inline double layer_density(const DensityLayer& l, double altitude_m, double exponential) {
+  const double e = l.exp_term == 0.0 ? 0.0 : l.exp_term * exponential;
+  return std::clamp(e + l.linear_term_per_m * altitude_m + l.constant_term, 0.0, 1.0);
+}
 
 // Helpers that build the usual profiles.
 DensityProfile exponential_profile(double scale_height_m);

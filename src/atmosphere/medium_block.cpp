@@ -13,19 +13,11 @@ void density_block(const DensityProfile& profile, const double* h, size_t n, Nod
     std::fill(density, density + n, 0.0);
     return;
   }
-  const std::vector<DensityLayer>& layers = profile.layers;
   scratch.exponent.resize(n);
   scratch.layer.resize(n);
-  // density_at's layer: the first whose top lies above h, else the last.
   for (size_t i = 0; i < n; ++i) {
-    double layer_bottom = 0.0;
-    size_t k = 0;
-    for (; k + 1 < layers.size(); ++k) {
-      if (h[i] < layer_bottom + layers[k].width_m) break;
-      layer_bottom += layers[k].width_m;
-    }
-    scratch.layer[i] = &layers[k];
-    scratch.exponent[i] = layers[k].exp_scale_per_m * h[i];
+    scratch.layer[i] = &layer_at(profile, h[i]);
+    scratch.exponent[i] = scratch.layer[i]->exp_scale_per_m * h[i];
   }
   if (exp_kind == NodeExp::block) {
     for (size_t i = 0; i < n; ++i)
@@ -34,11 +26,8 @@ void density_block(const DensityProfile& profile, const double* h, size_t n, Nod
   } else {
     for (size_t i = 0; i < n; ++i) scratch.exponent[i] = std::exp(scratch.exponent[i]);
   }
-  for (size_t i = 0; i < n; ++i) {
-    const DensityLayer& l = *scratch.layer[i];
-    const double e = l.exp_term == 0.0 ? 0.0 : l.exp_term * scratch.exponent[i];
-    density[i] = std::clamp(e + l.linear_term_per_m * h[i] + l.constant_term, 0.0, 1.0);
-  }
+  for (size_t i = 0; i < n; ++i)
+    density[i] = layer_density(*scratch.layer[i], h[i], scratch.exponent[i]);
 }
 
 void sample_medium_block(const Atmosphere& atm, const double* h, size_t n, NodeExp exp_kind,

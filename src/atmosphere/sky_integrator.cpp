@@ -185,11 +185,7 @@ class RayMarcher {
       glm::dvec3 source = lookup_sun_transmittance(tlut_, atm_, r[i], mu_s[i]) * sigma_s_phase[i];
       if (mslut_)
         source += lookup_multiscattering(*mslut_, msmap_, atm_, r[i], mu_s[i]) * sigma_s[i];
-      SegmentWeights w;  // segment_weights with the block's expm1s
-      for (int c = 0; c < 3; ++c) {
-        w.weight[c] = sigma_t[i][c] > 0.0 ? -em[3 * i + c] / sigma_t[i][c] : dt;
-        w.transmittance[c] = 1.0 + em[3 * i + c];
-      }
+      const SegmentWeights w = segment_weights_from_expm1(sigma_t[i], dt, &em[3 * i]);
       st.luminance += st.transmittance * atm_.sun_illuminance * source * w.weight;
       st.transmittance *= w.transmittance;
     }

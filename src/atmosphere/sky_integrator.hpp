@@ -143,14 +143,22 @@ struct SegmentWeights {
   glm::dvec3 weight;
   glm::dvec3 transmittance;
 };
-inline SegmentWeights segment_weights(glm::dvec3 sigma_t, double length_m) {
+// Those weights from em[c] = expm1(-sigma_t[c] length_m), for callers that take
+// the expm1s in blocks (sky_integrator.cpp's references).
+inline SegmentWeights segment_weights_from_expm1(glm::dvec3 sigma_t, double length_m,
+                                                 const double em[3]) {
   SegmentWeights w;
   for (int c = 0; c < 3; ++c) {
-    const double em = std::expm1(-sigma_t[c] * length_m);  // exp(-x) - 1
-    w.weight[c] = sigma_t[c] > 0.0 ? -em / sigma_t[c] : length_m;
-    w.transmittance[c] = 1.0 + em;
+    w.weight[c] = sigma_t[c] > 0.0 ? -em[c] / sigma_t[c] : length_m;
+    w.transmittance[c] = 1.0 + em[c];
   }
   return w;
+}
+
+inline SegmentWeights segment_weights(glm::dvec3 sigma_t, double length_m) {
+  double em[3];
+  for (int c = 0; c < 3; ++c) em[c] = std::expm1(-sigma_t[c] * length_m);  // exp(-x) - 1
+  return segment_weights_from_expm1(sigma_t, length_m, em);
 }
 
 // Closed-form integral of a constant source S through constant extinction

@@ -168,17 +168,32 @@ Imf::FrameBuffer frame_buffer(const std::vector<std::string>& channels, const T*
   return fb;
 }
 
-// The frame buffer of one part to write; half parts are rounded here
-// (Imath's float-to-half rounds to nearest even) into `halves`.
+// The frame buffer of one part to write, or of its `rows` scanlines from
+// `min_y` (all of them by default); half parts are rounded here (Imath's
+// float-to-half rounds to nearest even) into `halves`.
 Imf::FrameBuffer write_buffer(const Imf::Header& header, const std::vector<std::string>& channels,
-                              const float* pixels, std::vector<half>& halves) {
+                              const float* pixels, std::vector<half>& halves, int64_t min_y = 0,
+                              int64_t rows = -1) {
   const Imath::Box2i& dw = header.dataWindow();
   const int64_t width = dw.max.x + 1;
+  if (rows < 0) rows = dw.max.y + 1;
   if (header.channels().begin().channel().type != Imf::HALF)
-    return frame_buffer(channels, pixels, width, 0, 0);
-  halves.resize(size_t(width) * size_t(dw.max.y + 1) * channels.size());
+    return frame_buffer(channels, pixels, width, 0, min_y);
+  halves.resize(size_t(width) * size_t(rows) * channels.size());
   for (size_t i = 0; i < halves.size(); ++i) halves[i] = half(pixels[i]);
-  return frame_buffer(channels, halves.data(), width, 0, 0);
+  return frame_buffer(channels, halves.data(), width, 0, min_y);
+}
+
+// Runs `write`; what OpenEXR throws removes the partial file and becomes
+// "<path>: cannot write EXR: <reason>".
+template <class Write>
+void write_or_remove(const std::string& path, Write write) {
+  try {
+    write();
+  } catch (const std::exception& e) {
+    std::remove(path.c_str());
+    throw IoError(fmt::format("{}: cannot write EXR: {}", path, e.what()));
+  }
 }
 
 // Writes a volume as an atlas image of columns x rows cells, one row of
@@ -192,8 +207,7 @@ void write_atlas(const std::string& path, const Imf::Header& header, const Textu
   const size_t atlas_width = size_t(columns) * size_t(tex.width);
   std::vector<float> band(atlas_width * size_t(tex.height) * nc);
   std::vector<half> halves;
-  const bool halve = header.channels().begin().channel().type == Imf::HALF;
-  try {
+  write_or_remove(path, [&] {
     Imf::OutputFile out(path.c_str(), header, exr_write_threads(header));
     for (int r = 0; r < rows; ++r) {
       for (int k = 0; k < columns; ++k)
@@ -201,20 +215,11 @@ void write_atlas(const std::string& path, const Imf::Header& header, const Textu
           const float* src = tex.texel(0, y, r * columns + k, 0);
           std::copy(src, src + slice_row, &band[(size_t(y) * atlas_width + size_t(k) * tex.width) * nc]);
         }
-      const int64_t min_y = int64_t(r) * tex.height;
-      if (halve) {
-        halves.resize(band.size());
-        for (size_t i = 0; i < band.size(); ++i) halves[i] = half(band[i]);
-        out.setFrameBuffer(frame_buffer(tex.channels, halves.data(), int64_t(atlas_width), 0, min_y));
-      } else {
-        out.setFrameBuffer(frame_buffer(tex.channels, band.data(), int64_t(atlas_width), 0, min_y));
-      }
+      out.setFrameBuffer(write_buffer(header, tex.channels, band.data(), halves,
+                                      int64_t(r) * tex.height, tex.height));
       out.writePixels(tex.height);
     }
-  } catch (const std::exception& e) {
-    std::remove(path.c_str());
-    throw IoError(fmt::format("{}: cannot write EXR: {}", path, e.what()));
-  }
+  });
 }
 
 // Writes the given parts (one header and one pixel pointer each, float32 with
@@ -222,7 +227,7 @@ void write_atlas(const std::string& path, const Imf::Header& header, const Textu
 void write_parts(const std::string& path, std::vector<Imf::Header>& headers,
                  const std::vector<const float*>& pixels, const std::vector<std::string>& channels) {
   std::vector<half> halves;
-  try {
+  write_or_remove(path, [&] {
     if (headers.size() == 1) {
       Imf::OutputFile out(path.c_str(), headers[0], exr_write_threads(headers[0]));
       out.setFrameBuffer(write_buffer(headers[0], channels, pixels[0], halves));
@@ -238,10 +243,7 @@ void write_parts(const std::string& path, std::vector<Imf::Header>& headers,
         part.writePixels(headers[i].dataWindow().max.y + 1);
       }
     }
-  } catch (const std::exception& e) {
-    std::remove(path.c_str());
-    throw IoError(fmt::format("{}: cannot write EXR: {}", path, e.what()));
-  }
+  });
 }
 
 }  // namespace
