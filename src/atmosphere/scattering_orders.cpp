@@ -58,6 +58,12 @@ TexelPhases texel_phases(const Atmosphere& atm, const ScatteringShape& shape,
   return out;
 }
 
+// A texel of the sums with factor times an order's DeltaS added (DeltaS is
+// stored times the Rayleigh phase, the sums without it).
+inline float with_order(float sum, double factor, float delta, double rayleigh_phase) {
+  return float(sum + factor * double(delta) / rayleigh_phase);
+}
+
 // to = from, both of one size, in parallel blocks.
 void parallel_copy(const std::vector<float>& from, std::vector<float>& to) {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, from.size(), size_t(1) << 16),
@@ -103,8 +109,8 @@ OrderChange measure_and_add_order(Texture& accumulated, const Texture& single_mi
       for (int c = 0; c < 3; ++c) {
         residuals[run] = std::max(residuals[run], double(delta.data[3 * t + c]) /
                                                       std::max(radiance(t, c), floor));
-        accumulated.data[3 * t + c] = float(accumulated.data[3 * t + c] +
-                                            1.0 * double(delta.data[3 * t + c]) / phase.rayleigh[t]);
+        accumulated.data[3 * t + c] =
+            with_order(accumulated.data[3 * t + c], 1.0, delta.data[3 * t + c], phase.rayleigh[t]);
       }
   });
   OrderChange change;
@@ -121,9 +127,9 @@ void add_order(Texture& accumulated, const Texture& delta, const TexelPhases& ph
                     [&](const tbb::blocked_range<size_t>& ts) {
                       for (size_t t = ts.begin(); t != ts.end(); ++t)
                         for (int c = 0; c < 3; ++c)
-                          accumulated.data[3 * t + c] = float(
-                              accumulated.data[3 * t + c] +
-                              factor[c] * double(delta.data[3 * t + c]) / phase.rayleigh[t]);
+                          accumulated.data[3 * t + c] =
+                              with_order(accumulated.data[3 * t + c], factor[c],
+                                         delta.data[3 * t + c], phase.rayleigh[t]);
                     });
 }
 
