@@ -43,19 +43,20 @@ void one_layer_densities(const DensityLayer& l, const double* h, double* density
   }
 }
 
-// sum_j w[j] exp(b h[j]) with exp_block, two partial sums to shorten
-// the chain of additions; scratch holds the exponentials.
-double weighted_exp_sum(double b, const double* h, const double* w, double* scratch, size_t n) {
-  for (size_t j = 0; j < n; ++j) scratch[j] = b * h[j];
-  exp_block(scratch, n);
-  double even = 0.0, odd = 0.0;
+// Two doubles of one vector: lane 0 the even nodes' chain of additions,
+// lane 1 the odd nodes', the same IEEE operations as two scalar sums.
+typedef double v2d __attribute__((vector_size(16)));
+typedef double v2d_any __attribute__((vector_size(16), aligned(8), may_alias));  // any double
+
+// sum_j w[j] e[j] in two partial sums, even and odd j, added at the end (a
+// chain half as long as one sum's).
+double weighted_sum(const double* w, const double* e, size_t n) {
+  v2d sums = {0.0, 0.0};
   size_t j = 0;
-  for (; j + 1 < n; j += 2) {
-    even += w[j] * scratch[j];
-    odd += w[j + 1] * scratch[j + 1];
-  }
-  if (j < n) even += w[j] * scratch[j];
-  return even + odd;
+  for (; j + 1 < n; j += 2)
+    sums += *reinterpret_cast<const v2d_any*>(w + j) * *reinterpret_cast<const v2d_any*>(e + j);
+  if (j < n) sums[0] += w[j] * e[j];
+  return sums[0] + sums[1];
 }
 
 // a exp(b h) with 0 < a <= 1, b <= 0 and nothing else stays in (0, 1] at
@@ -94,6 +95,7 @@ ExtinctionProfile::ExtinctionProfile(const Atmosphere& atm, bool closed_form_lin
       layers_.push_back({last ? inf : layer_bottom + l.width_m, l});
       layer_bottom += l.width_m;
     }
+    if (out.unclamped_exponential) ++unclamped_count_;
     components_.push_back(out);
   }
 }
@@ -102,27 +104,39 @@ glm::dvec3 ExtinctionProfile::integrate(const std::vector<double>& h, const std:
                                         std::vector<double>& density) const {
   glm::dvec3 tau(0.0);
   const size_t n = h.size();
-  density.resize(n);
+  // The unclamped exponentials' exps in one block: exp(b h[j]) of the k-th
+  // such component at density[k n + j]; the other components' densities
+  // after them, one component at a time.
+  density.resize(n * (unclamped_count_ + 1));
+  size_t unclamped = 0;
+  for (const Component& c : components_) {
+    if (!c.unclamped_exponential) continue;
+    const double b = layers_[c.first_layer].layer.exp_scale_per_m;
+    double* e = &density[n * unclamped++];
+    for (size_t j = 0; j < n; ++j) e[j] = b * h[j];
+  }
+  if (unclamped > 0) exp_block(density.data(), n * unclamped);
+  unclamped = 0;
   for (const Component& c : components_) {
     const Layer* first = &layers_[c.first_layer];
     if (c.unclamped_exponential) {
-      const double sum = weighted_exp_sum(first->layer.exp_scale_per_m, h.data(), w.data(),
-                                          density.data(), n);
+      const double sum = weighted_sum(w.data(), &density[n * unclamped++], n);
       tau += (first->layer.exp_term * sum) * c.sigma_t;
       continue;
     }
+    double* density_of_c = &density[n * unclamped_count_];
     if (c.layer_count == 1) {
-      one_layer_densities(first->layer, h.data(), density.data(), n, c.exp_kind);
+      one_layer_densities(first->layer, h.data(), density_of_c, n, c.exp_kind);
     } else {
       const Layer* last = first + (c.layer_count - 1);
       for (size_t j = 0; j < n; ++j) {
         const Layer* layer = first;
         while (layer != last && !(h[j] < layer->top)) ++layer;
-        one_layer_densities(layer->layer, &h[j], &density[j], 1, c.exp_kind);
+        one_layer_densities(layer->layer, &h[j], &density_of_c[j], 1, c.exp_kind);
       }
     }
     double sum = 0.0;
-    for (size_t j = 0; j < n; ++j) sum += w[j] * density[j];
+    for (size_t j = 0; j < n; ++j) sum += w[j] * density_of_c[j];
     tau += sum * c.sigma_t;
   }
   return tau;

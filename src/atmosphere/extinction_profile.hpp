@@ -53,6 +53,7 @@ class ExtinctionProfile {
   };
   std::vector<Layer> layers_;
   std::vector<Component> components_;
+  size_t unclamped_count_ = 0;  // components with unclamped_exponential set
 };
 
 }  // namespace skybake

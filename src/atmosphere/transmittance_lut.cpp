@@ -76,6 +76,10 @@ struct RayQuadrature {
   LinearLayerDepth linear;
   std::vector<double> scratch, breakpoints;
   std::vector<int> segments;
+  // graded[g][n][k - 1]: the grading of segment end k of a piece cut in n,
+  // t^2 (g = 0) or the table rule's t^1.25 (g = 1), t = k / n; filled on
+  // first use (a ray computed the same two roots per segment end).
+  std::vector<std::vector<double>> graded[2];
   std::vector<double> heights, weights;  // per node: altitude, Gauss weight times the half length
   std::vector<double> densities;         // per node, one component at a time
 };
@@ -226,6 +230,22 @@ void node_altitudes_from_perigee(std::vector<double>& s, double r, double mu,
   altitudes_from_perigee(s.data(), s.size(), from_perigee, p2, bottom_radius);
 }
 
+// The grading of a piece cut in n segments, q.graded's row: segment end k
+// at t^1.25 (`gentle`, the table's rule through a perigee) or t^2 of the
+// piece's length, t = k / n.
+const double* graded_fractions(RayQuadrature& q, bool gentle, int n) {
+  std::vector<std::vector<double>>& rows = q.graded[gentle ? 1 : 0];
+  if (rows.size() <= size_t(n)) rows.resize(size_t(n) + 1);
+  std::vector<double>& row = rows[size_t(n)];
+  if (row.empty()) {
+    for (int k = 1; k <= n; ++k) {
+      const double t = double(k) / n;
+      row.push_back(gentle ? t * std::sqrt(std::sqrt(t)) : t * t);
+    }
+  }
+  return row.data();
+}
+
 // The quadrature of compute_optical_depth with the kinks and profile already
 // known, plus the closed form of the linear components q.linear holds.
 glm::dvec3 integrate_optical_depth(const Atmosphere& atm, RayQuadrature& q, double r, double mu,
@@ -254,12 +274,11 @@ glm::dvec3 integrate_optical_depth(const Atmosphere& atm, RayQuadrature& q, doub
     const double length = s[i + 1] - s[i];
     const double low_end = descending ? s[i + 1] : s[i];
     const double sign = descending ? -1.0 : 1.0;
+    const double* graded = graded_fractions(q, q.table_rule && perigee > 0.0, n[i]);
     double prev = low_end;
     for (int k = 1; k <= n[i]; ++k) {
-      const double t = double(k) / n[i];
-      const double graded = q.table_rule && perigee > 0.0 ? t * std::sqrt(std::sqrt(t)) : t * t;
       const double next =
-          k == n[i] ? (descending ? s[i] : s[i + 1]) : low_end + sign * length * graded;
+          k == n[i] ? (descending ? s[i] : s[i + 1]) : low_end + sign * length * graded[k - 1];
       gauss_nodes(g, std::min(prev, next), std::max(prev, next), &q.heights[node],
                   &q.weights[node]);
       node += g.points;
@@ -329,19 +348,40 @@ glm::dvec2 transmittance_uv_from_r_mu(const Atmosphere& atm, double r, double mu
   return {texel_coord_from_unit(x_mu, width), texel_coord_from_unit(x_r, height)};
 }
 
-void r_mu_from_transmittance_uv(const Atmosphere& atm, glm::dvec2 uv, int width, int height,
-                                double& r, double& mu) {
+namespace {
+
+// The v half of r_mu_from_transmittance_uv: what a row of the table shares.
+struct TransmittanceRow {
+  double r, rt, d_min, d_max;
+};
+
+TransmittanceRow transmittance_row(const Atmosphere& atm, double v, int height) {
   const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
-  const double x_mu = std::clamp(unit_from_texel_coord(uv.x, width), 0.0, 1.0);
-  const double x_r = std::clamp(unit_from_texel_coord(uv.y, height), 0.0, 1.0);
+  const double x_r = std::clamp(unit_from_texel_coord(v, height), 0.0, 1.0);
   const double H = horizon_distance(atm);
   const double rho = H * x_r;
-  r = std::clamp(std::sqrt(rho * rho + rb * rb), rb, rt);
-  const double d_min = rt - r, d_max = rho + H;
-  const double d = d_min + x_mu * (d_max - d_min);
+  const double r = std::clamp(std::sqrt(rho * rho + rb * rb), rb, rt);
+  return {r, rt, rt - r, rho + H};
+}
+
+// The u half: mu of the ray whose distance to the top is u's fraction of the
+// row's [d_min, d_max].
+double transmittance_mu(const TransmittanceRow& row, double u, int width) {
+  const double x_mu = std::clamp(unit_from_texel_coord(u, width), 0.0, 1.0);
+  const double r = row.r, rt = row.rt;
+  const double d = row.d_min + x_mu * (row.d_max - row.d_min);
   // Law of cosines in the triangle centre / point / exit point; H^2 - rho^2 is
   // written (Rt - r)(Rt + r) so that it keeps its digits near the top.
-  mu = d == 0.0 ? 1.0 : clamp_cosine(((rt - r) * (rt + r) - d * d) / (2.0 * r * d));
+  return d == 0.0 ? 1.0 : clamp_cosine(((rt - r) * (rt + r) - d * d) / (2.0 * r * d));
+}
+
+}  // namespace
+
+void r_mu_from_transmittance_uv(const Atmosphere& atm, glm::dvec2 uv, int width, int height,
+                                double& r, double& mu) {
+  const TransmittanceRow row = transmittance_row(atm, uv.y, height);
+  r = row.r;
+  mu = transmittance_mu(row, uv.x, width);
 }
 
 // ---- Integration ----
@@ -399,10 +439,10 @@ Texture bake_transmittance_lut(const Atmosphere& atm, const TransmittanceLutSpec
       tbb::blocked_range<int>(0, spec.height), [&](const tbb::blocked_range<int>& rows) {
         RayQuadrature q = shared;  // scratch arrays of this task
         for (int y = rows.begin(); y != rows.end(); ++y) {
+          const TransmittanceRow row =
+              transmittance_row(atm, texel_center(y, spec.height), spec.height);
           for (int x = 0; x < spec.width; ++x) {
-            const glm::dvec2 uv(texel_center(x, spec.width), texel_center(y, spec.height));
-            double r = 0.0, mu = 0.0;
-            r_mu_from_transmittance_uv(atm, uv, spec.width, spec.height, r, mu);
+            const double r = row.r, mu = transmittance_mu(row, texel_center(x, spec.width), spec.width);
             const double d = distance_to_top_boundary(atm.top_radius_m, r, mu);
             const glm::dvec3 T = transmittance_from_optical_depth(
                 integrate_optical_depth(atm, q, r, mu, d, spec.steps, SegmentRule::gauss8));
