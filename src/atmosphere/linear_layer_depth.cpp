@@ -22,7 +22,11 @@ Chord chord(double x0, double r0, double x1, double r1, bool radii_exact) {
 
 double radius_excess_integral(double p, double x0, double r0, double x1, double r1, double R,
                               bool radii_exact) {
-  const auto [length, dr] = chord(x0, r0, x1, r1, radii_exact);
+  return radius_excess_integral(p, x0, r0, r1, R, chord(x0, r0, x1, r1, radii_exact));
+}
+
+double radius_excess_integral(double p, double x0, double r0, double r1, double R, Chord c) {
+  const auto [length, dr] = c;
   // asinh(x1 / p) - asinh(x0 / p) = log((x1 + r1) / (x0 + r0)); x0 + r0 > 0
   // unless the ray passes through the centre (p = 0), where p^2 times it is 0.
   const double log_ratio = p > 0.0 ? std::log1p((length + dr) / (x0 + r0)) : 0.0;
@@ -52,7 +56,7 @@ LinearLayerDepth::LinearLayerDepth(const Atmosphere& atm) : bottom_radius_(atm.b
     const double h = 0.5 * (lo + hi);
     Band band{i == kinks.size() ? std::numeric_limits<double>::infinity()
                                 : atm.bottom_radius_m + hi,
-              glm::dvec3(0.0), glm::dvec3(0.0)};
+              glm::dvec3(0.0), glm::dvec3(0.0), false};
     for (const MediumComponent* c : linear) {
       const DensityLayer& l = layer_at(c->density, h);
       const glm::dvec3 sigma_t = c->scattering_per_m + c->absorption_per_m;
@@ -64,6 +68,7 @@ LinearLayerDepth::LinearLayerDepth(const Atmosphere& atm) : bottom_radius_(atm.b
         band.constant += sigma_t * l.constant_term;
       }
     }
+    band.empty = band.slope == glm::dvec3(0.0) && band.constant == glm::dvec3(0.0);
     bands_.push_back(band);
   }
 }
@@ -85,16 +90,17 @@ void LinearLayerDepth::add_interval(const Ray& ray, double lo, double hi, double
     if (!last && disc <= 0.0) continue;  // the ray passes above this band
     const double x_top = last ? hi : std::sqrt(disc);
     const double x0 = std::max(x_bottom, lo), x1 = std::min(x_top, hi);
-    if (x1 > x0) {
+    // A band where every component is 0 adds +0 to tau, which changes no bit.
+    if (x1 > x0 && !band.empty) {
       const double r0 = x0 == x_bottom ? r_bottom : std::sqrt(x0 * x0 + ray.p2);
       const double r1 = x1 == x_top && !last ? R : std::sqrt(x1 * x1 + ray.p2);
       // Radii are exact at kinks, not at the perigee (p is rounded) nor at
       // the ray's ends.
       const bool radii_exact = x0 == x_bottom && bottom_is_kink && x1 == x_top && !last;
-      tau += (weight * chord(x0, r0, x1, r1, radii_exact).length) * band.constant;
+      const Chord c = chord(x0, r0, x1, r1, radii_exact);
+      tau += (weight * c.length) * band.constant;
       if (band.slope != glm::dvec3(0.0))
-        tau += (weight * radius_excess_integral(ray.p, x0, r0, x1, r1, bottom_radius_,
-                                                radii_exact)) *
+        tau += (weight * radius_excess_integral(ray.p, x0, r0, r1, bottom_radius_, c)) *
                band.slope;
     }
     if (x_top >= hi) break;

@@ -39,6 +39,8 @@ Chord chord(double x0, double r0, double x1, double r1, bool radii_exact);
 // h times: hence chord's choice of the exact pair.
 double radius_excess_integral(double p, double x0, double r0, double x1, double r1, double R,
                               bool radii_exact);
+// The same with the chord already taken (c = chord(x0, r0, x1, r1, radii_exact)).
+double radius_excess_integral(double p, double x0, double r0, double r1, double R, Chord c);
 
 class LinearLayerDepth {
  public:
@@ -60,6 +62,7 @@ class LinearLayerDepth {
   struct Band {
     double top_radius;  // m; +inf for the last band
     glm::dvec3 slope, constant;
+    bool empty;  // slope and constant 0: no component has extinction here
   };
   struct Ray {
     double r, x_start;  // start radius, signed distance from the perigee (r mu)
