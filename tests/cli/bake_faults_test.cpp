@@ -381,7 +381,7 @@ TEST(SharedFolder, BakesInSeparatePidNamespacesNeitherCollideNorLoseEntries) {
     }
     const json manifest = json::parse(read_file(out / "shared" / "manifest.json"));
     EXPECT_EQ(manifest["outputs"], ref_manifest["outputs"]) << "round " << round;
-    for (const std::string& f : {"transmittance.exr", "transmittance.dds", "skyview.exr",
+    for (const char* f : {"transmittance.exr", "transmittance.dds", "skyview.exr",
                                  "skyview.dds", "aerial_perspective.exr", "aerial_perspective.dds"})
       EXPECT_TRUE(read_file(out / "shared" / f) == read_file(ref / "shared" / f))
           << "round " << round << ": " << f;

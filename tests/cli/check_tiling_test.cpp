@@ -83,8 +83,9 @@ TEST(CheckTiling, ShippedNoisePresetsTileInEveryFile) {
   EXPECT_EQ(j["verdict"], "tiles");
   for (const json& f : j["files"]) {
     EXPECT_EQ(f["verdict"], "tiles") << f["file"];
-    if (fs::path(f["file"].get<std::string>()).extension() == ".dds")
+    if (fs::path(f["file"].get<std::string>()).extension() == ".dds") {
       EXPECT_GT(f["mip_levels"].get<int>(), 1) << "every mip level is checked: " << f["file"];
+    }
   }
 }
 

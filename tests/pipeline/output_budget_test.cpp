@@ -69,10 +69,11 @@ void expect_predictions_match_a_bake(const json& outputs, const std::string& tag
     EXPECT_EQ(output_layers(*spec), e.layers) << tag << ": " << r.product;
     std::uint64_t texels = std::uint64_t(e.layers);
     for (int d : e.dimensions) texels *= std::uint64_t(d);
-    if (r.product == "cloud_types")  // budgeted for the most types a section can hold
+    if (r.product == "cloud_types") {  // budgeted for the most types a section can hold
       EXPECT_GE(output_texels(*spec), texels) << tag << ": " << r.product;
-    else if (r.product != "single_mie" && r.product != "gathering_sum")  // sizes follow another
+    } else if (r.product != "single_mie" && r.product != "gathering_sum") {  // sizes follow another
       EXPECT_EQ(output_texels(*spec), texels) << tag << ": " << r.product;
+    }
   }
 }
 
@@ -87,9 +88,10 @@ TEST(OutputBudget, EveryProductHasLimitsForItsFormats) {
           << p.name << ": " << format;
       EXPECT_GE(factor, 1.0) << p.name << ": " << format;
     }
-    if (!limits.working.empty())
+    if (!limits.working.empty()) {
       for (const std::string& format : p.allowed_formats)
         EXPECT_TRUE(limits.working.count(format)) << p.name << " has no factor for " << format;
+    }
   }
 }
 
