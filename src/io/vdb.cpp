@@ -1,7 +1,7 @@
 // VDB writer and reader: one dense FloatGrid per channel (layout in vdb.hpp),
 // built into the VDB plugin (vdb_plugin.hpp), never into skybake_io.
-// The only translation unit of src/ that includes OpenVDB (its headers cost
-// 4-12 s per file; docs/architecture.md "Build").
+// With vdb_leaves.cpp, the only translation units of src/ that include
+// OpenVDB (its headers cost 4-12 s per file; docs/architecture.md "Build").
 #include "io/vdb.hpp"
 #include "io/vdb_plugin.hpp"
 
@@ -26,7 +26,9 @@
 
 #include "core/error.hpp"
 #include "core/hash.hpp"
+#include "io/buffered_out_file.hpp"
 #include "io/vdb_layout.hpp"
+#include "io/vdb_leaves.hpp"
 
 namespace skybake {
 
@@ -175,10 +177,10 @@ uint32_t compression_flags(VdbCompression c) {
   return values | openvdb::io::COMPRESS_ACTIVE_MASK;
 }
 
-// One channel as a grid whose every voxel in the texture's box is active.
-openvdb::FloatGrid::Ptr make_grid(const Texture& tex, int c, const std::string& name,
-                                  VdbGridClass grid_class,
-                                  const openvdb::math::Transform& xform) {
+// The reference build of one channel's tree (VdbTreeBuild::dense_copy):
+// every voxel in the texture's box active, values as OpenVDB's copyFromDense
+// stores them.
+openvdb::FloatTree::Ptr dense_copy_tree(const Texture& tex, int c) {
   const size_t nc = tex.channels.size(), texels = tex.texel_count();
   // OpenVDB's leaves hold z fastest (offset x << 6 | y << 3 | z), and
   // copyFromDense reads the dense array in that order: from an x-fastest
@@ -198,15 +200,36 @@ openvdb::FloatGrid::Ptr make_grid(const Texture& tex, int c, const std::string& 
             plane[(x * h + y) * d + z] = tex.data[((z * h + y) * w + x) * nc + size_t(c)];
   const openvdb::CoordBBox box(openvdb::Coord(0),
                                openvdb::Coord(tex.width - 1, tex.height - 1, tex.depth - 1));
-  auto grid = openvdb::FloatGrid::create(0.0f);
-  openvdb::tools::copyFromDense(DenseZYX(box, plane.get()), *grid, 0.0f);
+  auto tree = std::make_shared<openvdb::FloatTree>(0.0f);
+  openvdb::tools::copyFromDense(DenseZYX(box, plane.get()), *tree, 0.0f);
   // copyFromDense leaves voxels equal to the background inactive; the union
   // with an all-active box activates them without changing any value, so the
   // grid is dense (vdb.hpp: every voxel of the domain is active) and viewers
   // see the whole domain.
   openvdb::MaskTree box_mask;
   box_mask.fill(box, true, true);
-  grid->tree().topologyUnion(box_mask);
+  tree->topologyUnion(box_mask);
+  return tree;
+}
+
+// One tree per channel: the direct build where it applies, else the reference.
+std::vector<openvdb::FloatTree::Ptr> channel_trees(const Texture& tex, VdbTreeBuild build) {
+  std::vector<openvdb::FloatTree::Ptr> trees;
+  if (build == VdbTreeBuild::direct) trees = direct_leaf_trees(tex);
+  trees.resize(tex.channels.size());
+  // The channels left are built side by side; each tree is the same whatever
+  // the order they are built in.
+  tbb::parallel_for(size_t(0), trees.size(), [&](size_t c) {
+    if (!trees[c]) trees[c] = dense_copy_tree(tex, int(c));
+  });
+  return trees;
+}
+
+// One channel's tree as a named grid with the texture's metadata.
+openvdb::FloatGrid::Ptr make_grid(const Texture& tex, int c, openvdb::FloatTree::Ptr tree,
+                                  const std::string& name, VdbGridClass grid_class,
+                                  const openvdb::math::Transform& xform) {
+  auto grid = openvdb::FloatGrid::create(tree);
   grid->setName(name);
   grid->setGridClass(grid_class == VdbGridClass::fog_volume ? openvdb::GRID_FOG_VOLUME
                                                             : openvdb::GRID_UNKNOWN);
@@ -220,6 +243,20 @@ openvdb::FloatGrid::Ptr make_grid(const Texture& tex, int c, const std::string& 
                    openvdb::StringMetadata(fmt::format("{}", fmt::join(tex.channels, ","))));
   return grid;
 }
+
+// io::File::write streams through a default std::ofstream, whose filebuf
+// makes a system call per leaf buffer; the archive's protected write, given
+// a BufferedOutFile, writes the same bytes (seekable, as io::File does).
+class BufferedVdbFile : public openvdb::io::File {
+ public:
+  using File::File;
+  void write_through(const std::string& path, const openvdb::GridCPtrVec& grids) const {
+    BufferedOutFile out(path);
+    std::ostream os(&out);
+    Archive::write(os, grids, /*seekable=*/true);
+    out.close();
+  }
+};
 
 bool is_uuid_text(const char* u) {
   for (size_t i = 0; i < kUuidLength; ++i)
@@ -273,17 +310,15 @@ void write_vdb_file(const std::string& path, const Texture& tex, const VdbWriteO
   init_openvdb();
   auto xform = openvdb::math::Transform::createLinearTransform(voxel_size);
   xform->postTranslate(openvdb::Vec3d(0.5 * voxel_size));  // voxel i covers [i s, (i + 1) s]
-  // One grid per channel, built side by side; each grid's tree is the same
-  // whatever the order they are built in, and they are written in channel order.
+  const std::vector<openvdb::FloatTree::Ptr> trees = channel_trees(tex, options.tree_build);
   std::vector<openvdb::FloatGrid::Ptr> built(tex.channels.size());
-  tbb::parallel_for(size_t(0), built.size(), [&](size_t c) {
-    built[c] = make_grid(tex, int(c), names[c], options.grid_class, *xform);
-  });
+  for (size_t c = 0; c < built.size(); ++c)
+    built[c] = make_grid(tex, int(c), trees[c], names[c], options.grid_class, *xform);
   const openvdb::GridCPtrVec grids(built.begin(), built.end());
   try {
-    openvdb::io::File file(path);
+    BufferedVdbFile file(path);
     file.setCompression(compression_flags(options.compression));
-    file.write(grids);
+    file.write_through(path, grids);
     make_uuid_deterministic(path);
   } catch (const openvdb::Exception& e) {
     std::remove(path.c_str());

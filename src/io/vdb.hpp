@@ -1,6 +1,7 @@
 // OpenVDB output and input for Textures: one grid per channel, with the voxel
-// transform and metadata; dense grids, background 0. Only vdb.cpp includes
-// OpenVDB (slow headers, docs/architecture.md "Build").
+// transform and metadata; dense grids, background 0. Only the plugin's
+// vdb.cpp and vdb_leaves.cpp include OpenVDB (slow headers,
+// docs/architecture.md "Build").
 //
 // File shape:
 //   One openvdb::FloatGrid per channel, named after the channel or by the
@@ -43,6 +44,13 @@ enum class VdbGridClass { unknown, fog_volume };
 // How the grids' value buffers are compressed (docs/formats.md "VDB").
 enum class VdbCompression { blosc, zip, none };
 
+// How the grids' trees are built; the same file either way (tested).
+// `direct` fills the leaves from the texture wherever that is provably
+// copyFromDense's tree (io/vdb_leaves.hpp), else falls back to
+// `dense_copy`: each channel copied into a dense array and given to
+// OpenVDB's copyFromDense, the reference `direct` is tested against.
+enum class VdbTreeBuild { direct, dense_copy };
+
 // "blosc", "zip", "none"; throws Error naming the value otherwise.
 VdbCompression vdb_compression_from_name(const std::string& name);
 
@@ -58,6 +66,7 @@ struct VdbWriteOptions {
   VdbGridClass grid_class = VdbGridClass::unknown;
   VdbCompression compression = VdbCompression::blosc;
   FiniteCheck finite = FiniteCheck::run;  // core/finite_check.hpp
+  VdbTreeBuild tree_build = VdbTreeBuild::direct;
 };
 
 // True when `name` is a grid name VdbWriteOptions accepts. Inline: both

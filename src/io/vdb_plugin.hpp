@@ -1,5 +1,6 @@
 // The VDB plugin: OpenVDB costs tens of milliseconds of dynamic loading and
-// static initialisation, so the VDB writer and reader (vdb.cpp, vdb_layout.cpp)
+// static initialisation, so the VDB writer and reader (vdb.cpp, vdb_leaves.cpp,
+// vdb_layout.cpp)
 // live in a shared library of their own, libskybake_vdb.so, that write_vdb and
 // read_vdb (vdb_loader.cpp, in skybake_io) open with dlopen the first time a
 // VDB is written or read. Nothing else links OpenVDB, so no other command
@@ -31,7 +32,7 @@ Texture read_vdb_file(const std::string& path);
 enum VdbPluginStatus : int { vdb_plugin_ok = 0, vdb_plugin_io_error = 1, vdb_plugin_error = 2 };
 
 // Bumped whenever an entry point's signature or Texture's layout changes.
-constexpr int kVdbPluginAbi = 4;
+constexpr int kVdbPluginAbi = 5;
 constexpr const char* kVdbPluginName = "libskybake_vdb.so";
 
 }  // namespace skybake

@@ -1,7 +1,8 @@
 // Tests for io/vdb: files are read back with plain OpenVDB calls (io::File,
 // grids by name, accessors, transform, metadata) that share no code with
 // read_vdb, and through read_vdb. Plus determinism and refusals.
-// The only test file that includes OpenVDB (slow headers).
+// With vdb_leaves_test.cpp, the only test files that include OpenVDB (slow
+// headers).
 #include "io/vdb.hpp"
 
 #include <cmath>

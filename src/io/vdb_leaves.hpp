@@ -1,0 +1,35 @@
+// The trees of a texture's VDB grids built leaf by leaf straight from the
+// texture (VDB plugin only: includes OpenVDB). vdb.cpp's reference build
+// copies each channel into a dense array and runs OpenVDB's copyFromDense,
+// then activates the texture's box; that costs a 4-byte-per-voxel copy of
+// every channel (fresh pages) and a second pass over it. Where the result
+// is provably that same tree, the leaves are filled here instead, every
+// channel in one pass over the texture.
+//
+// What copyFromDense makes (openvdb/tools/Dense.h, CopyFromDense and
+// LeafNode::copyFromDense, tolerance 0, background 0): one leaf per 8^3 block
+// of the box; a voxel equal to the background (0 or -0) stored as +0 and
+// inactive, any other value as it is and active; a block whose 512 values
+// and states are all equal becomes a tile instead (then pruned). The union
+// with the all-active box turns every voxel of the box on. So when every
+// side is a multiple of 8 (no partial blocks) and no block is constant, the
+// tree is: one leaf per block, every voxel active, the texel's value with -0
+// as +0, internal nodes made by addLeaf (background tiles, inactive). Any
+// other texture, or a channel with a constant block, takes the reference
+// build. Tested to give the same file bytes (tests/io/vdb_leaves_test.cpp).
+#pragma once
+
+#include <vector>
+
+#include <openvdb/openvdb.h>
+
+#include "core/texture.hpp"
+
+namespace skybake {
+
+// One tree per channel, or a null pointer for a channel the direct build
+// cannot make (a constant block), and an empty vector when the texture's
+// shape rules it out (a side not a multiple of 8, a 2D array). Threaded.
+std::vector<openvdb::FloatTree::Ptr> direct_leaf_trees(const Texture& tex);
+
+}  // namespace skybake
