@@ -15,6 +15,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <memory>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -165,30 +166,38 @@ std::vector<uint8_t> make_header(const MipLevels& mips, const FormatInfo& format
 // Texels per task when encoding an uncompressed level.
 constexpr size_t kEncodeGrain = size_t(1) << 14;
 
-// The bytes of one mip level of one array slice: every depth slice, in order.
-std::vector<uint8_t> encode_level(const Texture& m, int layer, const FormatInfo& f) {
+// Texels per write of an uncompressed level: its bytes are encoded a chunk
+// at a time into one reused buffer (a whole 128^3 RGBA8 level would be 8 MB
+// of fresh pages, each faulted in and zeroed).
+constexpr size_t kChunkTexels = size_t(1) << 18;
+
+// Writes one mip level of one array slice: every depth slice, in order.
+// `chunk` is the caller's buffer, reused across levels.
+void write_level(std::ostream& out, const Texture& m, int layer, const FormatInfo& f,
+                 std::unique_ptr<uint8_t[]>& chunk) {
   const int nc = m.channel_count();
-  const size_t slice_texels = size_t(m.width) * size_t(m.height);
   if (f.block) {
-    std::vector<uint8_t> out;
-    out.reserve(dds_level_bytes(f, m.width, m.height, m.depth));
     for (int z = 0; z < m.depth; ++z) {
       const std::vector<uint8_t> slice =
           encode_bc(m.texel(0, 0, z, layer), m.width, m.height, nc, *f.block);
-      out.insert(out.end(), slice.begin(), slice.end());
+      out.write(reinterpret_cast<const char*>(slice.data()), std::streamsize(slice.size()));
     }
-    return out;
+    return;
   }
-  const size_t texels = slice_texels * size_t(m.depth);
-  std::vector<uint8_t> out(texels * size_t(f.bytes));
+  const size_t texels = size_t(m.width) * size_t(m.height) * size_t(m.depth);
+  if (!chunk) chunk.reset(new uint8_t[kChunkTexels * size_t(f.bytes)]);
   const float* src = m.texel(0, 0, 0, layer);
-  // Each texel's bytes depend on that texel only: any split gives the same bytes.
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, texels, kEncodeGrain),
-                    [&](const tbb::blocked_range<size_t>& r) {
-                      encode_dds_texels(f.format, src + r.begin() * nc, nc, r.size(),
-                                        &out[r.begin() * size_t(f.bytes)]);
-                    });
-  return out;
+  for (size_t begin = 0; begin < texels && out; begin += kChunkTexels) {
+    const size_t end = std::min(texels, begin + kChunkTexels);
+    // Each texel's bytes depend on that texel only: any split gives the same bytes.
+    tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, kEncodeGrain),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                        encode_dds_texels(f.format, src + r.begin() * nc, nc, r.size(),
+                                          &chunk[(r.begin() - begin) * size_t(f.bytes)]);
+                      });
+    out.write(reinterpret_cast<const char*>(chunk.get()),
+              std::streamsize((end - begin) * size_t(f.bytes)));
+  }
 }
 
 // Decodes one mip level of one array slice from `p` into `m` (layer `layer`).
@@ -448,12 +457,9 @@ void write_dds(const std::string& path, const MipLevels& mips, DdsFormat format,
   // Array slices outermost, then mip levels; a level's depth slices are
   // contiguous in both Texture and DDS order, so one loop serves 2D arrays
   // (slice -> mips) and volumes (mip -> slices, with a single "slice").
-  for (int layer = 0; layer < mips[0]->layers && out; ++layer) {
-    for (const Texture* m : mips) {
-      const std::vector<uint8_t> bytes = encode_level(*m, layer, f);
-      out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-    }
-  }
+  std::unique_ptr<uint8_t[]> chunk;
+  for (int layer = 0; layer < mips[0]->layers && out; ++layer)
+    for (const Texture* m : mips) write_level(out, *m, layer, f, chunk);
   out.close();
   if (!out) {
     const std::string reason = std::strerror(errno);
