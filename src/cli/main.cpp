@@ -11,6 +11,7 @@
 #include "cli/commands.hpp"
 #include "cli/errors.hpp"
 #include "core/error.hpp"
+#include "core/fresh_pages.hpp"
 #include "io/atomic_file.hpp"
 #include "pipeline/product.hpp"
 
@@ -304,6 +305,7 @@ bool wants_json(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  skybake::keep_freed_memory();  // fresh pages are dear (core/fresh_pages.hpp)
   skybake::install_temporary_cleanup();  // SIGINT, SIGTERM: no temporaries left behind
   CLI::App app{"skybake " SKYBAKE_VERSION
                " - bakes real-time sky assets (atmosphere LUTs, cloud noise, weather textures)\n"

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include <malloc.h>
 #include <sys/mman.h>
 #include <unistd.h>
 
@@ -31,6 +32,15 @@ void populate_pages(void* p, size_t bytes) {
 #else
   (void)p;
   (void)bytes;
+#endif
+}
+
+void keep_freed_memory() {
+#if defined(__GLIBC__)
+  // glibc's ceiling for the threshold on 64-bit (DEFAULT_MMAP_THRESHOLD_MAX);
+  // setting it also stops the threshold moving.
+  (void)mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  (void)mallopt(M_TRIM_THRESHOLD, 1 << 30);
 #endif
 }
 

@@ -24,4 +24,16 @@ void populate_pages(void* p, size_t bytes);
 // faults cost less than waking the workers.
 constexpr size_t kPopulateMinBytes = size_t(1) << 20;
 
+// Keeps the memory the process frees for its own later allocations. By
+// default glibc hands a freed buffer of 128 KB and up (its threshold moves
+// up to the largest freed, at most 32 MB) and the heap's free top back to
+// the kernel, so the next buffer is fresh pages again; on a virtual machine
+// a fresh page's first write costs several microseconds (about 2 ms of CPU
+// per MB on the shared development machine, docs/decisions.md "The
+// cloud-noise set's CPU, fourth pass"). Buffers under 32 MB then come from
+// the heap and freed heap memory is kept: a process's resident memory stays
+// at its peak until it exits (short bake processes). Called once, first
+// thing in main (glibc's mallopt is not for concurrent use).
+void keep_freed_memory();
+
 }  // namespace skybake
