@@ -1,6 +1,6 @@
 // VDB writer and reader: one dense FloatGrid per channel (layout in vdb.hpp),
 // built into the VDB plugin (vdb_plugin.hpp), never into skybake_io.
-// With vdb_leaves.cpp, the only translation units of src/ that include
+// With vdb_leaves.cpp and vdb_archive.cpp, the only translation units of src/ that include
 // OpenVDB (its headers cost 4-12 s per file; docs/architecture.md "Build").
 #include "io/vdb.hpp"
 #include "io/vdb_plugin.hpp"
@@ -26,7 +26,7 @@
 
 #include "core/error.hpp"
 #include "core/hash.hpp"
-#include "io/buffered_out_file.hpp"
+#include "io/vdb_archive.hpp"
 #include "io/vdb_layout.hpp"
 #include "io/vdb_leaves.hpp"
 
@@ -212,19 +212,6 @@ openvdb::FloatTree::Ptr dense_copy_tree(const Texture& tex, int c) {
   return tree;
 }
 
-// One tree per channel: the direct build where it applies, else the reference.
-std::vector<openvdb::FloatTree::Ptr> channel_trees(const Texture& tex, VdbTreeBuild build) {
-  std::vector<openvdb::FloatTree::Ptr> trees;
-  if (build == VdbTreeBuild::direct) trees = direct_leaf_trees(tex);
-  trees.resize(tex.channels.size());
-  // The channels left are built side by side; each tree is the same whatever
-  // the order they are built in.
-  tbb::parallel_for(size_t(0), trees.size(), [&](size_t c) {
-    if (!trees[c]) trees[c] = dense_copy_tree(tex, int(c));
-  });
-  return trees;
-}
-
 // One channel's tree as a named grid with the texture's metadata.
 openvdb::FloatGrid::Ptr make_grid(const Texture& tex, int c, openvdb::FloatTree::Ptr tree,
                                   const std::string& name, VdbGridClass grid_class,
@@ -243,20 +230,6 @@ openvdb::FloatGrid::Ptr make_grid(const Texture& tex, int c, openvdb::FloatTree:
                    openvdb::StringMetadata(fmt::format("{}", fmt::join(tex.channels, ","))));
   return grid;
 }
-
-// io::File::write streams through a default std::ofstream, whose filebuf
-// makes a system call per leaf buffer; the archive's protected write, given
-// a BufferedOutFile, writes the same bytes (seekable, as io::File does).
-class BufferedVdbFile : public openvdb::io::File {
- public:
-  using File::File;
-  void write_through(const std::string& path, const openvdb::GridCPtrVec& grids) const {
-    BufferedOutFile out(path);
-    std::ostream os(&out);
-    Archive::write(os, grids, /*seekable=*/true);
-    out.close();
-  }
-};
 
 bool is_uuid_text(const char* u) {
   for (size_t i = 0; i < kUuidLength; ++i)
@@ -310,15 +283,24 @@ void write_vdb_file(const std::string& path, const Texture& tex, const VdbWriteO
   init_openvdb();
   auto xform = openvdb::math::Transform::createLinearTransform(voxel_size);
   xform->postTranslate(openvdb::Vec3d(0.5 * voxel_size));  // voxel i covers [i s, (i + 1) s]
-  const std::vector<openvdb::FloatTree::Ptr> trees = channel_trees(tex, options.tree_build);
   std::vector<openvdb::FloatGrid::Ptr> built(tex.channels.size());
   for (size_t c = 0; c < built.size(); ++c)
-    built[c] = make_grid(tex, int(c), trees[c], names[c], options.grid_class, *xform);
-  const openvdb::GridCPtrVec grids(built.begin(), built.end());
+    built[c] = make_grid(tex, int(c), std::make_shared<openvdb::FloatTree>(0.0f), names[c],
+                         options.grid_class, *xform);
+  const uint32_t compression = compression_flags(options.compression);
   try {
-    BufferedVdbFile file(path);
-    file.setCompression(compression_flags(options.compression));
-    file.write_through(path, grids);
+    if (options.tree_build == VdbTreeBuild::direct) {
+      write_vdb_archive_one_tree_at_a_time(path, compression, built, [&](size_t c) {
+        openvdb::FloatTree::Ptr tree = direct_leaf_tree(tex, int(c));
+        return tree ? tree : dense_copy_tree(tex, int(c));
+      });
+    } else {
+      // The channels side by side; each tree is the same whatever the order.
+      tbb::parallel_for(size_t(0), built.size(), [&](size_t c) {
+        built[c]->setTree(dense_copy_tree(tex, int(c)));
+      });
+      write_vdb_archive(path, compression, openvdb::GridCPtrVec(built.begin(), built.end()));
+    }
     make_uuid_deterministic(path);
   } catch (const openvdb::Exception& e) {
     std::remove(path.c_str());

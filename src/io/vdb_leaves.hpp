@@ -3,8 +3,7 @@
 // copies each channel into a dense array and runs OpenVDB's copyFromDense,
 // then activates the texture's box; that costs a 4-byte-per-voxel copy of
 // every channel (fresh pages) and a second pass over it. Where the result
-// is provably that same tree, the leaves are filled here instead, every
-// channel in one pass over the texture.
+// is provably that same tree, the leaves are filled here instead.
 //
 // What copyFromDense makes (openvdb/tools/Dense.h, CopyFromDense and
 // LeafNode::copyFromDense, tolerance 0, background 0): one leaf per 8^3 block
@@ -19,17 +18,16 @@
 // build. Tested to give the same file bytes (tests/io/vdb_leaves_test.cpp).
 #pragma once
 
-#include <vector>
-
 #include <openvdb/openvdb.h>
 
 #include "core/texture.hpp"
 
 namespace skybake {
 
-// One tree per channel, or a null pointer for a channel the direct build
-// cannot make (a constant block), and an empty vector when the texture's
-// shape rules it out (a side not a multiple of 8, a 2D array). Threaded.
-std::vector<openvdb::FloatTree::Ptr> direct_leaf_trees(const Texture& tex);
+// Channel c's tree, or a null pointer where the direct build does not apply
+// (a side not a multiple of 8, a 2D array, a constant block). The leaves are
+// allocated by the calling thread (memory freed by its earlier trees is
+// reused, io/vdb_archive.hpp) and filled by TBB's threads.
+openvdb::FloatTree::Ptr direct_leaf_tree(const Texture& tex, int c);
 
 }  // namespace skybake

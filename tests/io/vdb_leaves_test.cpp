@@ -1,5 +1,6 @@
-// The VDB writer's direct leaf build (io/vdb_leaves.hpp) against OpenVDB's
-// own dense copy: the files of both builds are byte for byte the same, and
+// The VDB writer's direct leaf build (io/vdb_leaves.hpp), written one grid at
+// a time (io/vdb_archive.hpp), against OpenVDB's own dense copy written by
+// OpenVDB's archive writer: the files of both are byte for byte the same, and
 // the grids read back by OpenVDB have the tree copyFromDense makes from the
 // texture (leaves, masks, tiles and every value's bits), on shapes the direct
 // build takes and shapes it hands back to the reference build.
@@ -75,9 +76,10 @@ void expect_same_tree(const openvdb::FloatTree& got, const openvdb::FloatTree& w
 }
 
 // Both builds give the same file, and OpenVDB reads back copyFromDense's trees.
-void check_builds(const Texture& tex, const std::string& name) {
+void check_builds(const Texture& tex, const std::string& name,
+                  VdbCompression compression = VdbCompression::none) {
   VdbWriteOptions options;
-  options.compression = VdbCompression::none;
+  options.compression = compression;
   options.tree_build = VdbTreeBuild::direct;
   const std::string direct = tmp_path(name, "direct.vdb");
   write_vdb(direct, tex, options);
@@ -103,6 +105,13 @@ TEST(VdbLeaves, DirectBuildIsCopyFromDenseOnWholeBlocks) {
   // Past one 128^3 internal node along x, and a 2D-like slab of one block.
   check_builds(make_texture(136, 8, 16, 2), "two_internal_nodes");
   check_builds(make_texture(64, 8, 8, 3), "slab");
+}
+
+// The direct build writes its grids one at a time (io/vdb_archive.hpp);
+// the compression flags, restored after each grid, shape the bytes.
+TEST(VdbLeaves, EveryCompressionGivesTheBytesOfOpenVdbsArchiveWriter) {
+  check_builds(make_texture(16, 8, 24, 3), "blosc", VdbCompression::blosc);
+  check_builds(make_texture(16, 8, 24, 3), "zip", VdbCompression::zip);
 }
 
 TEST(VdbLeaves, ShapesWithPartialBlocksTakeTheReferenceBuild) {
