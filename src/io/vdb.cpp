@@ -288,17 +288,22 @@ void write_vdb_file(const std::string& path, const Texture& tex, const VdbWriteO
     built[c] = make_grid(tex, int(c), std::make_shared<openvdb::FloatTree>(0.0f), names[c],
                          options.grid_class, *xform);
   const uint32_t compression = compression_flags(options.compression);
+  const auto tree_of = [&](size_t c) {
+    openvdb::FloatTree::Ptr tree;
+    if (options.tree_build == VdbTreeBuild::direct) tree = direct_leaf_tree(tex, int(c));
+    return tree ? tree : dense_copy_tree(tex, int(c));
+  };
+  // One tree at a time where OpenVDB's writer keeps every grid name as it is
+  // (io/vdb_archive.hpp: distinct, which grid_names_of checks, and not empty).
+  const bool one_at_a_time =
+      options.tree_build == VdbTreeBuild::direct &&
+      std::none_of(names.begin(), names.end(), [](const std::string& n) { return n.empty(); });
   try {
-    if (options.tree_build == VdbTreeBuild::direct) {
-      write_vdb_archive_one_tree_at_a_time(path, compression, built, [&](size_t c) {
-        openvdb::FloatTree::Ptr tree = direct_leaf_tree(tex, int(c));
-        return tree ? tree : dense_copy_tree(tex, int(c));
-      });
+    if (one_at_a_time) {
+      write_vdb_archive_one_tree_at_a_time(path, compression, built, tree_of);
     } else {
       // The channels side by side; each tree is the same whatever the order.
-      tbb::parallel_for(size_t(0), built.size(), [&](size_t c) {
-        built[c]->setTree(dense_copy_tree(tex, int(c)));
-      });
+      tbb::parallel_for(size_t(0), built.size(), [&](size_t c) { built[c]->setTree(tree_of(c)); });
       write_vdb_archive(path, compression, openvdb::GridCPtrVec(built.begin(), built.end()));
     }
     make_uuid_deterministic(path);

@@ -114,6 +114,14 @@ TEST(VdbLeaves, EveryCompressionGivesTheBytesOfOpenVdbsArchiveWriter) {
   check_builds(make_texture(16, 8, 24, 3), "zip", VdbCompression::zip);
 }
 
+// OpenVDB's writer names an unnamed grid "[0]"; the one-at-a-time writer
+// does not, so such a texture goes through OpenVDB's writer.
+TEST(VdbLeaves, AnEmptyChannelNameIsWrittenAsOpenVdbNamesIt) {
+  Texture tex = make_texture(8, 8, 16, 2);
+  tex.channels = {"", "density"};
+  check_builds(tex, "empty_name");
+}
+
 TEST(VdbLeaves, ShapesWithPartialBlocksTakeTheReferenceBuild) {
   check_builds(make_texture(12, 8, 8, 2), "partial_x");
   check_builds(make_texture(8, 8, 9, 1), "partial_z");
