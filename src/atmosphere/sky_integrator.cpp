@@ -8,6 +8,7 @@
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/phase.hpp"
 #include "atmosphere/segment_sources.hpp"
+#include "atmosphere/sky_reads.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/exp_block.hpp"
 #include "core/math.hpp"
@@ -25,11 +26,11 @@ struct RayComponent {
   glm::dvec3 scattering_phase;
 };
 
-// segments_block's arrays, one entry per segment (end_sun, end_ms: per end).
+// segments_block's arrays, one entry per segment (end_*: per end).
 struct BlockScratch {
   MediumBlock medium;
-  std::vector<double> h, r, mu_s, density, em;
-  std::vector<glm::dvec3> sigma_s, sigma_t, sigma_s_phase, end_sun, end_ms;
+  std::vector<double> h, r, mu_s, density, em, end_r, end_mu_s;
+  std::vector<glm::dvec3> sigma_s, sigma_t, sigma_s_phase, sun, ms, end_sun, end_ms;
 };
 
 struct MarchState {
@@ -172,19 +173,22 @@ class RayMarcher {
   }
 
   // segment()'s sums over media_block's segments, the sources read at the
-  // midpoints.
-  void light_at_midpoints(const std::vector<double>& ends, const BlockScratch& b,
-                          MarchState& st) const {
+  // midpoints: every segment's two reads first, four at a time where AVX2
+  // runs (sky_reads.hpp, the same bits), then the sums in order.
+  void light_at_midpoints(const std::vector<double>& ends, BlockScratch& b, MarchState& st) const {
     const size_t n = ends.size() - 1;
-    const std::vector<double>&r = b.r, &mu_s = b.mu_s, &em = b.em;
+    const std::vector<double>& em = b.em;
     const std::vector<glm::dvec3>&sigma_s = b.sigma_s, &sigma_t = b.sigma_t,
     &sigma_s_phase = b.sigma_s_phase;
+    b.sun.resize(n);
+    b.ms.resize(n);
+    sky_reads(atm_, tlut_, mslut_, msmap_, b.r.data(), b.mu_s.data(), n, b.sun.data(),
+              b.ms.data());
     for (size_t i = 0; i < n; ++i) {
       const double dt = ends[i + 1] - ends[i];
       if (!(dt > 0.0) || sigma_t[i] == glm::dvec3(0.0)) continue;
-      glm::dvec3 source = lookup_sun_transmittance(tlut_, atm_, r[i], mu_s[i]) * sigma_s_phase[i];
-      if (mslut_)
-        source += lookup_multiscattering(*mslut_, msmap_, atm_, r[i], mu_s[i]) * sigma_s[i];
+      glm::dvec3 source = b.sun[i] * sigma_s_phase[i];
+      if (mslut_) source += b.ms[i] * sigma_s[i];
       const SegmentWeights w = segment_weights_from_expm1(sigma_t[i], dt, &em[3 * i]);
       st.luminance += st.transmittance * atm_.sun_illuminance * source * w.weight;
       st.transmittance *= w.transmittance;
@@ -196,6 +200,7 @@ class RayMarcher {
   // linear between them (segment_sources.hpp).
   void light_at_ends(const std::vector<double>& ends, BlockScratch& b, MarchState& st) const {
     const size_t n = ends.size() - 1;
+    for (std::vector<double>* v : {&b.end_r, &b.end_mu_s}) v->resize(n + 1);
     b.end_sun.resize(n + 1);
     b.end_ms.resize(n + 1);
     // |origin + t dir|^2 and its dot with the sun, expanded (dir is unit).
@@ -205,10 +210,11 @@ class RayMarcher {
       const double t = ends[k];
       const double r =
           std::max(std::sqrt(std::max(oo + t * (2.0 * od + t), 0.0)), atm_.bottom_radius_m);
-      const double mu_s = clamp_cosine((os + t * ds) / r);
-      b.end_sun[k] = lookup_sun_transmittance(tlut_, atm_, r, mu_s);
-      if (mslut_) b.end_ms[k] = lookup_multiscattering(*mslut_, msmap_, atm_, r, mu_s);
+      b.end_r[k] = r;
+      b.end_mu_s[k] = clamp_cosine((os + t * ds) / r);
     }
+    sky_reads(atm_, tlut_, mslut_, msmap_, b.end_r.data(), b.end_mu_s.data(), n + 1,
+              b.end_sun.data(), b.end_ms.data());
     for (size_t i = 0; i < n; ++i) {
       const double dt = ends[i + 1] - ends[i];
       if (!(dt > 0.0) || b.sigma_t[i] == glm::dvec3(0.0)) continue;

@@ -21,18 +21,49 @@ struct RgbLanes {
   __m256d c[3];
 };
 
-// sample_bilinear_rgb(tex, row, u) in each lane, tex `width` texels wide
-// (bilinear_axis without wrapping: a coordinate that is not finite reads texel 0).
-SKYBAKE_AVX2 inline RgbLanes bilinear_rgb_lanes(const BilinearRow& row, int width, __m256d u) {
+// bilinear_axis(u, width, false) in each lane, the texel indices times
+// `channels` (offsets into a row): a coordinate that is not finite reads texel 0.
+struct AxisLanes {
+  __m128i o0, o1;
+  __m256d f;
+};
+SKYBAKE_AVX2 inline AxisLanes bilinear_axis_lanes(int width, int channels, __m256d u) {
   __m256d x = _mm256_sub_pd(_mm256_mul_pd(u, _mm256_set1_pd(double(width))), _mm256_set1_pd(0.5));
   const __m256d finite = _mm256_cmp_pd(_mm256_sub_pd(x, x), _mm256_setzero_pd(), _CMP_EQ_OQ);
   x = clamp_lanes(_mm256_and_pd(x, finite), 0.0, double(width - 1));
   const __m256d x0 = _mm256_floor_pd(x);
-  const __m256d f = _mm256_sub_pd(x, x0);
   const __m128i i0 = _mm256_cvttpd_epi32(x0);
   const __m128i i1 = _mm_min_epi32(_mm_add_epi32(i0, _mm_set1_epi32(1)), _mm_set1_epi32(width - 1));
-  const __m128i ch = _mm_set1_epi32(row.channels);
-  const __m128i o0 = _mm_mullo_epi32(i0, ch), o1 = _mm_mullo_epi32(i1, ch);
+  const __m128i ch = _mm_set1_epi32(channels);
+  return {_mm_mullo_epi32(i0, ch), _mm_mullo_epi32(i1, ch), _mm256_sub_pd(x, x0)};
+}
+
+// One bilinear read of the first three channels, those channels in lanes
+// 0-2 (lane 3 is 0): sample_bilinear_rgb's operations on the texels at
+// offsets o0, o1 of rows row0, row1 with weights f (along the row) and fy.
+// The texels' three floats are loaded masked, never a float past them.
+// For reads whose rows differ from one to the next (where
+// bilinear_rgb_lanes's gathers would share a row) or whose sum over lanes
+// is wanted per channel.
+SKYBAKE_AVX2 inline __m256d bilinear_rgb_texels(const float* row0, const float* row1, int o0,
+                                                int o1, double f, double fy) {
+  const __m128i rgb = _mm_setr_epi32(-1, -1, -1, 0);
+  const __m256d t00 = _mm256_cvtps_pd(_mm_maskload_ps(row0 + o0, rgb));
+  const __m256d t10 = _mm256_cvtps_pd(_mm_maskload_ps(row0 + o1, rgb));
+  const __m256d t01 = _mm256_cvtps_pd(_mm_maskload_ps(row1 + o0, rgb));
+  const __m256d t11 = _mm256_cvtps_pd(_mm_maskload_ps(row1 + o1, rgb));
+  const __m256d fx = _mm256_set1_pd(f);
+  const __m256d lo = _mm256_add_pd(t00, _mm256_mul_pd(fx, _mm256_sub_pd(t10, t00)));
+  const __m256d hi = _mm256_add_pd(t01, _mm256_mul_pd(fx, _mm256_sub_pd(t11, t01)));
+  return _mm256_add_pd(lo, _mm256_mul_pd(_mm256_set1_pd(fy), _mm256_sub_pd(hi, lo)));
+}
+
+// sample_bilinear_rgb(tex, row, u) in each lane, tex `width` texels wide
+// (bilinear_axis without wrapping: a coordinate that is not finite reads texel 0).
+SKYBAKE_AVX2 inline RgbLanes bilinear_rgb_lanes(const BilinearRow& row, int width, __m256d u) {
+  const AxisLanes a = bilinear_axis_lanes(width, row.channels, u);
+  const __m128i o0 = a.o0, o1 = a.o1;
+  const __m256d f = a.f;
   const __m256d fy = _mm256_set1_pd(row.fy);
   RgbLanes out;
   for (int c = 0; c < 3; ++c) {
@@ -47,10 +78,14 @@ SKYBAKE_AVX2 inline RgbLanes bilinear_rgb_lanes(const BilinearRow& row, int widt
   return out;
 }
 
-// lookup_sun_transmittance(lut, at, bottom_m, mu_s) in each lane, the table
-// `width` texels wide; mu_s already clamped to [-1, 1].
-SKYBAKE_AVX2 inline RgbLanes sun_transmittance_lanes(const TransmittanceAtRadius& at, int width,
-                                                     double bottom_m, __m256d mu_s) {
+// lookup_sun_transmittance(lut, at, bottom_m, mu_s)'s texel coordinate u in
+// each lane (mu_s already clamped to [-1, 1]) and where Vis = 0 (all bits set
+// in `ground`: the sun is below the horizon).
+struct SunCoordLanes {
+  __m256d u, ground;
+};
+SKYBAKE_AVX2 inline SunCoordLanes sun_coord_lanes(const TransmittanceAtRadius& at, double bottom_m,
+                                                  __m256d mu_s) {
   const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
   const __m256d r = _mm256_set1_pd(at.r);
   const __m256d rr_mm1 =
@@ -67,8 +102,16 @@ SKYBAKE_AVX2 inline RgbLanes sun_transmittance_lanes(const TransmittanceAtRadius
       0.0, 1.0);
   const __m256d u =
       _mm256_add_pd(_mm256_set1_pd(at.u_offset), _mm256_mul_pd(x_mu, _mm256_set1_pd(at.u_scale)));
-  RgbLanes t = bilinear_rgb_lanes(at.row, width, u);
-  for (__m256d& c : t.c) c = _mm256_andnot_pd(ground, c);  // Vis = 0 below the horizon
+  return {u, ground};
+}
+
+// lookup_sun_transmittance(lut, at, bottom_m, mu_s) in each lane, the table
+// `width` texels wide; mu_s already clamped to [-1, 1].
+SKYBAKE_AVX2 inline RgbLanes sun_transmittance_lanes(const TransmittanceAtRadius& at, int width,
+                                                     double bottom_m, __m256d mu_s) {
+  const SunCoordLanes s = sun_coord_lanes(at, bottom_m, mu_s);
+  RgbLanes t = bilinear_rgb_lanes(at.row, width, s.u);
+  for (__m256d& c : t.c) c = _mm256_andnot_pd(s.ground, c);  // Vis = 0 below the horizon
   return t;
 }
 
