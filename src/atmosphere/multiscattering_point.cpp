@@ -20,9 +20,10 @@ namespace {
 // One zenith cosine's march from the point, everything but the sun.
 struct RingMarch {
   std::vector<double> distances;                 // where each segment is lit (weight_centroid)
-  std::vector<double> inverse_radii;             // 1 / the radius there (at least Rb)
+  std::vector<double> radii;                     // the radius there (at least Rb)
+  std::vector<double> inverse_radii;             // 1 / radii
   std::vector<glm::dvec3> scattered;             // T sigma_s (1 - exp(-sigma_t dt)) / sigma_t
-  std::vector<TransmittanceAtRadius> sun_reads;  // the sun's lookups at those radii
+  std::vector<TransmittanceAtRadius> sun_reads;  // lit_ring's one-value loop: the lookups there
   glm::dvec3 l_f{0.0};                           // eq. 8: the sum of `scattered`
   bool ground = false;                           // the ray ends on the ground
   double length = 0.0;                           // to the ground or the top
@@ -129,12 +130,11 @@ void ring_media(const Atmosphere& atm, double r, double mu, RingMarch& out) {
   }
 }
 
-void march_ring(const Atmosphere& atm, const Texture& transmittance_lut, double r, double mu,
-                int steps, RingMarch& out) {
+void march_ring(const Atmosphere& atm, double r, double mu, int steps, RingMarch& out) {
   out.distances.clear();
+  out.radii.clear();
   out.inverse_radii.clear();
   out.scattered.clear();
-  out.sun_reads.clear();
   out.l_f = glm::dvec3(0.0);
   const double rb = atm.bottom_radius_m;
   out.ground = ray_intersects_ground(rb, r, mu);
@@ -159,9 +159,9 @@ void march_ring(const Atmosphere& atm, const Texture& transmittance_lut, double 
     const double lit_at = ends[i] + weight_centroid(extinction, dt, out.expm1s[4 * i + 3]);
     const double lit_radius = std::max(radius_after(r, mu, lit_at), rb);
     out.distances.push_back(lit_at);
+    out.radii.push_back(lit_radius);
     out.inverse_radii.push_back(1.0 / lit_radius);
     out.scattered.push_back(scattered);
-    out.sun_reads.push_back(transmittance_at_radius(transmittance_lut, atm, lit_radius));
     out.l_f += scattered;
     transmittance *= w.transmittance;
   }
@@ -173,7 +173,7 @@ void march_ring(const Atmosphere& atm, const Texture& transmittance_lut, double 
 // sees the sun at zenith cosine (r mu_s + t c) / r_t, since the point is
 // (0, 0, r). Per sample the azimuths' sun transmittances are summed first
 // and scaled by the sun-independent `scattered` once; four azimuths (the
-// record's rule) are summed in one AVX2 group (ring_sun_wide.hpp).
+// record's rule) are summed four samples at a time in AVX2 (ring_sun_wide.hpp).
 glm::dvec3 lit_ring(const Atmosphere& atm, const Texture& transmittance_lut, RingMarch& m, double r,
                     double mu_s, const std::vector<double>& cosines) {
   const double rb = atm.bottom_radius_m;
@@ -183,8 +183,11 @@ glm::dvec3 lit_ring(const Atmosphere& atm, const Texture& transmittance_lut, Rin
   std::vector<glm::dvec3>& sums = m.sun_sums;
   sums.resize(n);
   if (cosines.size() != 4 ||
-      !ring_sun_sums_wide(transmittance_lut, rb, m.sun_reads.data(), m.distances.data(),
+      !ring_sun_sums_wide(transmittance_lut, atm, m.radii.data(), m.distances.data(),
                           m.inverse_radii.data(), n, height, cosines.data(), sums.data())) {
+    m.sun_reads.clear();
+    for (double radius : m.radii)
+      m.sun_reads.push_back(transmittance_at_radius(transmittance_lut, atm, radius));
     for (size_t i = 0; i < n; ++i) {
       glm::dvec3 sun(0.0);
       for (double c : cosines)
@@ -234,7 +237,7 @@ MultiscatteringSample multiscattering_at_point(const Atmosphere& atm,
   for (int j = 0; j < azimuths; ++j)
     azimuth_cosines.push_back(std::cos(kPi * (j + 0.5) / azimuths));
   for (size_t k = 0; k < mus.size(); ++k) {
-    march_ring(atm, transmittance_lut, r, mus[k], rule.quadrature.steps, march);
+    march_ring(atm, r, mus[k], rule.quadrature.steps, march);
     const double sin_zenith = safe_sqrt(1.0 - mus[k] * mus[k]);
     cosines.clear();
     for (int j = 0; j < azimuths; ++j)

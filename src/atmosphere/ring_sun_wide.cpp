@@ -1,65 +1,122 @@
 #include "atmosphere/ring_sun_wide.hpp"
 
+#include <algorithm>
+
 #include "atmosphere/wide_lookups.hpp"
+#include "core/math.hpp"
 
 namespace skybake {
 
 namespace {
 
 #if SKYBAKE_HAS_AVX2
-// The four azimuths' texel coordinates in the lanes of one group, then each
-// azimuth's read with its channels in one vector (bilinear_rgb_texels), so
-// that the sum over azimuths is three lanes added at once, in the one-value
-// loop's order (0 + a0 + a1 + a2 + a3), with no gathers and no horizontal sum.
-SKYBAKE_AVX2 void ring_sun_sums_avx2(const Texture& lut, double bottom_m,
-                                     const TransmittanceAtRadius* reads, const double* distances,
+// transmittance_at_radius's fields in the lanes of four samples.
+struct RadiusLanes {
+  __m256d r, d_min, span, fy;  // span: d_max - d_min
+  __m128i row0, row1;          // offsets (floats) of the rows around v(r)
+};
+
+SKYBAKE_AVX2 RadiusLanes radius_lanes(const Texture& lut, const Atmosphere& atm, __m256d radius) {
+  const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+  const double horizon = safe_sqrt((rt - rb) * (rt + rb));  // horizon_distance
+  RadiusLanes l;
+  l.r = clamp_lanes(radius, rb, rt);
+  const __m256d rho = _mm256_sqrt_pd(_mm256_max_pd(
+      _mm256_setzero_pd(), _mm256_mul_pd(_mm256_sub_pd(l.r, _mm256_set1_pd(rb)),
+                                         _mm256_add_pd(l.r, _mm256_set1_pd(rb)))));
+  const int h = lut.height;
+  const __m256d v = _mm256_add_pd(
+      _mm256_set1_pd(0.5 / h),
+      _mm256_mul_pd(_mm256_div_pd(rho, _mm256_set1_pd(horizon)), _mm256_set1_pd(1.0 - 1.0 / h)));
+  const AxisLanes ay = bilinear_axis_lanes(h, lut.width * lut.channel_count(), v);
+  l.row0 = ay.o0;
+  l.row1 = ay.o1;
+  l.fy = ay.f;
+  l.d_min = _mm256_sub_pd(_mm256_set1_pd(rt), l.r);
+  l.span = _mm256_sub_pd(_mm256_add_pd(rho, _mm256_set1_pd(horizon)), l.d_min);
+  return l;
+}
+
+// lookup_sun_transmittance(lut, at, rb, mu) in each lane, `at` the lane's
+// RadiusLanes, mu already clamped; adds each channel to sum[c].
+SKYBAKE_AVX2 void add_sun_lanes(const Texture& lut, const Atmosphere& atm, const RadiusLanes& at,
+                                __m256d mu, __m256d sum[3]) {
+  const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d rr_mm1 =
+      _mm256_mul_pd(_mm256_mul_pd(at.r, at.r), _mm256_sub_pd(_mm256_mul_pd(mu, mu), _mm256_set1_pd(1.0)));
+  const __m256d ground = _mm256_and_pd(
+      _mm256_cmp_pd(mu, zero, _CMP_LT_OQ),
+      _mm256_cmp_pd(_mm256_add_pd(rr_mm1, _mm256_set1_pd(rb * rb)), zero, _CMP_GE_OQ));
+  const __m256d d = _mm256_max_pd(  // distance_to_top_boundary
+      _mm256_add_pd(_mm256_mul_pd(_mm256_xor_pd(at.r, _mm256_set1_pd(-0.0)), mu),
+                    _mm256_sqrt_pd(_mm256_max_pd(zero, _mm256_add_pd(rr_mm1, _mm256_set1_pd(rt * rt))))),
+      zero);
+  const __m256d x_mu = clamp_lanes(_mm256_div_pd(_mm256_sub_pd(d, at.d_min), at.span), 0.0, 1.0);
+  const int w = lut.width;
+  const __m256d u = _mm256_add_pd(_mm256_set1_pd(0.5 / w),
+                                  _mm256_mul_pd(x_mu, _mm256_set1_pd(1.0 - 1.0 / w)));
+  const AxisLanes ax = bilinear_axis_lanes(w, lut.channel_count(), u);
+  const __m128i o00 = _mm_add_epi32(at.row0, ax.o0), o10 = _mm_add_epi32(at.row0, ax.o1);
+  const __m128i o01 = _mm_add_epi32(at.row1, ax.o0), o11 = _mm_add_epi32(at.row1, ax.o1);
+  const float* data = lut.data.data();
+  for (int c = 0; c < 3; ++c) {  // sample_bilinear_rgb's operations
+    const __m256d t00 = _mm256_cvtps_pd(_mm_i32gather_ps(data + c, o00, 4));
+    const __m256d t10 = _mm256_cvtps_pd(_mm_i32gather_ps(data + c, o10, 4));
+    const __m256d t01 = _mm256_cvtps_pd(_mm_i32gather_ps(data + c, o01, 4));
+    const __m256d t11 = _mm256_cvtps_pd(_mm_i32gather_ps(data + c, o11, 4));
+    const __m256d lo = _mm256_add_pd(t00, _mm256_mul_pd(ax.f, _mm256_sub_pd(t10, t00)));
+    const __m256d hi = _mm256_add_pd(t01, _mm256_mul_pd(ax.f, _mm256_sub_pd(t11, t01)));
+    const __m256d t = _mm256_add_pd(lo, _mm256_mul_pd(at.fy, _mm256_sub_pd(hi, lo)));
+    sum[c] = _mm256_add_pd(sum[c], _mm256_andnot_pd(ground, t));  // Vis = 0: a zero read
+  }
+}
+
+SKYBAKE_AVX2 void ring_sun_sums_avx2(const Texture& lut, const Atmosphere& atm,
+                                     const double* radii, const double* distances,
                                      const double* inverse_radii, size_t n, double height,
                                      const double cosines[4], glm::dvec3* sums) {
-  const __m256d c = _mm256_loadu_pd(cosines);
   const __m256d h = _mm256_set1_pd(height);
-  alignas(32) double f[4], lit[4];
-  alignas(16) int o0[4], o1[4];
-  alignas(32) double sum[4];
-  for (size_t i = 0; i < n; ++i) {
-    // (height + distance c) / r, then clamp_cosine, as the one-value read.
-    const __m256d mu =
-        clamp_lanes(_mm256_mul_pd(_mm256_add_pd(h, _mm256_mul_pd(_mm256_set1_pd(distances[i]), c)),
-                                  _mm256_set1_pd(inverse_radii[i])),
-                    -1.0, 1.0);
-    const TransmittanceAtRadius& at = reads[i];
-    const SunCoordLanes s = sun_coord_lanes(at, bottom_m, mu);
-    const AxisLanes a = bilinear_axis_lanes(lut.width, at.row.channels, s.u);
-    _mm256_store_pd(f, a.f);
-    _mm256_store_pd(lit, _mm256_castsi256_pd(_mm256_xor_si256(
-                             _mm256_castpd_si256(s.ground), _mm256_set1_epi64x(-1))));
-    _mm_store_si128(reinterpret_cast<__m128i*>(o0), a.o0);
-    _mm_store_si128(reinterpret_cast<__m128i*>(o1), a.o1);
-    __m256d total = _mm256_setzero_pd();
-    for (int lane = 0; lane < 4; ++lane) {
-      const __m256d t =
-          bilinear_rgb_texels(at.row.row0, at.row.row1, o0[lane], o1[lane], f[lane], at.row.fy);
-      // Vis = 0 below the horizon: the one-value loop adds a zero read.
-      total = _mm256_add_pd(total, _mm256_and_pd(t, _mm256_set1_pd(lit[lane])));
+  for (size_t k = 0; k < n; k += 4) {
+    // A last group of fewer than four repeats its last sample in the spare lanes.
+    const int count = int(std::min<size_t>(4, n - k));
+    alignas(32) double r[4], t[4], inv[4];
+    for (int j = 0; j < 4; ++j) {
+      const size_t i = k + size_t(std::min(j, count - 1));
+      r[j] = radii[i];
+      t[j] = distances[i];
+      inv[j] = inverse_radii[i];
     }
-    _mm256_store_pd(sum, total);
-    sums[i] = glm::dvec3(sum[0], sum[1], sum[2]);
+    const RadiusLanes at = radius_lanes(lut, atm, _mm256_load_pd(r));
+    const __m256d dist = _mm256_load_pd(t), inverse = _mm256_load_pd(inv);
+    __m256d sum[3] = {_mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd()};
+    for (int j = 0; j < 4; ++j) {
+      // (height + distance c) / r, then clamp_cosine, as the one-value read.
+      const __m256d mu = clamp_lanes(
+          _mm256_mul_pd(_mm256_add_pd(h, _mm256_mul_pd(dist, _mm256_set1_pd(cosines[j]))), inverse),
+          -1.0, 1.0);
+      add_sun_lanes(lut, atm, at, mu, sum);
+    }
+    alignas(32) double out[3][4];
+    for (int c = 0; c < 3; ++c) _mm256_store_pd(out[c], sum[c]);
+    for (int j = 0; j < count; ++j) sums[k + size_t(j)] = {out[0][j], out[1][j], out[2][j]};
   }
 }
 #endif
 
 }  // namespace
 
-bool ring_sun_sums_wide(const Texture& lut, double bottom_m, const TransmittanceAtRadius* reads,
+bool ring_sun_sums_wide(const Texture& lut, const Atmosphere& atm, const double* radii,
                         const double* distances, const double* inverse_radii, size_t n,
                         double height, const double cosines[4], glm::dvec3* sums) {
 #if SKYBAKE_HAS_AVX2
   if (wide_vectors()) {
-    ring_sun_sums_avx2(lut, bottom_m, reads, distances, inverse_radii, n, height, cosines, sums);
+    ring_sun_sums_avx2(lut, atm, radii, distances, inverse_radii, n, height, cosines, sums);
     return true;
   }
 #endif
-  (void)lut, (void)bottom_m, (void)reads, (void)distances, (void)inverse_radii, (void)n,
-      (void)height, (void)cosines, (void)sums;
+  (void)lut, (void)atm, (void)radii, (void)distances, (void)inverse_radii, (void)n, (void)height,
+      (void)cosines, (void)sums;
   return false;
 }
 
