@@ -7,6 +7,7 @@
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/medium_block.hpp"
 #include "atmosphere/phase.hpp"
+#include "atmosphere/ring_segments.hpp"
 #include "atmosphere/ring_sun_wide.hpp"
 #include "atmosphere/sky_integrator.hpp"
 #include "atmosphere/transmittance_lut.hpp"
@@ -32,6 +33,7 @@ struct RingMarch {
   // the azimuths' sums of the sun (lit_ring).
   std::vector<double> ends, altitudes, expm1s;
   MediumBlock media;
+  RingSegmentTerms terms;
   std::vector<glm::dvec3> sun_sums;
 };
 
@@ -78,18 +80,6 @@ void segment_ends(double r, double mu, double length, int steps, std::vector<dou
     piece(0.0, length, steps);
   }
   ends.back() = length;
-}
-
-// Where in a segment of length dt the light it scatters comes from: the
-// centroid of exp(-sigma s) on [0, dt], 1 / sigma - dt / expm1(sigma dt),
-// with sigma the channels' mean extinction. dt / 2 in thin air; about
-// 1 / sigma from the segment's start where the segment is optically thick,
-// so the sun is read where the light scatters, not at a midpoint it never
-// reaches (the stiff extreme presets).
-double weight_centroid(glm::dvec3 extinction, double dt, double expm1_x) {
-  const double x = (extinction.x + extinction.y + extinction.z) / 3.0 * dt;
-  const double fraction = x < 1e-4 ? 0.5 - x / 12.0 : 1.0 / x - 1.0 / expm1_x;
-  return fraction * dt;
 }
 
 // The ring's segments' media and the four expm1 of each (segment_weights'
@@ -143,24 +133,28 @@ void march_ring(const Atmosphere& atm, double r, double mu, int steps, RingMarch
   const std::vector<double>& ends = out.ends;
   segment_ends(r, mu, out.length, std::max(steps, 1), out.ends);
   ring_media(atm, r, mu, out);
-  for (size_t i = 0; i + 1 < ends.size(); ++i) {
+  if (atm.components.empty()) {  // vacuum: no segment scatters or attenuates
+    out.ground_transmittance = transmittance;
+    return;
+  }
+  const size_t n = ends.size() - 1;
+  const RingSegmentTerms& terms = out.terms;
+  ring_segment_terms(ends.data(), n, out.media.extinction.data(), out.expm1s.data(), r, mu, rb,
+                     out.terms);
+  for (size_t i = 0; i < n; ++i) {
     const double dt = ends[i + 1] - ends[i];
     if (!(dt > 0.0)) continue;
-    const glm::dvec3& extinction = out.media.extinction[i];
-    if (extinction == glm::dvec3(0.0)) continue;
+    if (out.media.extinction[i] == glm::dvec3(0.0)) continue;
     // segment_weights with the block's expm1(-sigma_t dt).
     SegmentWeights w;
     for (int c = 0; c < 3; ++c) {
-      const double em = out.expm1s[4 * i + c];
-      w.weight[c] = extinction[c] > 0.0 ? -em / extinction[c] : dt;
-      w.transmittance[c] = 1.0 + em;
+      w.weight[c] = terms.weight[c][i];
+      w.transmittance[c] = 1.0 + out.expm1s[4 * i + c];
     }
     const glm::dvec3 scattered = transmittance * out.media.scattering[i] * w.weight;
-    const double lit_at = ends[i] + weight_centroid(extinction, dt, out.expm1s[4 * i + 3]);
-    const double lit_radius = std::max(radius_after(r, mu, lit_at), rb);
-    out.distances.push_back(lit_at);
-    out.radii.push_back(lit_radius);
-    out.inverse_radii.push_back(1.0 / lit_radius);
+    out.distances.push_back(terms.lit_at[i]);
+    out.radii.push_back(terms.lit_radius[i]);
+    out.inverse_radii.push_back(terms.inverse_radius[i]);
     out.scattered.push_back(scattered);
     out.l_f += scattered;
     transmittance *= w.transmittance;
