@@ -112,6 +112,10 @@ SKYBAKE_AVX2 void sky_reads_avx2(const Atmosphere& atm, const Texture& transmitt
     if (multiscattering_lut)
       multiscattering_lanes(atm, *multiscattering_lut, mapping, rv, mv, count, ms + k);
   }
+  // GCC leaves out the vzeroupper after calls that pass 256-bit values: the
+  // SSE2 code that follows (the march, the next bake) would then run with the
+  // upper halves dirty, measured 20% slower on the aerial table's bake.
+  _mm256_zeroupper();
 }
 #endif
 
