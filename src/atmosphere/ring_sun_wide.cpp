@@ -37,6 +37,23 @@ SKYBAKE_AVX2 RadiusLanes radius_lanes(const Texture& lut, const Atmosphere& atm,
   return l;
 }
 
+// The first three channels of the texels at float offsets `o` of `data`, one
+// texel a lane, widened to double: R and G as one 64-bit gather of the pair,
+// split by a permute, B as a 32-bit gather (two gathers a texel, not three).
+struct RgbTexelLanes {
+  __m256d c[3];
+};
+SKYBAKE_AVX2 inline RgbTexelLanes texel_lanes(const float* data, __m128i o) {
+  const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+  const __m256d rg_pairs = _mm256_mask_i32gather_pd(  // the masked form: a defined source
+      _mm256_setzero_pd(), reinterpret_cast<const double*>(data), _mm_slli_epi32(o, 2), all, 1);
+  const __m256 rg = _mm256_permutevar8x32_ps(_mm256_castpd_ps(rg_pairs),
+                                             _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7));
+  return {{_mm256_cvtps_pd(_mm256_castps256_ps128(rg)),
+           _mm256_cvtps_pd(_mm256_extractf128_ps(rg, 1)),
+           _mm256_cvtps_pd(_mm_i32gather_ps(data + 2, o, 4))}};
+}
+
 // lookup_sun_transmittance(lut, at, rb, mu) in each lane, `at` the lane's
 // RadiusLanes, mu already clamped; adds each channel to sum[c].
 SKYBAKE_AVX2 void add_sun_lanes(const Texture& lut, const Atmosphere& atm, const RadiusLanes& at,
@@ -60,13 +77,11 @@ SKYBAKE_AVX2 void add_sun_lanes(const Texture& lut, const Atmosphere& atm, const
   const __m128i o00 = _mm_add_epi32(at.row0, ax.o0), o10 = _mm_add_epi32(at.row0, ax.o1);
   const __m128i o01 = _mm_add_epi32(at.row1, ax.o0), o11 = _mm_add_epi32(at.row1, ax.o1);
   const float* data = lut.data.data();
+  RgbTexelLanes t00 = texel_lanes(data, o00), t10 = texel_lanes(data, o10);
+  RgbTexelLanes t01 = texel_lanes(data, o01), t11 = texel_lanes(data, o11);
   for (int c = 0; c < 3; ++c) {  // sample_bilinear_rgb's operations
-    const __m256d t00 = _mm256_cvtps_pd(_mm_i32gather_ps(data + c, o00, 4));
-    const __m256d t10 = _mm256_cvtps_pd(_mm_i32gather_ps(data + c, o10, 4));
-    const __m256d t01 = _mm256_cvtps_pd(_mm_i32gather_ps(data + c, o01, 4));
-    const __m256d t11 = _mm256_cvtps_pd(_mm_i32gather_ps(data + c, o11, 4));
-    const __m256d lo = _mm256_add_pd(t00, _mm256_mul_pd(ax.f, _mm256_sub_pd(t10, t00)));
-    const __m256d hi = _mm256_add_pd(t01, _mm256_mul_pd(ax.f, _mm256_sub_pd(t11, t01)));
+    const __m256d lo = _mm256_add_pd(t00.c[c], _mm256_mul_pd(ax.f, _mm256_sub_pd(t10.c[c], t00.c[c])));
+    const __m256d hi = _mm256_add_pd(t01.c[c], _mm256_mul_pd(ax.f, _mm256_sub_pd(t11.c[c], t01.c[c])));
     const __m256d t = _mm256_add_pd(lo, _mm256_mul_pd(at.fy, _mm256_sub_pd(hi, lo)));
     sum[c] = _mm256_add_pd(sum[c], _mm256_andnot_pd(ground, t));  // Vis = 0: a zero read
   }
