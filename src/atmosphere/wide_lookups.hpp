@@ -58,6 +58,23 @@ SKYBAKE_AVX2 inline __m256d bilinear_rgb_texels(const float* row0, const float* 
   return _mm256_add_pd(lo, _mm256_mul_pd(_mm256_set1_pd(fy), _mm256_sub_pd(hi, lo)));
 }
 
+// The first three channels of the texels at float offsets `o` of `data`, one
+// texel a lane, widened to double: R and G as one 64-bit gather of the pair,
+// split by a permute, B as a 32-bit gather (two gathers a texel, not three).
+struct RgbTexelLanes {
+  __m256d c[3];
+};
+SKYBAKE_AVX2 inline RgbTexelLanes texel_lanes(const float* data, __m128i o) {
+  const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+  const __m256d rg_pairs = _mm256_mask_i32gather_pd(  // the masked form: a defined source
+      _mm256_setzero_pd(), reinterpret_cast<const double*>(data), _mm_slli_epi32(o, 2), all, 1);
+  const __m256 rg = _mm256_permutevar8x32_ps(_mm256_castpd_ps(rg_pairs),
+                                             _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7));
+  return {{_mm256_cvtps_pd(_mm256_castps256_ps128(rg)),
+           _mm256_cvtps_pd(_mm256_extractf128_ps(rg, 1)),
+           _mm256_cvtps_pd(_mm_i32gather_ps(data + 2, o, 4))}};
+}
+
 // sample_bilinear_rgb(tex, row, u) in each lane, tex `width` texels wide
 // (bilinear_axis without wrapping: a coordinate that is not finite reads texel 0).
 SKYBAKE_AVX2 inline RgbLanes bilinear_rgb_lanes(const BilinearRow& row, int width, __m256d u) {
