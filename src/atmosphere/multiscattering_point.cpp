@@ -88,15 +88,11 @@ void segment_ends(double r, double mu, double length, int steps, std::vector<dou
 // (medium_block.hpp, core/exp_block.hpp: within 1e-15 relative of libm);
 // else std::exp and std::expm1 one at a time, the same bits as
 // sample_medium, segment_weights and std::expm1 per segment.
+// Not called in vacuum (no component: march_ring skips the segments).
 void ring_media(const Atmosphere& atm, double r, double mu, RingMarch& out) {
   const std::vector<double>& ends = out.ends;
   const size_t n = ends.size() - 1;
   const double rb = atm.bottom_radius_m;
-  if (atm.components.empty()) {  // vacuum: every segment is skipped, no expm1 is read
-    out.media.scattering.assign(n, glm::dvec3(0.0));
-    out.media.extinction.assign(n, glm::dvec3(0.0));
-    return;
-  }
   out.altitudes.resize(n);
   for (size_t i = 0; i < n; ++i)  // the medium at the midpoint, as the table's march samples it
     out.altitudes[i] = std::max(radius_after(r, mu, 0.5 * (ends[i] + ends[i + 1])), rb) - rb;
@@ -130,13 +126,13 @@ void march_ring(const Atmosphere& atm, double r, double mu, int steps, RingMarch
   out.ground = ray_intersects_ground(rb, r, mu);
   out.length = distance_to_nearest_boundary(rb, atm.top_radius_m, r, mu, out.ground);
   glm::dvec3 transmittance(1.0);
-  const std::vector<double>& ends = out.ends;
-  segment_ends(r, mu, out.length, std::max(steps, 1), out.ends);
-  ring_media(atm, r, mu, out);
   if (atm.components.empty()) {  // vacuum: no segment scatters or attenuates
     out.ground_transmittance = transmittance;
     return;
   }
+  const std::vector<double>& ends = out.ends;
+  segment_ends(r, mu, out.length, std::max(steps, 1), out.ends);
+  ring_media(atm, r, mu, out);
   const size_t n = ends.size() - 1;
   const RingSegmentTerms& terms = out.terms;
   ring_segment_terms(ends.data(), n, out.media.extinction.data(), out.expm1s.data(), r, mu, rb,
