@@ -99,7 +99,10 @@ class RayMarcher {
     block = block || at_ends;
     if (empty() || !(t1 > t0)) return;
     n = std::max(n, 1);
-    std::vector<double> ends;  // block: the segments' ends, t0 first
+    // block: the segments' ends, t0 first, kept by each thread from march to
+    // march (the references march hundreds of short rays: no allocation each).
+    thread_local std::vector<double> ends;
+    ends.clear();
     if (block) ends.push_back(t0);
     const auto emit = [&](double a, double b) {
       if (block)
