@@ -28,10 +28,11 @@
 //   centroid of that weight (the midpoint in thin air, near the segment's
 //   start where it is optically thick).
 // Where the AVX2 loops run (core/wide_vectors.hpp), a ring's media and
-// expm1s are taken in blocks (medium_block.hpp, core/exp_block.hpp) and four
-// azimuths' sun reads in one group (ring_sun_wide.hpp): within 1e-13 of the
-// one-value loops, which keep libm's bits (docs/decisions.md "Error records
-// of the extreme cases").
+// expm1s are taken in blocks (medium_block.hpp, core/exp_block.hpp): within
+// 1e-13 of the one-value loops, which keep libm's bits (docs/decisions.md
+// "Error records of the extreme cases"); its per-segment terms
+// (ring_segments.hpp) and the four azimuths' sun reads (ring_sun_wide.hpp)
+// four segments at a time, the same bits as one at a time.
 #pragma once
 
 #include <vector>

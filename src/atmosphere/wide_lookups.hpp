@@ -1,12 +1,13 @@
 // The sky LUT reads of the four-wide loops (skyview_row_wide.cpp,
-// multiscattering_wide.cpp): sample_bilinear_rgb and lookup_sun_transmittance
-// in each of four lanes, the same operations on the same operands in the same
-// order as the one-value functions, without FMA, so the same bits
+// multiscattering_wide.cpp, and the error records' ring_sun_wide.cpp and
+// sky_reads.cpp): sample_bilinear_rgb and lookup_sun_transmittance in each of
+// four lanes, the same operations on the same operands in the same order as
+// the one-value functions, without FMA, so the same bits
 // (core/wide_vectors.hpp). The clamps are core/wide_intrinsics.hpp's
 // clamp_lanes, and std::max(0.0, v) is _mm256_max_pd(v, 0), signed zeros
-// included. Texel reads are gathers of the same floats, widened to double as
-// the one-value read widens them. For the .cpp files of such loops only
-// (core/wide_intrinsics.hpp).
+// included. Texel reads load the same floats (gathers, or one texel's three
+// floats into one vector), widened to double as the one-value read widens
+// them. For the .cpp files of such loops only (core/wide_intrinsics.hpp).
 #pragma once
 
 #include "atmosphere/transmittance_lut.hpp"
