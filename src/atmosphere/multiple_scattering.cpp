@@ -80,8 +80,9 @@ glm::dvec3 compute_multiple_scattering(const Atmosphere& atm, const ScatteringSh
 
 // In single precision, three channels (and a pad) at a time: the table is
 // float32 and a texel sums ~51 terms of one sign (relative rounding ~1e-6,
-// far below the quadrature's error); the geometry (taps, weights) stays in
-// double.
+// far below the quadrature's error); the ray's geometry stays in double, the
+// mu_s taps of each node are single precision (row_node.hpp: within 2.5e-5
+// of a texel of the double ones).
 Texture bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shape,
                                  const Texture& density, int nodes, const BakeContext& ctx) {
   Texture out;
@@ -135,7 +136,7 @@ void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shap
                               Texture& out, MultipleScatteringWork& work) {
   const ScatteringTexelGrid texels = scattering_texel_grid(atm, shape);
   std::vector<Rgb4>& radiance = work.radiance;
-  const MuSAxis mu_s_axis(atm, shape);
+  const FloatMuSTaps mu_s_taps(MuSAxis(atm, shape).constants());
   radiance.resize(density.texel_count());  // every texel's R, G, B written below, pads 0
   for_each_density_per_scattering(atm, shape, density,
                                   [&](size_t t, int c, float v) { radiance[t].v[c] = v; });
@@ -148,21 +149,18 @@ void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shap
   ProgressCounter progress(ctx, size_t(rows));
   tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& range) {
     RayTransfer transfer;
-    std::vector<Rgb4> slice(W), sum(W);
     // Per texel of the row: its mu_s and nu (nu is constant along the ray,
-    // and so are its slice taps); per node, the texels' mu_s there and
-    // their mu_s taps, computed for the whole row in one branch-free pass.
-    std::vector<double> mu_s_x(W), nu_x(W), mu_s_node(W), tap_w(W);
-    std::vector<int> tap_i0(W), nu_i0(W), nu_i1(W);
-    std::vector<float> nu_w(W);
+    // and so are its slice taps); per node, the reads' texels and mu_s
+    // weights (row_node.hpp). Padded to a multiple of 8 texels.
+    const int padded = (W + 7) / 8 * 8;
+    std::vector<Rgb4> slice(W), sum(padded);
+    std::vector<double> mu_s_x(padded), nu_x(padded);
+    std::vector<int> nu_i0(padded), nu_i1(padded), at0(padded), at1(padded), slot(W);
+    std::vector<float> nu_w(padded), lw(padded);
     std::vector<double> spread(n_mu_s);
-    std::vector<float> lw(W);
-    std::vector<int> at0(W), at1(W), slot(W);
-    auto node_row = [&](double r, double s, double inv_r_i) {
-      return NodeRow{r,           s,           inv_r_i,         mu_s_x.data(), nu_x.data(),
-                     nu_i0.data(), nu_i1.data(), nu_w.data(), at0.data(),    at1.data(),
-                     lw.data()};
-    };
+    const NodeRow node_row{0.0,          0.0,          0.0,         mu_s_x.data(), nu_x.data(),
+                           nu_i0.data(), nu_i1.data(), nu_w.data(), at0.data(),    at1.data(),
+                           lw.data()};
     for (int row = range.begin(); row != range.end(); ++row) {
       const int z = row / shape.mu_size, y = row % shape.mu_size;
       const ScatteringParams p0 = texels.at(0, y, z);
@@ -188,22 +186,24 @@ void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shap
         nu_w[n] = float(tn.w);
         ++n;
       }
+      // The padding: valid texels whose sums are not read.
+      const int n8 = (n + 7) / 8 * 8;
+      std::fill(mu_s_x.begin() + n, mu_s_x.begin() + n8, 0.0);
+      std::fill(nu_x.begin() + n, nu_x.begin() + n8, 0.0);
+      std::fill(nu_i0.begin() + n, nu_i0.begin() + n8, 0);
+      std::fill(nu_i1.begin() + n, nu_i1.begin() + n8, 0);
+      std::fill(nu_w.begin() + n, nu_w.begin() + n8, 0.0f);
       if (make_nodes) make_row_nodes(atm, shape, p0, nodes, transfer, work.nodes[size_t(row)]);
-      std::fill(sum.begin(), sum.begin() + n, Rgb4{});
+      std::fill(sum.begin(), sum.begin() + n8, Rgb4{});
+      NodeRow at = node_row;
+      at.r = p0.r;
       for (const MultipleScatteringWork::Node& a : work.nodes[size_t(row)]) {
         const Rgb4* rows4[4];
         for (int i = 0; i < 4; ++i) rows4[i] = &radiance[size_t(a.rows[i]) * W];
         blend_rows(rows4, a.w, W, slice.data());
-        // The texels' mu_s at the node, its taps and the reads: in one
-        // pass where it can (row_node.hpp), the rest in three.
-        const int k =
-            add_node_row(node_row(p0.r, a.s, a.inv_r_i), mu_s_axis, slice.data(), a.wS, n, sum.data());
-        mu_s_at_node(p0.r, a.s, a.inv_r_i, mu_s_x.data() + k, nu_x.data() + k, n - k,
-                     mu_s_node.data() + k);
-        mu_s_axis.taps(mu_s_node.data() + k, n - k, tap_i0.data() + k, tap_w.data() + k);
-        const BilinearTaps rest{nu_i0.data() + k, nu_i1.data() + k, tap_i0.data() + k,
-                                tap_w.data() + k, nu_w.data() + k};
-        add_bilinear_row(slice.data(), rest, a.wS, n - k, sum.data() + k);
+        at.s = a.s;
+        at.inv_r_i = a.inv_r_i;
+        add_node_row(at, mu_s_taps, slice.data(), a.wS, n, sum.data());
       }
       float* texels_out = out.texel(0, y, z);
       for (int x = 0; x < W; ++x)

@@ -1,11 +1,13 @@
 // One quadrature node of a texel row of the multiple-scattering pass
-// (multiple_scattering.cpp) in a single AVX2 loop: the texels' sun cosine at
-// the node (mu_s_at_node), its mu_s taps (MuSAxis::taps) and the bilinear
-// read of the blended slice (add_bilinear_row), four texels at a time. The
-// same operations per lane as those three passes, so the same values
-// (core/wide_vectors.hpp). In one loop the divider's work (two divisions and
-// a square root per texel, in double) overlaps the loads and shuffles of the
-// reads, where the three passes ran one after the other.
+// (multiple_scattering.cpp): the texels' sun cosine at the node, its mu_s
+// taps and the bilinear read of the node's blended slice (row_blend.hpp).
+// The cosine is taken in double; the mu_s mapping of Bruneton 2017
+// (GetTextureCoordFromUnitRange of GetScatteringTextureUvwzFromRMuMuSNu, at
+// r = bottom) in single precision, eight texels per AVX2 instruction or four
+// per SSE2 one: the square root and the division of the mapping are the
+// loop's limit (the divider), and in float they cost about a third of the
+// double ones. The AVX2 and SSE2 loops do the same IEEE operations per lane
+// (core/wide_vectors.hpp), so the same bits.
 #pragma once
 
 #include "atmosphere/row_blend.hpp"
@@ -13,23 +15,42 @@
 
 namespace skybake {
 
-// The node and the row's per-texel constants.
+// The mu_s mapping as one division: with D = Rb m + sqrt(Rb^2 m^2 + H^2),
+// the distance to the top is d = H^2 / D (no cancellation near m = 1, where
+// -Rb m + sqrt(..) loses two digits in float), and
+//   u = max(1 - a / A, 0) / (1 + a), a = (d - d_min) / span,
+// becomes u = max(D k1 - h2, 0) / (D ak2 + ah2), every length in units of
+// Rb (k1 = (A span + d_min) / Rb, ak2 = A (span - d_min) / Rb, h2 = H^2 /
+// Rb^2, ah2 = A h2). Within 2.5e-5 of a texel of MuSAxis::tap (tested; 5e-6
+// on Earth's default 32 texels), where the double taps' weights were rounded
+// to float for the reads.
+struct FloatMuSTaps {
+  float lo = -1, h2 = 0, k1 = 0, ak2 = 0, ah2 = 0, last = 0, below_last = 0;
+  explicit FloatMuSTaps(const MuSAxis::Constants& c);
+  // The tap of one cosine (unclamped), the operations of the loops: texel
+  // i0 (i1 = i0 + 1) and the weight of i1.
+  void tap(double mu_s, int& i0, float& w) const;
+};
+
+// The node and the row's per-texel constants. The per-texel arrays hold a
+// multiple of 8 texels (padded with valid values: the loops compute whole
+// groups, and the padded lanes' sums are not read).
 struct NodeRow {
   double r = 0, s = 0, inv_r_i = 0;  // the ray's start radius, the node's distance along it, 1 / its radius
-  const double* mu_s = nullptr;  // per texel: mu_s and nu of the texel (mu_s_at_node)
+  const double* mu_s = nullptr;  // per texel: mu_s and nu of the texel
   const double* nu = nullptr;
-  const int* nu_i0 = nullptr;  // per texel: the nu slices' offsets and weight (BilinearTaps)
+  const int* nu_i0 = nullptr;  // per texel: the nu slices' offsets and weight (nu_slice_tap)
   const int* nu_i1 = nullptr;
   const float* nu_w = nullptr;
-  int *at0 = nullptr, *at1 = nullptr;  // work arrays of the row's size: the reads' texels
+  int *at0 = nullptr, *at1 = nullptr;  // work arrays of the padded size: the reads' texels
   float* lw = nullptr;                 // and mu_s weights
 };
 
-// For the first texels of the row (a multiple of 4; none without AVX2):
-// sum[x] += wS lerp(lerp(s00, s01, lw), lerp(s10, s11, lw), nw) with the taps
-// of MuSAxis::taps at mu_s_at_node(r, s, inv_r_i, mu_s[x], nu[x]), the same
-// values as the three passes. Returns how many texels it did.
-int add_node_row(const NodeRow& row, const MuSAxis& axis, const Rgb4* slice, const Rgb4& wS, int n,
-                 Rgb4* sum);
+// For texels [0, n rounded up to 8): sum[x] += wS lerp(lerp(s00, s01, lw),
+// lerp(s10, s11, lw), nw), s00 = slice[nu_i0[x] + i0], s10 = slice[nu_i1[x]
+// + i0], s01 and s11 the next texels along mu_s, (i0, lw) the taps of
+// clamp_cosine((r mu_s[x] + s nu[x]) inv_r_i) (FloatMuSTaps::tap).
+void add_node_row(const NodeRow& row, const FloatMuSTaps& taps, const Rgb4* slice, const Rgb4& wS,
+                  int n, Rgb4* sum);
 
 }  // namespace skybake
