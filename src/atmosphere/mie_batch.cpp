@@ -1,5 +1,5 @@
-// The density's Mie loop in SSE2 and AVX2 (one the twin of the other, same
-// bits: core/wide_vectors.hpp) and its plain C++ fallback. See the header.
+// The density's Mie loop in SSE2, AVX2 and AVX-512 (twins, the same bits:
+// core/wide_vectors.hpp) and its plain C++ fallback. See the header.
 #include "atmosphere/mie_batch.hpp"
 
 #include <algorithm>
@@ -106,6 +106,54 @@ SKYBAKE_AVX2 void mie_sums_avx2(const MieLoop& q, double out[4]) {
 }
 #endif
 
+#if defined(SKYBAKE_AVX512)
+// mie_sums_avx2 with the kernel of sixteen pairs per step (the square roots
+// and the division at twice the lanes), each half added into the eight
+// lanes as mie_sums_avx2 adds the step of its pairs: the same sums in the
+// same order. A last group of eight pairs takes the 256-bit step.
+// (GCC 12's AVX-512 intrinsics start from _mm512_undefined_ps, which
+// -Wmaybe-uninitialized reports once inlined: a false positive.)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+SKYBAKE_AVX512 void mie_sums_avx512(const MieLoop& q, MieLanes lanes) {
+  const __m512 one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
+  const __m512 a = _mm512_set1_ps(q.a), b = _mm512_set1_ps(q.b), cs = _mm512_set1_ps(q.cs);
+  const __m512 vx = _mm512_set1_ps(q.vx), vy = _mm512_set1_ps(q.vy), vz = _mm512_set1_ps(q.vz);
+  __m256 sr = _mm256_setzero_ps(), sg = sr, sb = sr, sw = sr;
+  for (size_t j = 0; j < q.n; j += 16) {
+    // Past the last pair (n a multiple of 8, not of 16): lanes of weight 0.
+    const __mmask16 in = j + 16 <= q.n ? __mmask16(0xffff) : __mmask16(0x00ff);
+    const __m512 in_plane = _mm512_add_ps(_mm512_mul_ps(vx, _mm512_maskz_loadu_ps(in, q.x + j)),
+                                          _mm512_mul_ps(vz, _mm512_maskz_loadu_ps(in, q.z + j)));
+    const __m512 across = _mm512_mul_ps(vy, _mm512_maskz_loadu_ps(in, q.y + j));
+    const __m512 cp = _mm512_add_ps(in_plane, across), cm = _mm512_sub_ps(in_plane, across);
+    const __m512 wp =
+        _mm512_add_ps(a, _mm512_mul_ps(b, _mm512_max_ps(_mm512_sub_ps(one, cp), zero)));
+    const __m512 wm =
+        _mm512_add_ps(a, _mm512_mul_ps(b, _mm512_max_ps(_mm512_sub_ps(one, cm), zero)));
+    const __m512 qp = _mm512_mul_ps(wp, _mm512_sqrt_ps(wp));
+    const __m512 qm = _mm512_mul_ps(wm, _mm512_sqrt_ps(wm));
+    const __m512 np = _mm512_add_ps(one, _mm512_mul_ps(cs, _mm512_mul_ps(cp, cp)));
+    const __m512 nm = _mm512_add_ps(one, _mm512_mul_ps(cs, _mm512_mul_ps(cm, cm)));
+    const __m512 p = _mm512_div_ps(_mm512_add_ps(_mm512_mul_ps(np, qm), _mm512_mul_ps(nm, qp)),
+                                   _mm512_mul_ps(qp, qm));
+    const __m256 halves[2] = {_mm512_castps512_ps256(p), _mm512_extractf32x8_ps(p, 1)};
+    for (size_t h = 0; h < 2 && j + 8 * h < q.n; ++h) {
+      const size_t k = j + 8 * h;
+      sr = _mm256_add_ps(sr, _mm256_mul_ps(halves[h], _mm256_loadu_ps(q.lr + k)));
+      sg = _mm256_add_ps(sg, _mm256_mul_ps(halves[h], _mm256_loadu_ps(q.lg + k)));
+      sb = _mm256_add_ps(sb, _mm256_mul_ps(halves[h], _mm256_loadu_ps(q.lb + k)));
+      sw = _mm256_add_ps(sw, _mm256_mul_ps(halves[h], _mm256_loadu_ps(q.dw + k)));
+    }
+  }
+  _mm256_storeu_ps(lanes[0], sr);
+  _mm256_storeu_ps(lanes[1], sg);
+  _mm256_storeu_ps(lanes[2], sb);
+  _mm256_storeu_ps(lanes[3], sw);
+}
+#pragma GCC diagnostic pop
+#endif
+
 // The same operations one lane at a time, for CPUs without SSE2.
 [[maybe_unused]] void mie_sums_plain(const MieLoop& q, MieLanes lanes) {
   for (int c = 0; c < 4; ++c)
@@ -159,12 +207,17 @@ void MieBatch::sums(const MieKernel& k, const glm::dvec3& v, double out[4]) cons
                   k.cornette_shanks ? 1.0f : 0.0f,      x.data(),    y.data(),
                   z.data(),    dw.data(),   lr.data(),  lg.data(),  lb.data(), n};
 #if SKYBAKE_HAS_AVX2
-  if (wide_vectors()) {
+  if (wide_vectors() && !widest_vectors()) {
     mie_sums_avx2(q, out);
     return;
   }
 #endif
   MieLanes lanes;
+#if defined(SKYBAKE_AVX512)
+  if (widest_vectors())
+    mie_sums_avx512(q, lanes);
+  else
+#endif
 #if defined(__SSE2__)
   mie_sums_sse2(q, lanes);
 #else

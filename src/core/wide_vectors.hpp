@@ -18,6 +18,16 @@ bool wide_vectors();
 // CPU has them. For tests and measurements; not meant to change mid-bake.
 void set_wide_vectors(bool enabled);
 
+// True when the AVX-512 versions of the divider-bound loops run (the
+// density's Mie loop): wide_vectors() is, the CPU has AVX-512 F and DQ, and
+// they are not off. Sixteen floats per square root or division, where the
+// divider of a CPU with full-width AVX-512 (AMD Zen 5) takes about the time
+// of AVX2's eight; each does the same IEEE operations per lane as its AVX2
+// twin and adds into the same eight lanes, so the same bits.
+bool widest_vectors();
+// Turns them off (false: AVX2 or SSE2) or back on where the CPU has them.
+void set_widest_vectors(bool enabled);
+
 }  // namespace skybake
 
 // SKYBAKE_AVX2 marks a function built for AVX2 (without FMA: an FMA rounds
@@ -29,4 +39,16 @@ void set_wide_vectors(bool enabled);
 #else
 #define SKYBAKE_HAS_AVX2 0
 #define SKYBAKE_AVX2
+#endif
+
+// SKYBAKE_AVX512 marks a function built for AVX-512 F and DQ. GCC's
+// avx512f target brings FMA with it, and GCC fuses a product and a sum into
+// one FMA by default (-ffp-contract=fast), which rounds once where the SSE2
+// twin rounds twice: contraction is off in these functions (clang contracts
+// only within one expression, never across intrinsics). Such a function
+// calls no other function (the attribute's options must match to inline).
+#if SKYBAKE_HAS_AVX2 && defined(__clang__)
+#define SKYBAKE_AVX512 __attribute__((target("avx512f,avx512dq")))
+#elif SKYBAKE_HAS_AVX2
+#define SKYBAKE_AVX512 __attribute__((target("avx512f,avx512dq"), optimize("fp-contract=off")))
 #endif
