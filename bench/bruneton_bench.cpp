@@ -65,8 +65,9 @@ BENCHMARK(BM_BakeScattering3dEarth)
 // bake), then per order the density and the multiple-scattering pass.
 void BM_BrunetonStage(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
-  const bool wide_before = wide_vectors();
+  const bool wide_before = wide_vectors(), widest_before = widest_vectors();
   set_wide_vectors(state.range(1) != 0);
+  set_widest_vectors(state.range(1) == 2);
   const Atmosphere atm = fixtures::earth_atmosphere();
   const Texture& lut = earth_transmittance();
   const ScatteringShape shape;
@@ -90,10 +91,13 @@ void BM_BrunetonStage(benchmark::State& state) {
     }
   }
   set_wide_vectors(wide_before);
+  set_widest_vectors(widest_before);
 }
 BENCHMARK(BM_BrunetonStage)
-    ->ArgNames({"stage", "wide"})  // stage 0 single, 1 density, 2 multiple
-    ->ArgsProduct({{0, 1, 2}, {1, 0}})
+    // stage 0 single, 1 density, 2 multiple; wide 2 AVX-512 where the CPU
+    // has it, 1 AVX2, 0 SSE2 (core/wide_vectors.hpp)
+    ->ArgNames({"stage", "wide"})
+    ->ArgsProduct({{0, 1, 2}, {2, 1, 0}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(2);

@@ -110,12 +110,13 @@ SKYBAKE_AVX2 void mie_sums_avx2(const MieLoop& q, double out[4]) {
 // mie_sums_avx2 with the kernel of sixteen pairs per step (the square roots
 // and the division at twice the lanes), each half added into the eight
 // lanes as mie_sums_avx2 adds the step of its pairs: the same sums in the
-// same order. A last group of eight pairs takes the 256-bit step.
+// same order. A last group of eight pairs (n is a multiple of 8) is loaded
+// under a mask and its upper half not added.
 // (GCC 12's AVX-512 intrinsics start from _mm512_undefined_ps, which
 // -Wmaybe-uninitialized reports once inlined: a false positive.)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-SKYBAKE_AVX512 void mie_sums_avx512(const MieLoop& q, MieLanes lanes) {
+SKYBAKE_AVX512 void mie_sums_avx512(const MieLoop& q, double out[4]) {
   const __m512 one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
   const __m512 a = _mm512_set1_ps(q.a), b = _mm512_set1_ps(q.b), cs = _mm512_set1_ps(q.cs);
   const __m512 vx = _mm512_set1_ps(q.vx), vy = _mm512_set1_ps(q.vy), vz = _mm512_set1_ps(q.vz);
@@ -146,10 +147,7 @@ SKYBAKE_AVX512 void mie_sums_avx512(const MieLoop& q, MieLanes lanes) {
       sw = _mm256_add_ps(sw, _mm256_mul_ps(halves[h], _mm256_loadu_ps(q.dw + k)));
     }
   }
-  _mm256_storeu_ps(lanes[0], sr);
-  _mm256_storeu_ps(lanes[1], sg);
-  _mm256_storeu_ps(lanes[2], sb);
-  _mm256_storeu_ps(lanes[3], sw);
+  add_lanes_avx2(sr, sg, sb, sw, out);  // a call (other options), once per view
 }
 #pragma GCC diagnostic pop
 #endif
@@ -206,18 +204,19 @@ void MieBatch::sums(const MieKernel& k, const glm::dvec3& v, double out[4]) cons
   const MieLoop q{float(v.x),  float(v.y),  float(v.z),  float(k.a),  float(k.b),
                   k.cornette_shanks ? 1.0f : 0.0f,      x.data(),    y.data(),
                   z.data(),    dw.data(),   lr.data(),  lg.data(),  lb.data(), n};
+#if defined(SKYBAKE_AVX512)
+  if (widest_vectors()) {
+    mie_sums_avx512(q, out);
+    return;
+  }
+#endif
 #if SKYBAKE_HAS_AVX2
-  if (wide_vectors() && !widest_vectors()) {
+  if (wide_vectors()) {
     mie_sums_avx2(q, out);
     return;
   }
 #endif
   MieLanes lanes;
-#if defined(SKYBAKE_AVX512)
-  if (widest_vectors())
-    mie_sums_avx512(q, lanes);
-  else
-#endif
 #if defined(__SSE2__)
   mie_sums_sse2(q, lanes);
 #else

@@ -45,8 +45,8 @@ void set_widest_vectors(bool enabled);
 // avx512f target brings FMA with it, and GCC fuses a product and a sum into
 // one FMA by default (-ffp-contract=fast), which rounds once where the SSE2
 // twin rounds twice: contraction is off in these functions (clang contracts
-// only within one expression, never across intrinsics). Such a function
-// calls no other function (the attribute's options must match to inline).
+// only within one expression, never across intrinsics). Its calls of
+// functions without the attribute are not inlined (other options).
 #if SKYBAKE_HAS_AVX2 && defined(__clang__)
 #define SKYBAKE_AVX512 __attribute__((target("avx512f,avx512dq")))
 #elif SKYBAKE_HAS_AVX2

@@ -1,8 +1,9 @@
 // The AVX2 loops of the 4D orders (the density's Mie loop, the mu_s taps
 // and the row blends of the multiple-scattering pass) against their SSE2
-// twins, and the four-texel loops of the sky-view and multiple-scattering
-// tables against their one-texel ones, and the transmittance table's
-// exponentials: the same bits (core/wide_vectors.hpp).
+// twins, the Mie loop's AVX-512 twin against both, the four-texel loops of
+// the sky-view and multiple-scattering tables against their one-texel ones,
+// and the transmittance table's exponentials: the same bits
+// (core/wide_vectors.hpp).
 // Sizes that leave remainders for every loop: 15 texels per row (nu 3 x
 // mu_s 5), 25 direction pairs (5 zenith bands) padded to 32, sky-view rows
 // of 11 texels (22 mirrored) and multiple-scattering rows of 11.
@@ -23,11 +24,12 @@ namespace skybake {
 namespace {
 
 using test::WideVectorsAs;
+using test::WidestVectorsAs;
 
-BrunetonTextures bake(const Atmosphere& atm, const Texture& lut, bool wide) {
+BrunetonTextures bake(const Atmosphere& atm, const Texture& lut, bool wide, int bands = 5) {
   const WideVectorsAs as(wide);
   BrunetonSpec spec = fixtures::small_bruneton_spec({6, 16, 5, 3, kBrunetonMuSMin}, 3);
-  spec.density_directions = 5;
+  spec.density_directions = bands;
   return bake_bruneton(atm, lut, spec, BakeContext{});
 }
 
@@ -127,6 +129,44 @@ TEST(WideVectors, MultiscatteringHasTheSameBitsInAvx2AndOneTexelAtATime) {
       }
     }
   }
+}
+
+// The density's Mie loop in AVX-512 (sixteen pairs per step) against AVX2
+// and SSE2: the whole small bake, bit for bit, with 5 zenith bands (25 pairs
+// padded to 32) and 6 (36 pairs padded to 40: a last group of 8, masked).
+TEST(WideVectors, OrdersHaveTheSameBitsInAvx512AndAvx2) {
+  {
+    const WideVectorsAs wide(true);
+    const WidestVectorsAs probe(true);
+    if (!widest_vectors()) GTEST_SKIP() << "this CPU has no AVX-512: only AVX2 and SSE2 run";
+  }
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const Texture lut = bake_transmittance_lut(atm, {64, 16, 40}, BakeContext{});
+  for (int bands : {5, 6}) {
+    BrunetonTextures avx512, avx2;
+    {
+      const WidestVectorsAs as(true);
+      avx512 = bake(atm, lut, true, bands);
+    }
+    {
+      const WidestVectorsAs as(false);
+      avx2 = bake(atm, lut, true, bands);
+    }
+    const BrunetonTextures sse2 = bake(atm, lut, false, bands);
+    const BrunetonTextures* const others[] = {&avx2, &sse2};
+    for (const BrunetonTextures* other : others) {
+      EXPECT_TRUE(same_bits(avx512.scattering, other->scattering)) << bands << " bands";
+      EXPECT_TRUE(same_bits(avx512.single_mie, other->single_mie));
+      EXPECT_TRUE(same_bits(avx512.irradiance, other->irradiance));
+      EXPECT_EQ(avx512.residuals, other->residuals);
+    }
+  }
+}
+
+TEST(WideVectors, WidestNeedsWideAndFollowsTheCpu) {
+  const WidestVectorsAs widest(true);
+  const WideVectorsAs off(false);
+  EXPECT_FALSE(widest_vectors());  // AVX-512 only with the AVX2 loops on
 }
 
 TEST(WideVectors, OffStaysOffAndOnFollowsTheCpu) {
