@@ -13,6 +13,7 @@
 #include "atmosphere/ray_transfer.hpp"
 #include "atmosphere/row_blend.hpp"
 #include "atmosphere/row_node.hpp"
+#include "atmosphere/row_texels.hpp"
 #include "core/math.hpp"
 
 namespace skybake {
@@ -140,7 +141,7 @@ void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shap
   radiance.resize(density.texel_count());  // every texel's R, G, B written below, pads 0
   for_each_density_per_scattering(atm, shape, density,
                                   [&](size_t t, int c, float v) { radiance[t].v[c] = v; });
-  const int W = shape.texture_width(), n_mu_s = shape.mu_s_size;
+  const int W = shape.texture_width();
   reuse_rgb_table(out, shape);
   const int rows = shape.r_size * shape.mu_size;
   const bool make_nodes = work.nodes_per_ray != nodes || !same_shape(work.shape, shape) ||
@@ -149,65 +150,24 @@ void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shap
   ProgressCounter progress(ctx, size_t(rows));
   tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& range) {
     RayTransfer transfer;
-    // Per texel of the row: its mu_s and nu (nu is constant along the ray,
-    // and so are its slice taps); per node, the reads' texels and mu_s
-    // weights (row_node.hpp). Padded to a multiple of 8 texels.
-    const int padded = (W + 7) / 8 * 8;
-    std::vector<Rgb4> slice(W), sum(padded);
-    std::vector<double> mu_s_x(padded), nu_x(padded);
-    std::vector<int> nu_i0(padded), nu_i1(padded), at0(padded), at1(padded), slot(W);
-    std::vector<float> nu_w(padded), lw(padded);
-    std::vector<double> spread(n_mu_s);
-    const NodeRow node_row{0.0,          0.0,          0.0,         mu_s_x.data(), nu_x.data(),
-                           nu_i0.data(), nu_i1.data(), nu_w.data(), at0.data(),    at1.data(),
-                           lw.data()};
+    RowTexels row_texels(shape);
+    std::vector<Rgb4> slice(W), sum(row_texels.mu_s.size());
     for (int row = range.begin(); row != range.end(); ++row) {
       const int z = row / shape.mu_size, y = row % shape.mu_size;
       const ScatteringParams p0 = texels.at(0, y, z);
-      // texels.at(x, y, z) with the spread of nu once per mu_s texel.
-      for (int l = 0; l < n_mu_s; ++l) spread[l] = ScatteringTexelGrid::spread(p0.mu, texels.mu_s[l]);
-      // Slices clamped to the same nu are the same texel: computed once,
-      // in `slot` of the arrays (n of them).
-      int n = 0;
-      for (int x = 0; x < W; ++x) {
-        const int l = x % n_mu_s, below = x - n_mu_s;
-        const double mu_mu_s = p0.mu * texels.mu_s[l];
-        const double nu = std::clamp(texels.nu[x / n_mu_s], mu_mu_s - spread[l], mu_mu_s + spread[l]);
-        if (below >= 0 && nu_x[slot[below]] == nu) {
-          slot[x] = slot[below];
-          continue;
-        }
-        slot[x] = n;
-        mu_s_x[n] = texels.mu_s[l];
-        nu_x[n] = nu;
-        const AxisTap tn = nu_slice_tap(0.5 * (nu + 1.0), shape.nu_size);
-        nu_i0[n] = tn.i0 * n_mu_s;
-        nu_i1[n] = tn.i1 * n_mu_s;
-        nu_w[n] = float(tn.w);
-        ++n;
-      }
-      // The padding: valid texels whose sums are not read.
-      const int n8 = (n + 7) / 8 * 8;
-      std::fill(mu_s_x.begin() + n, mu_s_x.begin() + n8, 0.0);
-      std::fill(nu_x.begin() + n, nu_x.begin() + n8, 0.0);
-      std::fill(nu_i0.begin() + n, nu_i0.begin() + n8, 0);
-      std::fill(nu_i1.begin() + n, nu_i1.begin() + n8, 0);
-      std::fill(nu_w.begin() + n, nu_w.begin() + n8, 0.0f);
+      row_texels.make(texels, shape, p0.mu);
       if (make_nodes) make_row_nodes(atm, shape, p0, nodes, transfer, work.nodes[size_t(row)]);
-      std::fill(sum.begin(), sum.begin() + n8, Rgb4{});
-      NodeRow at = node_row;
-      at.r = p0.r;
+      std::fill(sum.begin(), sum.begin() + row_texels.end, Rgb4{});
       for (const MultipleScatteringWork::Node& a : work.nodes[size_t(row)]) {
         const Rgb4* rows4[4];
         for (int i = 0; i < 4; ++i) rows4[i] = &radiance[size_t(a.rows[i]) * W];
         blend_rows(rows4, a.w, W, slice.data());
-        at.s = a.s;
-        at.inv_r_i = a.inv_r_i;
-        add_node_row(at, mu_s_taps, slice.data(), a.wS, n, sum.data());
+        add_node_row(row_texels.node(p0.r, a.s, a.inv_r_i), mu_s_taps, slice.data(), a.wS,
+                     row_texels.end, sum.data());
       }
       float* texels_out = out.texel(0, y, z);
       for (int x = 0; x < W; ++x)
-        for (int c = 0; c < 3; ++c) texels_out[3 * x + c] = sum[slot[x]].v[c];
+        for (int c = 0; c < 3; ++c) texels_out[3 * x + c] = sum[row_texels.slot[x]].v[c];
       progress.tick();
     }
   });

@@ -77,15 +77,26 @@ inline void node_read_sse2(const Rgb4* slice, const NodeRow& q, const Rgb4& wS, 
   const __m128 L = _mm_add_ps(_mm_mul_ps(n0, a), _mm_mul_ps(n1, b));
   _mm_store_ps(sum.v, _mm_add_ps(_mm_load_ps(sum.v), _mm_mul_ps(_mm_load_ps(wS.v), L)));
 }
+
+// node_read_sse2 of a texel that reads one nu slice (NodeRow::single).
+inline void node_read_one_sse2(const Rgb4* slice, const NodeRow& q, const Rgb4& wS, int x,
+                               Rgb4& sum) {
+  const Rgb4* s0 = slice + q.at0[x];
+  const float lw = q.lw[x];
+  const __m128 l1 = _mm_set1_ps(lw), l0 = _mm_set1_ps(1.0f - lw);
+  const __m128 a = _mm_add_ps(_mm_mul_ps(l0, _mm_load_ps(s0[0].v)), _mm_mul_ps(l1, _mm_load_ps(s0[1].v)));
+  _mm_store_ps(sum.v, _mm_add_ps(_mm_load_ps(sum.v), _mm_mul_ps(_mm_load_ps(wS.v), a)));
+}
 #else
 inline void node_read_plain(const Rgb4* slice, const NodeRow& q, const Rgb4& wS, int x, Rgb4& sum) {
   const Rgb4* s0 = slice + q.at0[x];
   const Rgb4* s1 = slice + q.at1[x];
   const float lw = q.lw[x], nw = q.nu_w[x];
+  const bool one = x < q.single;
   for (int c = 0; c < 4; ++c) {
     const float a = (1.0f - lw) * s0[0].v[c] + lw * s0[1].v[c];
     const float b = (1.0f - lw) * s1[0].v[c] + lw * s1[1].v[c];
-    sum.v[c] += wS.v[c] * ((1.0f - nw) * a + nw * b);
+    sum.v[c] += wS.v[c] * (one ? a : (1.0f - nw) * a + nw * b);
   }
 }
 #endif
@@ -140,21 +151,36 @@ SKYBAKE_AVX2 inline void node_reads_avx2(const Rgb4* slice, const NodeRow& q, __
   _mm256_storeu_ps(sum[x].v, _mm256_add_ps(_mm256_loadu_ps(sum[x].v), _mm256_mul_ps(ws, L)));
 }
 
+// node_reads_avx2 of two texels that read one nu slice (NodeRow::single).
+SKYBAKE_AVX2 inline void node_reads_one_avx2(const Rgb4* slice, const NodeRow& q, __m256 ws, int x,
+                                             Rgb4* sum) {
+  const __m256 one = _mm256_set1_ps(1.0f);
+  const __m256 a0 = _mm256_loadu_ps(slice[q.at0[x]].v), a1 = _mm256_loadu_ps(slice[q.at0[x + 1]].v);
+  const __m256 s00 = _mm256_permute2f128_ps(a0, a1, 0x20), s01 = _mm256_permute2f128_ps(a0, a1, 0x31);
+  const __m256 l1 = _mm256_set_m128(_mm_set1_ps(q.lw[x + 1]), _mm_set1_ps(q.lw[x]));
+  const __m256 l0 = _mm256_sub_ps(one, l1);
+  const __m256 ra = _mm256_add_ps(_mm256_mul_ps(l0, s00), _mm256_mul_ps(l1, s01));
+  _mm256_storeu_ps(sum[x].v, _mm256_add_ps(_mm256_loadu_ps(sum[x].v), _mm256_mul_ps(ws, ra)));
+}
+
 // The taps run kAhead texels ahead of the reads, so that the reads do not
 // wait on the divider's latency and the two overlap.
 constexpr int kAhead = 16;
 
 SKYBAKE_AVX2 void node_row_avx2(const NodeRow& q, const FloatMuSTaps& c, const Rgb4* slice,
-                                const Rgb4& wS, int padded, Rgb4* sum) {
+                                const Rgb4& wS, int end, Rgb4* sum) {
   const NodeLanes k{_mm256_set1_pd(q.r),       _mm256_set1_pd(q.s),    _mm256_set1_pd(q.inv_r_i),
                     _mm256_set1_ps(c.lo),      _mm256_set1_ps(1.0f),   _mm256_setzero_ps(),
                     _mm256_set1_ps(c.h2),      _mm256_set1_ps(c.k1),   _mm256_set1_ps(c.ak2),
                     _mm256_set1_ps(c.ah2),     _mm256_set1_ps(c.last), _mm256_set1_ps(c.below_last)};
   const __m256 ws = _mm256_set_m128(_mm_load_ps(wS.v), _mm_load_ps(wS.v));
-  for (int x = 0; x < std::min(kAhead, padded); x += 8) node_taps_avx2(k, q, x);
-  for (int x = 0; x < padded; x += 8) {
-    if (x + kAhead < padded) node_taps_avx2(k, q, x + kAhead);
-    for (int j = 0; j < 8; j += 2) node_reads_avx2(slice, q, ws, x + j, sum);
+  for (int x = 0; x < std::min(kAhead, end); x += 8) node_taps_avx2(k, q, x);
+  for (int x = 0; x < end; x += 8) {
+    if (x + kAhead < end) node_taps_avx2(k, q, x + kAhead);
+    if (x < q.single)
+      for (int j = 0; j < 8; j += 2) node_reads_one_avx2(slice, q, ws, x + j, sum);
+    else
+      for (int j = 0; j < 8; j += 2) node_reads_avx2(slice, q, ws, x + j, sum);
   }
 }
 #endif
@@ -162,25 +188,25 @@ SKYBAKE_AVX2 void node_row_avx2(const NodeRow& q, const FloatMuSTaps& c, const R
 }  // namespace
 
 void add_node_row(const NodeRow& row, const FloatMuSTaps& taps, const Rgb4* slice, const Rgb4& wS,
-                  int n, Rgb4* sum) {
-  const int padded = (n + 7) / 8 * 8;
+                  int end, Rgb4* sum) {
 #if SKYBAKE_HAS_AVX2
   if (wide_vectors()) {
-    node_row_avx2(row, taps, slice, wS, padded, sum);
+    node_row_avx2(row, taps, slice, wS, end, sum);
     return;
   }
 #endif
 #if defined(__SSE2__)
-  for (int x = 0; x < padded; x += 4) node_taps_sse2(taps, row, x);
-  for (int x = 0; x < padded; ++x) node_read_sse2(slice, row, wS, x, sum[x]);
+  for (int x = 0; x < end; x += 4) node_taps_sse2(taps, row, x);
+  for (int x = 0; x < row.single; ++x) node_read_one_sse2(slice, row, wS, x, sum[x]);
+  for (int x = row.single; x < end; ++x) node_read_sse2(slice, row, wS, x, sum[x]);
 #else
-  for (int x = 0; x < padded; ++x) {
+  for (int x = 0; x < end; ++x) {
     int i0 = 0;
     taps.tap(node_cosine(row, x), i0, row.lw[x]);
     row.at0[x] = i0 + row.nu_i0[x];
     row.at1[x] = i0 + row.nu_i1[x];
   }
-  for (int x = 0; x < padded; ++x) node_read_plain(slice, row, wS, x, sum[x]);
+  for (int x = 0; x < end; ++x) node_read_plain(slice, row, wS, x, sum[x]);
 #endif
 }
 

@@ -34,9 +34,14 @@ struct FloatMuSTaps {
 
 // The node and the row's per-texel constants. The per-texel arrays hold a
 // multiple of 8 texels (padded with valid values: the loops compute whole
-// groups, and the padded lanes' sums are not read).
+// groups, and the padded lanes' sums are not read). The first `single`
+// texels (a multiple of 8) read one nu slice, nu_i0 (their nu_w is 0): a
+// texel whose nu is a slice's own reads the other slice with a weight of 0
+// (or the same with 1 - 1), and lerp(a, b, 0) = 1 a + 0 b = a exactly for
+// finite values, so one read gives the same bits at half the loads.
 struct NodeRow {
   double r = 0, s = 0, inv_r_i = 0;  // the ray's start radius, the node's distance along it, 1 / its radius
+  int single = 0;
   const double* mu_s = nullptr;  // per texel: mu_s and nu of the texel
   const double* nu = nullptr;
   const int* nu_i0 = nullptr;  // per texel: the nu slices' offsets and weight (nu_slice_tap)
@@ -46,11 +51,12 @@ struct NodeRow {
   float* lw = nullptr;                 // and mu_s weights
 };
 
-// For texels [0, n rounded up to 8): sum[x] += wS lerp(lerp(s00, s01, lw),
-// lerp(s10, s11, lw), nw), s00 = slice[nu_i0[x] + i0], s10 = slice[nu_i1[x]
-// + i0], s01 and s11 the next texels along mu_s, (i0, lw) the taps of
-// clamp_cosine((r mu_s[x] + s nu[x]) inv_r_i) (FloatMuSTaps::tap).
+// For texels [0, end), end a multiple of 8: sum[x] += wS lerp(lerp(s00,
+// s01, lw), lerp(s10, s11, lw), nw), s00 = slice[nu_i0[x] + i0], s10 =
+// slice[nu_i1[x] + i0], s01 and s11 the next texels along mu_s, (i0, lw) the
+// taps of clamp_cosine((r mu_s[x] + s nu[x]) inv_r_i) (FloatMuSTaps::tap);
+// for x < single, sum[x] += wS lerp(s00, s01, lw).
 void add_node_row(const NodeRow& row, const FloatMuSTaps& taps, const Rgb4* slice, const Rgb4& wS,
-                  int n, Rgb4* sum);
+                  int end, Rgb4* sum);
 
 }  // namespace skybake

@@ -50,9 +50,10 @@ TEST(FloatMuSTaps, WithinAFortiethOfAThousandthOfATexelOfTheDoubleMapping) {
 
 // A row of 13 texels (the loops' groups of 4 and 8 both padded), read from
 // a slice of made-up values: every texel's sum equals FloatMuSTaps::tap and
-// the bilinear read one texel at a time, bit for bit, AVX2 and SSE2.
+// the bilinear read of both nu slices one texel at a time, bit for bit,
+// AVX2 and SSE2, the one-slice texels' read included.
 struct Row {
-  static constexpr int kN = 13, kPadded = 16, kMuS = 9, kNu = 3;
+  static constexpr int kN = 13, kPadded = 16, kSingle = 8, kMuS = 9, kNu = 3;
   std::vector<double> mu_s, nu;
   std::vector<int> nu_i0, nu_i1, at0, at1;
   std::vector<float> nu_w, lw;
@@ -60,19 +61,20 @@ struct Row {
   Row()
       : mu_s(kPadded), nu(kPadded), nu_i0(kPadded), nu_i1(kPadded), at0(kPadded), at1(kPadded),
         nu_w(kPadded), lw(kPadded), slice(kMuS * kNu) {
+    // Texels 0-7 read one nu slice (NodeRow::single), 8-12 two.
     for (int x = 0; x < kN; ++x) {
       mu_s[x] = -0.3 + 1.3 * x / (kN - 1);
       nu[x] = std::sin(0.7 * x);
       nu_i0[x] = (x % (kNu - 1)) * kMuS;
-      nu_i1[x] = nu_i0[x] + kMuS;
-      nu_w[x] = float(0.1 + 0.06 * x);
+      nu_i1[x] = x < kSingle ? nu_i0[x] : nu_i0[x] + kMuS;
+      nu_w[x] = x < kSingle ? 0.0f : float(0.1 + 0.06 * x);
     }
     for (size_t t = 0; t < slice.size(); ++t)
       slice[t] = Rgb4{{float(1.0 + t), float(std::sqrt(1.0 + t)), float(1.0 / (1.0 + t)), 0.0f}};
   }
   NodeRow node(double s) {
-    return NodeRow{6.37e6,       s,           1.0 / 6.372e6, mu_s.data(), nu.data(), nu_i0.data(),
-                   nu_i1.data(), nu_w.data(), at0.data(),    at1.data(),  lw.data()};
+    return NodeRow{6.37e6,       s,          1.0 / 6.372e6, kSingle,    mu_s.data(), nu.data(),
+                   nu_i0.data(), nu_i1.data(), nu_w.data(), at0.data(), at1.data(), lw.data()};
   }
 };
 
@@ -80,7 +82,8 @@ std::vector<Rgb4> node_sums(Row& row, const FloatMuSTaps& taps, bool wide) {
   const test::WideVectorsAs as(wide);
   std::vector<Rgb4> sum(Row::kPadded);
   const Rgb4 wS{{0.5f, 0.25f, 0.125f, 0.0f}};
-  for (double s : {0.0, 3e4, 2e5}) add_node_row(row.node(s), taps, row.slice.data(), wS, Row::kN, sum.data());
+  for (double s : {0.0, 3e4, 2e5})
+    add_node_row(row.node(s), taps, row.slice.data(), wS, Row::kPadded, sum.data());
   return sum;
 }
 
