@@ -51,7 +51,7 @@ TEST(FloatMuSTaps, WithinAFortiethOfAThousandthOfATexelOfTheDoubleMapping) {
 // A row of 13 texels (the loops' groups of 4 and 8 both padded), read from
 // a slice of made-up values: every texel's sum equals FloatMuSTaps::tap and
 // the bilinear read of both nu slices one texel at a time, bit for bit,
-// AVX2 and SSE2, the one-slice texels' read included.
+// AVX-512, AVX2 and SSE2, the one-slice texels' read included.
 struct Row {
   static constexpr int kN = 13, kPadded = 16, kSingle = 8, kMuS = 9, kNu = 3;
   std::vector<double> mu_s, nu;
@@ -78,8 +78,10 @@ struct Row {
   }
 };
 
-std::vector<Rgb4> node_sums(Row& row, const FloatMuSTaps& taps, bool wide) {
-  const test::WideVectorsAs as(wide);
+// wide: 0 SSE2, 1 AVX2, 2 AVX-512 where the CPU has them.
+std::vector<Rgb4> node_sums(Row& row, const FloatMuSTaps& taps, int wide) {
+  const test::WideVectorsAs as(wide > 0);
+  const test::WidestVectorsAs widest(wide > 1);
   std::vector<Rgb4> sum(Row::kPadded);
   const Rgb4 wS{{0.5f, 0.25f, 0.125f, 0.0f}};
   for (double s : {0.0, 3e4, 2e5})
@@ -107,7 +109,7 @@ TEST(NodeRow, LoopsEqualOneTexelAtATime) {
         expected[size_t(x)].v[c] += wS[c] * ((1.0f - nw) * a + nw * b);
       }
     }
-  for (bool wide : {false, true}) {
+  for (int wide : {0, 1, 2}) {
     const std::vector<Rgb4> sum = node_sums(row, taps, wide);
     for (int x = 0; x < Row::kN; ++x)
       for (int c = 0; c < 3; ++c)
