@@ -14,8 +14,10 @@ namespace {
 // The arguments of one sums() call: the view, the kernel and the arrays.
 struct MieLoop {
   float vx, vy, vz, a, b, cs;  // cs: 1 for Cornette-Shanks, 0 for Henyey-Greenstein
-  const float *x, *y, *z, *dw, *lr, *lg, *lb;
+  const float *x, *y, *z, *blocks;
   size_t n;
+  // Channel c of the pairs from j (MieBatch::field).
+  const float* at(int c, size_t j) const { return blocks + MieBatch::field(c, j); }
 };
 
 // lanes[c][l]: channel c (R, G, B, weight), lane l.
@@ -37,10 +39,7 @@ inline void mie_step_sse2(const MieLoop& q, size_t j, __m128 acc[4]) {
   const __m128 nm = _mm_add_ps(one, _mm_mul_ps(cs, _mm_mul_ps(cm, cm)));
   const __m128 p =
       _mm_div_ps(_mm_add_ps(_mm_mul_ps(np, qm), _mm_mul_ps(nm, qp)), _mm_mul_ps(qp, qm));
-  acc[0] = _mm_add_ps(acc[0], _mm_mul_ps(p, _mm_loadu_ps(q.lr + j)));
-  acc[1] = _mm_add_ps(acc[1], _mm_mul_ps(p, _mm_loadu_ps(q.lg + j)));
-  acc[2] = _mm_add_ps(acc[2], _mm_mul_ps(p, _mm_loadu_ps(q.lb + j)));
-  acc[3] = _mm_add_ps(acc[3], _mm_mul_ps(p, _mm_loadu_ps(q.dw + j)));
+  for (int c = 0; c < 4; ++c) acc[c] = _mm_add_ps(acc[c], _mm_mul_ps(p, _mm_loadu_ps(q.at(c, j))));
 }
 
 // Lanes 0-3 take the first four pairs of every eight, lanes 4-7 the others.
@@ -97,10 +96,10 @@ SKYBAKE_AVX2 void mie_sums_avx2(const MieLoop& q, double out[4]) {
     const __m256 nm = _mm256_add_ps(one, _mm256_mul_ps(cs, _mm256_mul_ps(cm, cm)));
     const __m256 p = _mm256_div_ps(_mm256_add_ps(_mm256_mul_ps(np, qm), _mm256_mul_ps(nm, qp)),
                                    _mm256_mul_ps(qp, qm));
-    sr = _mm256_add_ps(sr, _mm256_mul_ps(p, _mm256_loadu_ps(q.lr + j)));
-    sg = _mm256_add_ps(sg, _mm256_mul_ps(p, _mm256_loadu_ps(q.lg + j)));
-    sb = _mm256_add_ps(sb, _mm256_mul_ps(p, _mm256_loadu_ps(q.lb + j)));
-    sw = _mm256_add_ps(sw, _mm256_mul_ps(p, _mm256_loadu_ps(q.dw + j)));
+    sr = _mm256_add_ps(sr, _mm256_mul_ps(p, _mm256_loadu_ps(q.at(0, j))));
+    sg = _mm256_add_ps(sg, _mm256_mul_ps(p, _mm256_loadu_ps(q.at(1, j))));
+    sb = _mm256_add_ps(sb, _mm256_mul_ps(p, _mm256_loadu_ps(q.at(2, j))));
+    sw = _mm256_add_ps(sw, _mm256_mul_ps(p, _mm256_loadu_ps(q.at(3, j))));
   }
   add_lanes_avx2(sr, sg, sb, sw, out);
 }
@@ -113,14 +112,17 @@ SKYBAKE_AVX2 void mie_sums_avx2(const MieLoop& q, double out[4]) {
 // same order. A last group of eight pairs (n is a multiple of 8) is loaded
 // under a mask and its upper half not added.
 // (GCC 12's AVX-512 intrinsics start from _mm512_undefined_ps, which
-// -Wmaybe-uninitialized reports once inlined: a false positive.)
+// -Wmaybe-uninitialized and -Wuninitialized report once inlined: false
+// positives.)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 SKYBAKE_AVX512 void mie_sums_avx512(const MieLoop& q, double out[4]) {
   const __m512 one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
   const __m512 a = _mm512_set1_ps(q.a), b = _mm512_set1_ps(q.b), cs = _mm512_set1_ps(q.cs);
   const __m512 vx = _mm512_set1_ps(q.vx), vy = _mm512_set1_ps(q.vy), vz = _mm512_set1_ps(q.vz);
-  __m256 sr = _mm256_setzero_ps(), sg = sr, sb = sr, sw = sr;
+  // Lanes 0-7 of rg are mie_sums_avx2's sr, 8-15 its sg; bw: sb and sw.
+  __m512 rg = _mm512_setzero_ps(), bw = rg;
   for (size_t j = 0; j < q.n; j += 16) {
     // Past the last pair (n a multiple of 8, not of 16): lanes of weight 0.
     const __mmask16 in = j + 16 <= q.n ? __mmask16(0xffff) : __mmask16(0x00ff);
@@ -138,16 +140,17 @@ SKYBAKE_AVX512 void mie_sums_avx512(const MieLoop& q, double out[4]) {
     const __m512 nm = _mm512_add_ps(one, _mm512_mul_ps(cs, _mm512_mul_ps(cm, cm)));
     const __m512 p = _mm512_div_ps(_mm512_add_ps(_mm512_mul_ps(np, qm), _mm512_mul_ps(nm, qp)),
                                    _mm512_mul_ps(qp, qm));
-    const __m256 halves[2] = {_mm512_castps512_ps256(p), _mm512_extractf32x8_ps(p, 1)};
+    // Each block of 8 pairs with its kernel in both halves (p0 p0, p1 p1).
+    const __m512 halves[2] = {_mm512_shuffle_f32x4(p, p, 0x44), _mm512_shuffle_f32x4(p, p, 0xee)};
     for (size_t h = 0; h < 2 && j + 8 * h < q.n; ++h) {
       const size_t k = j + 8 * h;
-      sr = _mm256_add_ps(sr, _mm256_mul_ps(halves[h], _mm256_loadu_ps(q.lr + k)));
-      sg = _mm256_add_ps(sg, _mm256_mul_ps(halves[h], _mm256_loadu_ps(q.lg + k)));
-      sb = _mm256_add_ps(sb, _mm256_mul_ps(halves[h], _mm256_loadu_ps(q.lb + k)));
-      sw = _mm256_add_ps(sw, _mm256_mul_ps(halves[h], _mm256_loadu_ps(q.dw + k)));
+      rg = _mm512_add_ps(rg, _mm512_mul_ps(halves[h], _mm512_loadu_ps(q.at(0, k))));
+      bw = _mm512_add_ps(bw, _mm512_mul_ps(halves[h], _mm512_loadu_ps(q.at(2, k))));
     }
   }
-  add_lanes_avx2(sr, sg, sb, sw, out);  // a call (other options), once per view
+  // A call (other options), once per view.
+  add_lanes_avx2(_mm512_castps512_ps256(rg), _mm512_extractf32x8_ps(rg, 1),
+                 _mm512_castps512_ps256(bw), _mm512_extractf32x8_ps(bw, 1), out);
 }
 #pragma GCC diagnostic pop
 #endif
@@ -165,10 +168,7 @@ SKYBAKE_AVX512 void mie_sums_avx512(const MieLoop& q, double out[4]) {
     const float wm = q.a + q.b * std::max(1.0f - cm, 0.0f);
     const float qp = wp * std::sqrt(wp), qm = wm * std::sqrt(wm);
     const float p = ((1.0f + q.cs * (cp * cp)) * qm + (1.0f + q.cs * (cm * cm)) * qp) / (qp * qm);
-    lanes[0][l] += p * q.lr[j];
-    lanes[1][l] += p * q.lg[j];
-    lanes[2][l] += p * q.lb[j];
-    lanes[3][l] += p * q.dw[j];
+    for (int c = 0; c < 4; ++c) lanes[c][l] += p * *q.at(c, j);
   }
 }
 
@@ -179,13 +179,14 @@ MieBatch::MieBatch(const SphereGrid& grid) {
   for (int l = 0; l < grid.bands; ++l)
     for (int m = 0; m < half; ++m) first.push_back(size_t(l) * grid.azimuths + m);
   n = (first.size() + kLanes - 1) / kLanes * kLanes;
-  for (auto* v : {&x, &y, &z, &dw, &lr, &lg, &lb}) v->assign(n, 0.0f);
+  for (auto* v : {&x, &y, &z}) v->assign(n, 0.0f);
+  blocks.assign(4 * n, 0.0f);
   for (size_t k = 0; k < first.size(); ++k) {
     const glm::dvec3& w = grid.directions[first[k]];
     x[k] = float(w.x);
     y[k] = float(w.y);
     z[k] = float(w.z);
-    dw[k] = float(grid.solid_angle[first[k]]);
+    blocks[field(3, k)] = float(grid.solid_angle[first[k]]);
   }
   grid_azimuths = grid.azimuths;
 }
@@ -194,16 +195,14 @@ void MieBatch::set_field(const std::vector<glm::dvec3>& L) {
   for (size_t k = 0; k < first.size(); ++k) {
     const size_t j = first[k], mirror = j + grid_azimuths - 1 - 2 * (j % grid_azimuths);
     const glm::dvec3 mean = 0.5 * (L[j] + L[mirror]);
-    lr[k] = float(mean.r * dw[k]);
-    lg[k] = float(mean.g * dw[k]);
-    lb[k] = float(mean.b * dw[k]);
+    const float dw = blocks[field(3, k)];
+    for (int c = 0; c < 3; ++c) blocks[field(c, k)] = float(mean[c] * dw);
   }
 }
 
 void MieBatch::sums(const MieKernel& k, const glm::dvec3& v, double out[4]) const {
-  const MieLoop q{float(v.x),  float(v.y),  float(v.z),  float(k.a),  float(k.b),
-                  k.cornette_shanks ? 1.0f : 0.0f,      x.data(),    y.data(),
-                  z.data(),    dw.data(),   lr.data(),  lg.data(),  lb.data(), n};
+  const MieLoop q{float(v.x), float(v.y), float(v.z), float(k.a),    float(k.b),
+                  k.cornette_shanks ? 1.0f : 0.0f, x.data(), y.data(), z.data(), blocks.data(), n};
 #if defined(SKYBAKE_AVX512)
   if (widest_vectors()) {
     mie_sums_avx512(q, out);

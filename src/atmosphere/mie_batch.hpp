@@ -39,12 +39,18 @@ struct MieKernel {
 // one division,
 //   k+ + k- = (n+ q- + n- q+) / (q+ q-),  k = n / q,  q = w^1.5.
 // Pairs padded to a multiple of 8 with zero weights; pair j adds into lane
-// j % 8 of each sum, and the lanes are added in double at the end.
+// j % 8 of each sum, and the lanes are added in double at the end. The
+// field and weights are stored by blocks of 8 pairs, R G B and dw of one
+// block together (field()), so that the AVX-512 loop adds R and G (B and
+// dw) of eight pairs in one instruction.
 struct MieBatch {
   static constexpr size_t kLanes = 8;
   size_t n = 0;
   std::vector<size_t> first;  // grid index of each pair's direction with y > 0
-  std::vector<float> x, y, z, dw, lr, lg, lb;
+  std::vector<float> x, y, z;
+  std::vector<float> blocks;  // per block of 8 pairs: L_R dw, L_G dw, L_B dw, dw (8 each)
+  // Channel c (R, G, B, weight) of pair j.
+  static size_t field(int c, size_t j) { return 32 * (j / 8) + 8 * size_t(c) + j % 8; }
 
   explicit MieBatch(const SphereGrid& grid);
   // The pair's mean radiance (the two are equal for the density's fields).

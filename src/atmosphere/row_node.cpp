@@ -196,6 +196,7 @@ SKYBAKE_AVX2 void node_row_avx2(const NodeRow& q, const FloatMuSTaps& c, const R
 // past `end` (RowTexels' arrays hold 16 more texels) on valid texels.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"  // as in mie_batch.cpp
+#pragma GCC diagnostic ignored "-Wuninitialized"
 SKYBAKE_AVX512 void node_row_avx512(const NodeRow& q, const FloatMuSTaps& c, const Rgb4* slice,
                                     const Rgb4& wS, int end, Rgb4* sum) {
   const __m512d r = _mm512_set1_pd(q.r), s = _mm512_set1_pd(q.s), inv_r_i = _mm512_set1_pd(q.inv_r_i);
