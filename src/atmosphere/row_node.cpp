@@ -190,45 +190,55 @@ SKYBAKE_AVX2 void node_row_avx2(const NodeRow& q, const FloatMuSTaps& c, const R
 #endif
 
 #if defined(SKYBAKE_AVX512)
-// node_row_avx2 with the taps of sixteen texels per step (node_taps_avx2's
-// operations per lane: the square root and the division at twice the
-// lanes); the reads are node_row_avx2's. The taps of a last group may run
-// past `end` (RowTexels' arrays hold 16 more texels) on valid texels.
+// GCC 12's AVX-512 intrinsics start from _mm512_undefined_ps, which its
+// -Wmaybe-uninitialized and -Wuninitialized report once inlined: false
+// positives.
+#if !defined(__clang__)
 #pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"  // as in mie_batch.cpp
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #pragma GCC diagnostic ignored "-Wuninitialized"
+#endif
+struct NodeLanes512 {
+  __m512d r, s, inv_r_i;
+  __m512 lo, one, zero, h2, k1, ak2, ah2, last, below_last;
+};
+
+// node_taps_avx2 for the sixteen texels from x.
+SKYBAKE_AVX512 inline void node_taps_avx512(const NodeLanes512& k, const NodeRow& q, int x) {
+  __m256 half[2];
+  for (int h = 0; h < 2; ++h) {
+    const __m512d mu_s = _mm512_loadu_pd(q.mu_s + x + 8 * h), nu = _mm512_loadu_pd(q.nu + x + 8 * h);
+    half[h] = _mm512_cvtpd_ps(
+        _mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(k.r, mu_s), _mm512_mul_pd(k.s, nu)), k.inv_r_i));
+  }
+  const __m512 c = _mm512_insertf32x8(_mm512_castps256_ps512(half[0]), half[1], 1);
+  const __m512 m = _mm512_min_ps(k.one, _mm512_max_ps(k.lo, c));
+  const __m512 D = _mm512_add_ps(m, _mm512_sqrt_ps(_mm512_add_ps(_mm512_mul_ps(m, m), k.h2)));
+  const __m512 N = _mm512_max_ps(k.zero, _mm512_sub_ps(_mm512_mul_ps(D, k.k1), k.h2));
+  const __m512 Q = _mm512_add_ps(_mm512_mul_ps(D, k.ak2), k.ah2);
+  const __m512 t = _mm512_mul_ps(_mm512_min_ps(k.one, _mm512_div_ps(N, Q)), k.last);
+  const __m512 i = _mm512_min_ps(k.below_last, _mm512_cvtepi32_ps(_mm512_cvttps_epi32(t)));
+  _mm512_storeu_ps(q.lw + x, _mm512_sub_ps(t, i));
+  const __m512i tap = _mm512_cvttps_epi32(i);
+  _mm512_storeu_si512(q.at0 + x, _mm512_add_epi32(tap, _mm512_loadu_si512(q.nu_i0 + x)));
+  _mm512_storeu_si512(q.at1 + x, _mm512_add_epi32(tap, _mm512_loadu_si512(q.nu_i1 + x)));
+}
+
+// node_row_avx2 with the taps of sixteen texels per step (the square root
+// and the division at twice the lanes); the reads are node_row_avx2's. The
+// taps of a last group may run past `end` (RowTexels' arrays hold 16 more
+// texels) on valid texels.
 SKYBAKE_AVX512 void node_row_avx512(const NodeRow& q, const FloatMuSTaps& c, const Rgb4* slice,
                                     const Rgb4& wS, int end, Rgb4* sum) {
-  const __m512d r = _mm512_set1_pd(q.r), s = _mm512_set1_pd(q.s), inv_r_i = _mm512_set1_pd(q.inv_r_i);
-  const __m512 lo = _mm512_set1_ps(c.lo), one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
-  const __m512 h2 = _mm512_set1_ps(c.h2), k1 = _mm512_set1_ps(c.k1), ak2 = _mm512_set1_ps(c.ak2);
-  const __m512 ah2 = _mm512_set1_ps(c.ah2), last = _mm512_set1_ps(c.last);
-  const __m512 below_last = _mm512_set1_ps(c.below_last);
-  auto taps = [&](int x) __attribute__((always_inline)) {
-    __m256 half[2];
-    for (int h = 0; h < 2; ++h) {
-      const int from = x + 8 * h;
-      half[h] = _mm512_cvtpd_ps(_mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(r, _mm512_loadu_pd(q.mu_s + from)),
-                                                          _mm512_mul_pd(s, _mm512_loadu_pd(q.nu + from))),
-                                            inv_r_i));
-    }
-    const __m512 cos16 = _mm512_insertf32x8(_mm512_castps256_ps512(half[0]), half[1], 1);
-    const __m512 m = _mm512_min_ps(one, _mm512_max_ps(lo, cos16));
-    const __m512 D = _mm512_add_ps(m, _mm512_sqrt_ps(_mm512_add_ps(_mm512_mul_ps(m, m), h2)));
-    const __m512 N = _mm512_max_ps(zero, _mm512_sub_ps(_mm512_mul_ps(D, k1), h2));
-    const __m512 Q = _mm512_add_ps(_mm512_mul_ps(D, ak2), ah2);
-    const __m512 t = _mm512_mul_ps(_mm512_min_ps(one, _mm512_div_ps(N, Q)), last);
-    const __m512 i = _mm512_min_ps(below_last, _mm512_cvtepi32_ps(_mm512_cvttps_epi32(t)));
-    _mm512_storeu_ps(q.lw + x, _mm512_sub_ps(t, i));
-    const __m512i tap = _mm512_cvttps_epi32(i);
-    _mm512_storeu_si512(q.at0 + x, _mm512_add_epi32(tap, _mm512_loadu_si512(q.nu_i0 + x)));
-    _mm512_storeu_si512(q.at1 + x, _mm512_add_epi32(tap, _mm512_loadu_si512(q.nu_i1 + x)));
-  };
+  const NodeLanes512 k{_mm512_set1_pd(q.r),    _mm512_set1_pd(q.s),    _mm512_set1_pd(q.inv_r_i),
+                       _mm512_set1_ps(c.lo),   _mm512_set1_ps(1.0f),   _mm512_setzero_ps(),
+                       _mm512_set1_ps(c.h2),   _mm512_set1_ps(c.k1),   _mm512_set1_ps(c.ak2),
+                       _mm512_set1_ps(c.ah2),  _mm512_set1_ps(c.last), _mm512_set1_ps(c.below_last)};
   const __m256 ws = _mm256_set_m128(_mm_load_ps(wS.v), _mm_load_ps(wS.v));
   constexpr int kAhead16 = 32;
-  for (int x = 0; x < std::min(kAhead16, end); x += 16) taps(x);
+  for (int x = 0; x < std::min(kAhead16, end); x += 16) node_taps_avx512(k, q, x);
   for (int x = 0; x < end; x += 16) {
-    if (x + kAhead16 < end) taps(x + kAhead16);
+    if (x + kAhead16 < end) node_taps_avx512(k, q, x + kAhead16);
     for (int j = x; j < std::min(x + 16, end); j += 2) {
       if (j < q.single)
         node_reads_one_avx2(slice, q, ws, j, sum);
@@ -237,7 +247,9 @@ SKYBAKE_AVX512 void node_row_avx512(const NodeRow& q, const FloatMuSTaps& c, con
     }
   }
 }
+#if !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif
 #endif
 
 }  // namespace
