@@ -3,11 +3,11 @@
 // taps and the bilinear read of the node's blended slice (row_blend.hpp).
 // The cosine is taken in double; the mu_s mapping of Bruneton 2017
 // (GetTextureCoordFromUnitRange of GetScatteringTextureUvwzFromRMuMuSNu, at
-// r = bottom) in single precision, eight texels per AVX2 instruction or four
-// per SSE2 one: the square root and the division of the mapping are the
-// loop's limit (the divider), and in float they cost about a third of the
-// double ones. The AVX2 and SSE2 loops do the same IEEE operations per lane
-// (core/wide_vectors.hpp), so the same bits.
+// r = bottom) in single precision, sixteen texels per AVX-512 instruction,
+// eight per AVX2 one or four per SSE2 one: the square root and the division
+// of the mapping are the loop's limit (the divider), and in float they cost
+// about a third of the double ones. The three loops do the same IEEE
+// operations per lane (core/wide_vectors.hpp), so the same bits.
 #pragma once
 
 #include "atmosphere/row_blend.hpp"
@@ -22,8 +22,7 @@ namespace skybake {
 // becomes u = max(D k1 - h2, 0) / (D ak2 + ah2), every length in units of
 // Rb (k1 = (A span + d_min) / Rb, ak2 = A (span - d_min) / Rb, h2 = H^2 /
 // Rb^2, ah2 = A h2). Within 2.5e-5 of a texel of MuSAxis::tap (tested; 5e-6
-// on Earth's default 32 texels), where the double taps' weights were rounded
-// to float for the reads.
+// on Earth's default 32 texels); the reads' weights are floats either way.
 struct FloatMuSTaps {
   float lo = -1, h2 = 0, k1 = 0, ak2 = 0, ah2 = 0, last = 0, below_last = 0;
   explicit FloatMuSTaps(const MuSAxis::Constants& c);
