@@ -12,6 +12,26 @@
 
 namespace skybake {
 
+namespace {
+
+// Writes every page of [a, b) (page-aligned) with the byte it holds: a
+// write fault per page that is not yet writable in the MMU, nothing else.
+// Where the kernel has made the pages writable already this costs a load
+// and a store per 4 KB. Under a hypervisor that shadows the guest's page
+// tables (the development VM), MADV_POPULATE_WRITE fills the guest's tables
+// but each page's first write from the program still exits to the
+// hypervisor, about 5 us a page (1.3 ms per MB); done here, those exits are
+// split between the threads instead of falling on the zero fill's one
+// (docs/decisions.md "Threads: a fresh texture's first write").
+void touch_pages(uintptr_t a, uintptr_t b, uintptr_t page) {
+  for (uintptr_t x = a; x < b; x += page) {
+    volatile char* c = reinterpret_cast<volatile char*>(x);
+    *c = *c;
+  }
+}
+
+}  // namespace
+
 void populate_pages(void* p, size_t bytes) {
 #if defined(MADV_POPULATE_WRITE)
   const uintptr_t page = uintptr_t(sysconf(_SC_PAGESIZE));
@@ -28,6 +48,7 @@ void populate_pages(void* p, size_t bytes) {
                       // A failure (EINVAL before Linux 5.14, ENOMEM) leaves the pages to
                       // fault on first write: slower, the same bytes.
                       (void)madvise(reinterpret_cast<void*>(a), b - a, MADV_POPULATE_WRITE);
+                      touch_pages(a, b, page);
                     });
 #else
   (void)p;
