@@ -111,14 +111,7 @@ SKYBAKE_AVX2 void mie_sums_avx2(const MieLoop& q, double out[4]) {
 // lanes as mie_sums_avx2 adds the step of its pairs: the same sums in the
 // same order. A last group of eight pairs (n is a multiple of 8) is loaded
 // under a mask and its upper half not added.
-// (GCC 12's AVX-512 intrinsics start from _mm512_undefined_ps, which its
-// -Wmaybe-uninitialized and -Wuninitialized report once inlined: false
-// positives.)
-#if !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#endif
+SKYBAKE_AVX512_WARNINGS_OFF
 SKYBAKE_AVX512 void mie_sums_avx512(const MieLoop& q, double out[4]) {
   const __m512 one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
   const __m512 a = _mm512_set1_ps(q.a), b = _mm512_set1_ps(q.b), cs = _mm512_set1_ps(q.cs);
@@ -154,9 +147,7 @@ SKYBAKE_AVX512 void mie_sums_avx512(const MieLoop& q, double out[4]) {
   add_lanes_avx2(_mm512_castps512_ps256(rg), _mm512_extractf32x8_ps(rg, 1),
                  _mm512_castps512_ps256(bw), _mm512_extractf32x8_ps(bw, 1), out);
 }
-#if !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
+SKYBAKE_AVX512_WARNINGS_ON
 #endif
 
 // The same operations one lane at a time, for CPUs without SSE2.

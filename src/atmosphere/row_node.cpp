@@ -190,14 +190,7 @@ SKYBAKE_AVX2 void node_row_avx2(const NodeRow& q, const FloatMuSTaps& c, const R
 #endif
 
 #if defined(SKYBAKE_AVX512)
-// GCC 12's AVX-512 intrinsics start from _mm512_undefined_ps, which its
-// -Wmaybe-uninitialized and -Wuninitialized report once inlined: false
-// positives.
-#if !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#endif
+SKYBAKE_AVX512_WARNINGS_OFF
 struct NodeLanes512 {
   __m512d r, s, inv_r_i;
   __m512 lo, one, zero, h2, k1, ak2, ah2, last, below_last;
@@ -247,9 +240,7 @@ SKYBAKE_AVX512 void node_row_avx512(const NodeRow& q, const FloatMuSTaps& c, con
     }
   }
 }
-#if !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
+SKYBAKE_AVX512_WARNINGS_ON
 #endif
 
 }  // namespace

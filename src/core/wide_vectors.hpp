@@ -52,3 +52,17 @@ void set_widest_vectors(bool enabled);
 #elif SKYBAKE_HAS_AVX2
 #define SKYBAKE_AVX512 __attribute__((target("avx512f,avx512dq"), optimize("fp-contract=off")))
 #endif
+
+// Around AVX-512 code: GCC 12's AVX-512 intrinsics start from
+// _mm512_undefined_ps, which its -Wmaybe-uninitialized and -Wuninitialized
+// report once inlined (false positives); clang does not.
+#if defined(__GNUC__) && !defined(__clang__)
+#define SKYBAKE_AVX512_WARNINGS_OFF                               \
+  _Pragma("GCC diagnostic push")                                  \
+  _Pragma("GCC diagnostic ignored \"-Wmaybe-uninitialized\"")   \
+  _Pragma("GCC diagnostic ignored \"-Wuninitialized\"")
+#define SKYBAKE_AVX512_WARNINGS_ON _Pragma("GCC diagnostic pop")
+#else
+#define SKYBAKE_AVX512_WARNINGS_OFF
+#define SKYBAKE_AVX512_WARNINGS_ON
+#endif
