@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "core/write_all.hpp"
 
 namespace fs = std::filesystem;
 
@@ -276,19 +277,7 @@ void write_text_atomic(const fs::path& path, const std::string& text, Durability
   AtomicFile out(path);
   const int fd = ::open(out.temp_path().c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
   if (fd < 0) fail_write(path, errno_text(errno));
-  const char* p = text.data();
-  size_t left = text.size();
-  int err = 0;
-  while (left > 0) {
-    const ssize_t n = ::write(fd, p, left);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      err = n < 0 ? errno : EIO;
-      break;
-    }
-    p += n;
-    left -= size_t(n);
-  }
+  int err = pwrite_all(fd, text.data(), text.size(), 0);
   if (::close(fd) != 0 && err == 0) err = errno;
   if (err) fail_write(path, errno_text(err));
   if (durability == Durability::flushed) out.commit();

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "core/write_all.hpp"
 
 namespace skybake {
 
@@ -29,18 +30,10 @@ BufferedOutFile::~BufferedOutFile() {
 }
 
 bool BufferedOutFile::flush_buffer() {
-  const char* p = pbase();
-  size_t left = size_t(pptr() - pbase());
-  while (left > 0 && error_ == 0) {
-    const ssize_t n = ::pwrite(fd_, p, left, off_t(offset_));
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      error_ = n < 0 ? errno : EIO;
-      break;
-    }
-    p += n;
-    left -= size_t(n);
-    offset_ += n;
+  const size_t bytes = size_t(pptr() - pbase());
+  if (error_ == 0) {
+    error_ = pwrite_all(fd_, pbase(), bytes, uint64_t(offset_));
+    if (error_ == 0) offset_ += decltype(offset_)(bytes);
   }
   setp(buffer_.data(), buffer_.data() + buffer_.size());
   return error_ == 0;
