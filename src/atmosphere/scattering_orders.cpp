@@ -65,7 +65,7 @@ inline float with_order(float sum, double factor, float delta, double rayleigh_p
 }
 
 // to = from, both of one size, in parallel blocks.
-void parallel_copy(const std::vector<float>& from, std::vector<float>& to) {
+void parallel_copy(const TexelVector& from, TexelVector& to) {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, from.size(), size_t(1) << 16),
                     [&](const tbb::blocked_range<size_t>& b) {
                       std::copy(from.begin() + b.begin(), from.begin() + b.end(),

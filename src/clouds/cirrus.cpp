@@ -70,7 +70,7 @@ Texture bake_cirrus(const CirrusSpec& spec, const BakeContext& ctx) {
     throw Error(fmt::format("cirrus: {}: {}", problems[0].field, problems[0].message));
   const int w = spec.width, h = spec.height;
   const size_t count = size_t(w) * size_t(h);
-  std::vector<float> streaks(count), cells(count), sheets(count);
+  TexelVector streaks(count), cells(count), sheets(count);
   const uint32_t streak_seed = stream_seed(spec.seed, kStreakStream);
   const uint32_t cell_seed = stream_seed(spec.seed, kCellStream);
   const uint32_t sheet_seed = stream_seed(spec.seed, kSheetStream);

@@ -6,7 +6,7 @@
 
 namespace skybake {
 
-float kth_largest(std::vector<float> values, size_t k) {
+float kth_largest(TexelVector values, size_t k) {
   assert(k >= 1 && k <= values.size());
   const auto nth = values.begin() + std::ptrdiff_t(values.size() - k);
   std::nth_element(values.begin(), nth, values.end());
@@ -18,13 +18,13 @@ size_t texels_from_fraction(double fraction, size_t n) {
   return std::min(n, size_t(k));
 }
 
-float max_abs(const std::vector<float>& values) {
+float max_abs(const TexelVector& values) {
   float m = 0.0f;
   for (float v : values) m = std::max(m, std::abs(v));
   return m;
 }
 
-void keep_top_fraction(std::vector<float>& values, double fraction) {
+void keep_top_fraction(TexelVector& values, double fraction) {
   const size_t n = values.size();
   const size_t k = texels_from_fraction(fraction, n);
   if (n == 0) return;

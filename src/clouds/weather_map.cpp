@@ -44,16 +44,16 @@ float sample(const Signal& s, int x, int y, int n) {
 }
 
 // Divides by the largest |value| so the field spans [-1, 1].
-void normalize(std::vector<float>& v) {
+void normalize(TexelVector& v) {
   const float m = max_abs(v);
   if (m > 0.0f)
     for (float& x : v) x /= m;
 }
 
 // p per texel from the precipitation noise m (see the header).
-std::vector<float> precipitation_from(const std::vector<float>& m, const WeatherPrecipitation& P) {
+TexelVector precipitation_from(const TexelVector& m, const WeatherPrecipitation& P) {
   const size_t n = m.size();
-  std::vector<float> p(n, 0.0f);
+  TexelVector p(n, 0.0f);
   const size_t k1 = texels_from_fraction(P.area, n);
   if (k1 == 0) return p;
   const size_t k0 = std::min(n, k1 + texels_from_fraction(P.edge, n));
@@ -74,7 +74,7 @@ double raw_coverage(double n, double t, double contrast) {
 
 // Mean of max(raw_coverage, 0.7 p) over the map: per-row sums in parallel,
 // added in row order (deterministic for any thread count).
-double mean_coverage(const std::vector<float>& nc, const std::vector<float>& p, double t,
+double mean_coverage(const TexelVector& nc, const TexelVector& p, double t,
                      double contrast, int size) {
   std::vector<double> rows(size);
   tbb::parallel_for(0, size, [&](int y) {
@@ -92,7 +92,7 @@ double mean_coverage(const std::vector<float>& nc, const std::vector<float>& p, 
 // monotonically (and continuously) from 1 at t = lo to mean(0.7 p) at
 // t = hi, so bisection converges to it; a target below mean(0.7 p) (refused
 // by the pipeline) ends at hi.
-double coverage_threshold(const std::vector<float>& nc, const std::vector<float>& p,
+double coverage_threshold(const TexelVector& nc, const TexelVector& p,
                           const WeatherCoverage& C, int size) {
   double lo = -2.0 - 0.5 / C.contrast, hi = 2.0 + 0.5 / C.contrast;
   for (int it = 0; it < 200 && hi - lo > 1e-12; ++it) {
@@ -126,7 +126,7 @@ WeatherSignals weather_signals(const WeatherSpec& spec) {
 // Per texel: the coverage and type noise normalized to [-1, 1], and the
 // precipitation p (all 0 where it does not rain).
 struct WeatherFields {
-  std::vector<float> coverage, type, precipitation;
+  TexelVector coverage, type, precipitation;
 };
 
 WeatherFields sample_weather_fields(const WeatherSpec& spec, const WeatherSignals& signals,
@@ -134,7 +134,7 @@ WeatherFields sample_weather_fields(const WeatherSpec& spec, const WeatherSignal
   const int n = spec.size;
   const size_t count = size_t(n) * size_t(n);
   const bool rains = texels_from_fraction(spec.precipitation.area, count) > 0;
-  std::vector<float> nc(count), np(rains ? count : 0), nt(count);
+  TexelVector nc(count), np(rains ? count : 0), nt(count);
   tbb::parallel_for(0, n, [&](int y) {
     for (int x = 0; x < n; ++x) {
       const size_t i = size_t(y) * n + x;
@@ -146,7 +146,7 @@ WeatherFields sample_weather_fields(const WeatherSpec& spec, const WeatherSignal
   });
   normalize(nc);
   normalize(nt);
-  std::vector<float> p(count, 0.0f);
+  TexelVector p(count, 0.0f);
   if (rains) {
     normalize(np);
     const float w = float(spec.precipitation.correlation);
@@ -175,7 +175,7 @@ WeatherTotals write_weather_texels(const WeatherSpec& spec, const WeatherFields&
                                    Texture& tex, const ProgressCounter& progress) {
   const int n = spec.size;
   const bool schneider = spec.layout == WeatherLayout::schneider;
-  const std::vector<float>&nc = fields.coverage, &nt = fields.type, &p = fields.precipitation;
+  const TexelVector &nc = fields.coverage, &nt = fields.type, &p = fields.precipitation;
   std::vector<double> row_coverage(n);
   std::vector<size_t> row_raining(n);
   tbb::parallel_for(0, n, [&](int y) {

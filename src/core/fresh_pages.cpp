@@ -1,7 +1,10 @@
 #include "core/fresh_pages.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
+#include <cstdlib>
+#include <new>
 
 #include <malloc.h>
 #include <sys/mman.h>
@@ -30,6 +33,30 @@ void touch_pages(uintptr_t a, uintptr_t b, uintptr_t page) {
   }
 }
 
+// The x86-64 and AArch64 (4 KB granule) size of a transparent huge page.
+constexpr uintptr_t kHugePage = uintptr_t(2) << 20;
+
+// Asks for transparent huge pages on the whole 2 MB blocks of [a, b), and
+// says whether there is at least one. A huge page is one fault and one
+// mapping where 4 KB pages are 512: the kernel zeroes the same bytes, but
+// the faults, and under a hypervisor that shadows the guest's page tables
+// the exit on each page's first write (about 5 us a page on the development
+// VM), are 512 times fewer (docs/decisions.md "Threads: huge pages for
+// fresh buffers"). Where THP is off ("never") the call changes nothing;
+// where it is "always" the pages were to be huge anyway.
+bool advise_huge_pages(uintptr_t a, uintptr_t b) {
+#if defined(MADV_HUGEPAGE)
+  const uintptr_t ha = (a + kHugePage - 1) & ~(kHugePage - 1);
+  const uintptr_t hb = b & ~(kHugePage - 1);
+  if (hb <= ha) return false;
+  return madvise(reinterpret_cast<void*>(ha), hb - ha, MADV_HUGEPAGE) == 0;
+#else
+  (void)a;
+  (void)b;
+  return false;
+#endif
+}
+
 }  // namespace
 
 void populate_pages(void* p, size_t bytes) {
@@ -38,13 +65,16 @@ void populate_pages(void* p, size_t bytes) {
   const uintptr_t begin = (uintptr_t(p) + page - 1) & ~(page - 1);
   const uintptr_t end = (uintptr_t(p) + bytes) & ~(page - 1);
   if (end <= begin) return;
-  // 256 KB a chunk: a 1 MB buffer still splits between two threads.
-  const uintptr_t chunk = 64 * page;
-  const size_t chunks = size_t((end - begin + chunk - 1) / chunk);
+  // 256 KB a chunk: a 1 MB buffer still splits between two threads. With
+  // huge pages a chunk is one of them, on their boundaries, as a fault fills
+  // a whole one.
+  const uintptr_t chunk = advise_huge_pages(begin, end) ? kHugePage : 64 * page;
+  const uintptr_t base = begin & ~(chunk - 1);
+  const size_t chunks = size_t((end - base + chunk - 1) / chunk);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks),
                     [&](const tbb::blocked_range<size_t>& r) {
-                      const uintptr_t a = begin + r.begin() * chunk;
-                      const uintptr_t b = std::min<uintptr_t>(end, begin + r.end() * chunk);
+                      const uintptr_t a = std::max<uintptr_t>(begin, base + r.begin() * chunk);
+                      const uintptr_t b = std::min<uintptr_t>(end, base + r.end() * chunk);
                       // A failure (EINVAL before Linux 5.14, ENOMEM) leaves the pages to
                       // fault on first write: slower, the same bytes.
                       (void)madvise(reinterpret_cast<void*>(a), b - a, MADV_POPULATE_WRITE);
@@ -54,6 +84,25 @@ void populate_pages(void* p, size_t bytes) {
   (void)p;
   (void)bytes;
 #endif
+}
+
+void* allocate_fresh_pages(size_t bytes) {
+  if (bytes < kPopulateMinBytes) return ::operator new(bytes);
+  // Whole huge pages: a buffer's last partial 2 MB would otherwise be 4 KB
+  // pages, up to 511 faults (and exits) for at most 2 MB - 4 KB unused.
+  if (bytes > size_t(-1) - kHugePage) throw std::bad_alloc();
+  const size_t whole = (bytes + kHugePage - 1) & ~(kHugePage - 1);
+  void* p = nullptr;
+  if (posix_memalign(&p, kHugePage, whole) != 0) throw std::bad_alloc();
+  populate_pages(p, whole);
+  return p;
+}
+
+void free_fresh_pages(void* p, size_t bytes) noexcept {
+  if (bytes < kPopulateMinBytes)
+    ::operator delete(p);
+  else
+    std::free(p);
 }
 
 void keep_freed_memory() {

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <new>
 
 namespace skybake {
 
@@ -23,6 +24,38 @@ void populate_pages(void* p, size_t bytes);
 // Below this size a buffer is zeroed by the allocating thread alone: the
 // faults cost less than waking the workers.
 constexpr size_t kPopulateMinBytes = size_t(1) << 20;
+
+// Memory for a buffer of `bytes`, to be given back with free_fresh_pages.
+// From kPopulateMinBytes up it is whole 2 MB blocks on a 2 MB boundary,
+// advised for transparent huge pages (one fault each instead of 512, see
+// fresh_pages.cpp) and populated on every thread (populate_pages); below
+// it, plain new. Throws std::bad_alloc.
+void* allocate_fresh_pages(size_t bytes);
+void free_fresh_pages(void* p, size_t bytes) noexcept;
+
+// The allocator of a texture's texels: allocate_fresh_pages for the buffers
+// it is worth it for, plain new below (the choice is the size's, the same
+// on allocation and release).
+template <class T>
+struct FreshPagesAllocator {
+  using value_type = T;
+  FreshPagesAllocator() = default;
+  template <class U>
+  FreshPagesAllocator(const FreshPagesAllocator<U>&) noexcept {}
+  T* allocate(size_t n) {
+    if (n > size_t(-1) / sizeof(T)) throw std::bad_alloc();
+    return static_cast<T*>(allocate_fresh_pages(n * sizeof(T)));
+  }
+  void deallocate(T* p, size_t n) noexcept { free_fresh_pages(p, n * sizeof(T)); }
+  template <class U>
+  bool operator==(const FreshPagesAllocator<U>&) const noexcept {
+    return true;
+  }
+  template <class U>
+  bool operator!=(const FreshPagesAllocator<U>&) const noexcept {
+    return false;
+  }
+};
 
 // Keeps the memory the process frees for its own later allocations. By
 // default glibc hands a freed buffer of 128 KB and up (its threshold moves

@@ -7,20 +7,14 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
-#include "core/fresh_pages.hpp"
 
 namespace skybake {
 
 Texture::Texture(int w, int h, int d, int l, std::vector<std::string> ch)
     : width(w), height(h), depth(d), layers(l), channels(std::move(ch)) {
-  const size_t n = texel_count() * channels.size();
   // A large texture's pages are faulted in by every thread before the
-  // zeroing, which is then a plain memset (core/fresh_pages.hpp).
-  if (n * sizeof(float) >= kPopulateMinBytes) {
-    data.reserve(n);
-    populate_pages(data.data(), n * sizeof(float));
-  }
-  data.assign(n, 0.0f);
+  // zeroing, which is then a plain memset (TexelVector's allocator).
+  data.assign(texel_count() * channels.size(), 0.0f);
 }
 
 int Texture::channel_index(const std::string& name) const {

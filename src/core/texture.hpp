@@ -14,9 +14,14 @@
 #include <string>
 #include <vector>
 
+#include "core/fresh_pages.hpp"
 #include "core/metadata.hpp"
 
 namespace skybake {
+
+// A texture's floats. Large ones come from fresh_pages' allocator: faulted
+// in on every thread, in huge pages where they fit (core/fresh_pages.hpp).
+using TexelVector = std::vector<float, FreshPagesAllocator<float>>;
 
 struct Texture {
   int width = 0;
@@ -24,7 +29,7 @@ struct Texture {
   int depth = 1;   // > 1 for volumes
   int layers = 1;  // > 1 for 2D arrays
   std::vector<std::string> channels;
-  std::vector<float> data;
+  TexelVector data;
   Metadata metadata;
 
   Texture() = default;

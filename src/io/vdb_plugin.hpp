@@ -32,7 +32,7 @@ Texture read_vdb_file(const std::string& path);
 enum VdbPluginStatus : int { vdb_plugin_ok = 0, vdb_plugin_io_error = 1, vdb_plugin_error = 2 };
 
 // Bumped whenever an entry point's signature or Texture's layout changes.
-constexpr int kVdbPluginAbi = 5;
+constexpr int kVdbPluginAbi = 6;
 constexpr const char* kVdbPluginName = "libskybake_vdb.so";
 
 }  // namespace skybake

@@ -299,7 +299,7 @@ TEST(BakeScattering3d, EachOrderIsSmallerThanTheLastByTheSlabsOpacity) {
   const double d_max = 2.0 * std::sqrt(atm.top_radius_m * atm.top_radius_m -
                                        atm.bottom_radius_m * atm.bottom_radius_m);
   const double bound = 1.0 - std::exp(-sigma * d_max);
-  std::vector<std::vector<float>> totals;
+  std::vector<TexelVector> totals;
   for (int orders = 1; orders <= 4; ++orders)
     totals.push_back(
         bake_scattering3d(atm, lut, small_spec(orders), BakeContext{}).scattering.data);

@@ -504,7 +504,7 @@ TEST(BakeSingleScattering, TexelsEqualTheRayIntegralAtTheirCentre) {
 TEST(BakeSingleScattering, SameDataForOneAndTwoThreads) {
   const Atmosphere atm = fixtures::earth_atmosphere();
   const Texture lut = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{});
-  std::vector<float> one, two;
+  TexelVector one, two;
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
     one = bake_single_scattering(atm, lut, kSmall, 30, BakeContext{}).mie.data;

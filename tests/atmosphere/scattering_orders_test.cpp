@@ -757,7 +757,7 @@ TEST(ScatteringPrecision, WhereHalfFloatsLose) {
       }(),
       BakeContext{});
 
-  auto storage_error = [](const std::vector<float>& values, double& normal, double& subnormal,
+  auto storage_error = [](const TexelVector& values, double& normal, double& subnormal,
                           double& subnormal_share) {
     normal = subnormal = 0.0;
     size_t count = 0, small = 0;
@@ -776,7 +776,7 @@ TEST(ScatteringPrecision, WhereHalfFloatsLose) {
   };
   double normal = 0, subnormal = 0, share = 0;
   storage_error(t.scattering.data, normal, subnormal, share);
-  std::vector<float> fourth(t.scattering.data.size());
+  TexelVector fourth(t.scattering.data.size());
   for (size_t i = 0; i < fourth.size(); ++i)
     fourth[i] = std::max(0.0f, t.scattering.data[i] - three.scattering.data[i]);
   double normal4 = 0, subnormal4 = 0, share4 = 0;

@@ -232,7 +232,7 @@ TEST(SkyviewLut, LayersAreIndependentViewsWithMetadata) {
   const Texture a = bake_skyview_lut(atm, l.transmittance, l.multiscattering, two, {});
   const Texture b = bake_skyview_lut(atm, l.transmittance, l.multiscattering, one, {});
   ASSERT_EQ(a.layers, 2);
-  EXPECT_EQ(std::vector<float>(a.data.begin() + a.data.size() / 2, a.data.end()), b.data);
+  EXPECT_EQ(TexelVector(a.data.begin() + a.data.size() / 2, a.data.end()), b.data);
   EXPECT_EQ(meta_double(a.metadata, "layer.0.altitude_m"), 0.0);
   EXPECT_EQ(meta_double(a.metadata, "layer.1.altitude_m"), 5e3);
   EXPECT_EQ(meta_double(a.metadata, "layer.0.sun_zenith_rad"), 0.3);

@@ -530,7 +530,7 @@ TEST_F(EarthLut, TexelsHoldTheTransmittanceOfTheirCentre) {
 
 TEST(BakeTransmittanceLut, SameDataForOneAndTwoThreads) {
   const Atmosphere atm = fixtures::earth_atmosphere();
-  std::vector<float> one, two;
+  TexelVector one, two;
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
     one = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{}).data;

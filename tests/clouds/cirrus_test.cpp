@@ -110,9 +110,9 @@ TEST(Cirrus, SpecRulesNameTheField) {
 TEST(FieldStats, KthLargestAndTopFraction) {
   EXPECT_EQ(kth_largest({3.0f, 1.0f, 2.0f, 5.0f}, 1), 5.0f);
   EXPECT_EQ(kth_largest({3.0f, 1.0f, 2.0f, 5.0f}, 4), 1.0f);
-  std::vector<float> v = {0.0f, 1.0f, 2.0f, 3.0f, 4.0f};
+  TexelVector v = {0.0f, 1.0f, 2.0f, 3.0f, 4.0f};
   keep_top_fraction(v, 0.4);  // 2 of 5 above zero: q = 2, max = 4
-  EXPECT_EQ(v, (std::vector<float>{0.0f, 0.0f, 0.0f, 0.5f, 1.0f}));
+  EXPECT_EQ(v, (TexelVector{0.0f, 0.0f, 0.0f, 0.5f, 1.0f}));
   EXPECT_EQ(octaves_within_size(4, 8, 64), 4);  // 4, 8, 16, 32 cells: 2 texels each at 32
   EXPECT_EQ(octaves_within_size(64, 3, 64), 1);
 }

@@ -94,7 +94,8 @@ void main() {
   texture.bind(0);
   dispatch(program, unsigned((count + 63) / 64));
   Texture samples(g.size.x, g.size.y, g.size.z, 1, {"R", "G", "B", "A"});
-  samples.data = out.read_floats();
+  const std::vector<float> floats = out.read_floats();
+  samples.data.assign(floats.begin(), floats.end());
   return samples;
 }
 

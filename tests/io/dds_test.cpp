@@ -337,7 +337,7 @@ TEST(DdsConvert, MissingComponentsAreZeroAndMissingAlphaIsOne) {
   two.data = {0.25f, 0.5f, 0.75f, 1.0f};
   write_dds(dir + "/h.dds", {two}, DdsFormat::R16G16B16A16_FLOAT);
   const Texture h = read_dds(dir + "/h.dds").mips[0];
-  EXPECT_EQ(h.data, (std::vector<float>{0.25f, 0.5f, 0, 1, 0.75f, 1.0f, 0, 1}));
+  EXPECT_EQ(h.data, (TexelVector{0.25f, 0.5f, 0, 1, 0.75f, 1.0f, 0, 1}));
   write_dds(dir + "/u.dds", {two}, DdsFormat::R8G8B8A8_UNORM);
   const auto u = file_bytes(dir + "/u.dds");
   EXPECT_EQ(std::vector<uint8_t>(u.begin() + 148, u.end()),
@@ -414,13 +414,13 @@ TEST(DdsConvert, OutOfRangeValuesClampToTheFormat) {
   t.data = {1e6f, -1e6f, -0.5f, 1.5f};
   write_dds(dir + "/h.dds", {t}, DdsFormat::R16G16B16A16_FLOAT);
   EXPECT_EQ(read_dds(dir + "/h.dds").mips[0].data,
-            (std::vector<float>{65504.0f, -65504.0f, -0.5f, 1.5f}));
+            (TexelVector{65504.0f, -65504.0f, -0.5f, 1.5f}));
   write_dds(dir + "/u.dds", {t}, DdsFormat::R8G8B8A8_UNORM);
-  EXPECT_EQ(read_dds(dir + "/u.dds").mips[0].data, (std::vector<float>{1, 0, 0, 1}));
+  EXPECT_EQ(read_dds(dir + "/u.dds").mips[0].data, (TexelVector{1, 0, 0, 1}));
   Texture p(1, 1, 1, 1, {"R", "G", "B"});
   p.data = {1e9f, -3.0f, 1e9f};
   write_dds(dir + "/p.dds", {p}, DdsFormat::R11G11B10_FLOAT);
-  EXPECT_EQ(read_dds(dir + "/p.dds").mips[0].data, (std::vector<float>{65024.0f, 0.0f, 64512.0f}));
+  EXPECT_EQ(read_dds(dir + "/p.dds").mips[0].data, (TexelVector{65024.0f, 0.0f, 64512.0f}));
 }
 
 // ---- refusals ----------------------------------------------------------------------

@@ -258,13 +258,13 @@ TEST(Ktx2Convert, MissingComponentsAreZeroMissingAlphaOneAndRangesClamp) {
   Ktx2Image unorm = read_ktx2(path);
   EXPECT_EQ(unorm.mips[0].channels, t.channels);  // the padding alpha is not a channel
   EXPECT_EQ(unorm.mips[0].data,
-            (std::vector<float>{1.0f, 0.0f, 128 / 255.0f, 1.0f, 0.0f, 64 / 255.0f}));
+            (TexelVector{1.0f, 0.0f, 128 / 255.0f, 1.0f, 0.0f, 64 / 255.0f}));
   const std::vector<uint8_t> b = bytes_of(path);
   const uint64_t level0 = u64_at(b, 80);
   EXPECT_EQ(b[level0 + 3], 255);  // alpha of a 3-channel texture
   write_ktx2(path, {t}, Ktx2Format::R16G16B16A16_SFLOAT);
   EXPECT_EQ(read_ktx2(path).mips[0].data,
-            (std::vector<float>{2.0f, -1.0f, 0.5f, 65504.0f, -65504.0f, 0.25f}));
+            (TexelVector{2.0f, -1.0f, 0.5f, 65504.0f, -65504.0f, 0.25f}));
 }
 
 TEST(Ktx2Refuse, BadTexturesCreateNoFile) {
