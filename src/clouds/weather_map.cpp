@@ -53,7 +53,7 @@ void normalize(TexelVector& v) {
 // p per texel from the precipitation noise m (see the header).
 TexelVector precipitation_from(const TexelVector& m, const WeatherPrecipitation& P) {
   const size_t n = m.size();
-  TexelVector p(n, 0.0f);
+  TexelVector p(n);  // zeros (TexelVector's allocator)
   const size_t k1 = texels_from_fraction(P.area, n);
   if (k1 == 0) return p;
   const size_t k0 = std::min(n, k1 + texels_from_fraction(P.edge, n));
@@ -146,7 +146,7 @@ WeatherFields sample_weather_fields(const WeatherSpec& spec, const WeatherSignal
   });
   normalize(nc);
   normalize(nt);
-  TexelVector p(count, 0.0f);
+  TexelVector p(count);
   if (rains) {
     normalize(np);
     const float w = float(spec.precipitation.correlation);

@@ -87,22 +87,33 @@ void populate_pages(void* p, size_t bytes) {
 }
 
 void* allocate_fresh_pages(size_t bytes) {
-  if (bytes < kPopulateMinBytes) return ::operator new(bytes);
+  if (bytes < kPopulateMinBytes) {
+    void* p = std::calloc(bytes > 0 ? bytes : 1, 1);
+    if (p == nullptr) throw std::bad_alloc();
+    return p;
+  }
   // Whole huge pages: a buffer's last partial 2 MB would otherwise be 4 KB
-  // pages, up to 511 faults (and exits) for at most 2 MB - 4 KB unused.
-  if (bytes > size_t(-1) - kHugePage) throw std::bad_alloc();
+  // pages, up to 511 faults (and exits) for at most 2 MB - 4 KB unused. A
+  // mapping of one block more than that is trimmed to the 2 MB boundary;
+  // its pages are fresh, so zero without a memset.
+  if (bytes > size_t(-1) - 2 * kHugePage) throw std::bad_alloc();
   const size_t whole = (bytes + kHugePage - 1) & ~(kHugePage - 1);
-  void* p = nullptr;
-  if (posix_memalign(&p, kHugePage, whole) != 0) throw std::bad_alloc();
-  populate_pages(p, whole);
-  return p;
+  const size_t span = whole + kHugePage;
+  void* m = mmap(nullptr, span, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (m == MAP_FAILED) throw std::bad_alloc();
+  const uintptr_t start = uintptr_t(m);
+  const uintptr_t a = (start + kHugePage - 1) & ~(kHugePage - 1);
+  if (a > start) munmap(m, a - start);
+  if (start + span > a + whole) munmap(reinterpret_cast<void*>(a + whole), start + span - a - whole);
+  populate_pages(reinterpret_cast<void*>(a), whole);
+  return reinterpret_cast<void*>(a);
 }
 
 void free_fresh_pages(void* p, size_t bytes) noexcept {
   if (bytes < kPopulateMinBytes)
-    ::operator delete(p);
-  else
     std::free(p);
+  else
+    munmap(p, (bytes + kHugePage - 1) & ~(kHugePage - 1));
 }
 
 void keep_freed_memory() {

@@ -10,6 +10,8 @@
 
 #include <cstddef>
 #include <new>
+#include <type_traits>
+#include <utility>
 
 namespace skybake {
 
@@ -25,19 +27,30 @@ void populate_pages(void* p, size_t bytes);
 // faults cost less than waking the workers.
 constexpr size_t kPopulateMinBytes = size_t(1) << 20;
 
-// Memory for a buffer of `bytes`, to be given back with free_fresh_pages.
-// From kPopulateMinBytes up it is whole 2 MB blocks on a 2 MB boundary,
-// advised for transparent huge pages (one fault each instead of 512, see
-// fresh_pages.cpp) and populated on every thread (populate_pages); below
-// it, plain new. Throws std::bad_alloc.
+// Zeroed memory for a buffer of `bytes`, to be given back with
+// free_fresh_pages. From kPopulateMinBytes up it is its own anonymous
+// mapping of whole 2 MB blocks on a 2 MB boundary, advised for transparent
+// huge pages (one fault each instead of 512, see fresh_pages.cpp) and
+// populated on every thread (populate_pages): the kernel's zero fill of
+// each page is the buffer's, split between the threads. Below it, calloc.
+// Throws std::bad_alloc.
 void* allocate_fresh_pages(size_t bytes);
 void free_fresh_pages(void* p, size_t bytes) noexcept;
 
-// The allocator of a texture's texels: allocate_fresh_pages for the buffers
-// it is worth it for, plain new below (the choice is the size's, the same
-// on allocation and release).
+// The allocator of a texture's texels: allocate_fresh_pages for every
+// buffer (the mapping or calloc is the size's choice, the same on
+// allocation and release). Its memory is zeroed, so a value-initialized
+// element (`TexelVector(n)`, `resize(n)`) is left as the memory holds it,
+// 0.0f, instead of by a memset on the constructing thread: for a 32 MB
+// volume that memset was about a tenth of a one-thread bake, all of it
+// serial (docs/decisions.md "Threads: huge pages for fresh buffers"). The
+// one way to see the difference: a vector shrunk and then grown again
+// within its capacity keeps the old values in the regrown elements, so
+// grow a TexelVector with resize(n, 0.0f) or assign.
 template <class T>
 struct FreshPagesAllocator {
+  static_assert(std::is_trivially_default_constructible_v<T>,
+                "zeroed memory is a value-initialized T only for trivial types");
   using value_type = T;
   FreshPagesAllocator() = default;
   template <class U>
@@ -47,6 +60,15 @@ struct FreshPagesAllocator {
     return static_cast<T*>(allocate_fresh_pages(n * sizeof(T)));
   }
   void deallocate(T* p, size_t n) noexcept { free_fresh_pages(p, n * sizeof(T)); }
+  // Value-initialization: the memory is zero already (see above).
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
   template <class U>
   bool operator==(const FreshPagesAllocator<U>&) const noexcept {
     return true;

@@ -12,9 +12,9 @@ namespace skybake {
 
 Texture::Texture(int w, int h, int d, int l, std::vector<std::string> ch)
     : width(w), height(h), depth(d), layers(l), channels(std::move(ch)) {
-  // A large texture's pages are faulted in by every thread before the
-  // zeroing, which is then a plain memset (TexelVector's allocator).
-  data.assign(texel_count() * channels.size(), 0.0f);
+  // Zeros from TexelVector's allocator: the kernel's fill of fresh pages,
+  // on every thread, for a large texture (core/fresh_pages.hpp).
+  data.resize(texel_count() * channels.size());
 }
 
 int Texture::channel_index(const std::string& name) const {

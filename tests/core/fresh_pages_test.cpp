@@ -81,6 +81,28 @@ TEST(Texture, StartsAtZeroInMemoryAnotherTextureWrote) {
   }
 }
 
+TEST(FreshPagesAllocator, ValueInitializedVectorsAreZeroInMemoryAnotherOneWrote) {
+  // Either side of the mapping threshold, and a size that is not a whole
+  // number of huge pages: the elements a value-initialization leaves as the
+  // allocator gave them must be 0.0f, also where a freed vector was dirty.
+  for (size_t n : {size_t(1000), kPopulateMinBytes / sizeof(float) - 1,
+                   kPopulateMinBytes / sizeof(float), (size_t(5) << 20) / sizeof(float) + 3}) {
+    for (int round = 0; round < 3; ++round) {
+      {
+        TexelVector dirty(n);
+        std::fill(dirty.begin(), dirty.end(), -7.0f);
+      }
+      const TexelVector fresh(n);
+      ASSERT_EQ(fresh.size(), n);
+      EXPECT_TRUE(std::all_of(fresh.begin(), fresh.end(), [](float v) { return v == 0.0f; }))
+          << n << " floats, round " << round;
+      TexelVector grown;
+      grown.resize(n);
+      EXPECT_TRUE(std::all_of(grown.begin(), grown.end(), [](float v) { return v == 0.0f; }));
+    }
+  }
+}
+
 TEST(FreshPagesAllocator, HugePageBuffersStartOnAHugePageBoundary) {
   const size_t huge = size_t(2) << 20;
   for (size_t bytes : {huge, (size_t(5) << 20) + 12, size_t(33) << 20}) {
@@ -92,7 +114,7 @@ TEST(FreshPagesAllocator, HugePageBuffersStartOnAHugePageBoundary) {
     EXPECT_EQ(b[0] + b[bytes - 1], 3);
     free_fresh_pages(p, bytes);
   }
-  // Below the populate threshold: plain new, any alignment new gives.
+  // Below the populate threshold: calloc, any alignment it gives.
   void* small = allocate_fresh_pages(100);
   ASSERT_NE(small, nullptr);
   free_fresh_pages(small, 100);
