@@ -116,7 +116,9 @@ void ring_media(const Atmosphere& atm, double r, double mu, RingMarch& out) {
   }
 }
 
-void march_ring(const Atmosphere& atm, double r, double mu, int steps, RingMarch& out) {
+// `drop_dark`: TableCheck::finite's shortcuts (multiscattering_point.hpp).
+void march_ring(const Atmosphere& atm, double r, double mu, int steps, bool drop_dark,
+                RingMarch& out) {
   out.distances.clear();
   out.radii.clear();
   out.inverse_radii.clear();
@@ -148,12 +150,17 @@ void march_ring(const Atmosphere& atm, double r, double mu, int steps, RingMarch
       w.transmittance[c] = 1.0 + out.expm1s[4 * i + c];
     }
     const glm::dvec3 scattered = transmittance * out.media.scattering[i] * w.weight;
+    out.l_f += scattered;
+    transmittance *= w.transmittance;
+    if (drop_dark && scattered == glm::dvec3(0.0)) {
+      // Every later segment scatters transmittance (0) times finite terms.
+      if (transmittance == glm::dvec3(0.0)) break;
+      continue;
+    }
     out.distances.push_back(terms.lit_at[i]);
     out.radii.push_back(terms.lit_radius[i]);
     out.inverse_radii.push_back(terms.inverse_radius[i]);
     out.scattered.push_back(scattered);
-    out.l_f += scattered;
-    transmittance *= w.transmittance;
   }
   out.ground_transmittance = transmittance;
 }
@@ -213,7 +220,8 @@ PointRule point_rule(const PointQuadrature& quadrature) {
 
 MultiscatteringSample multiscattering_at_point(const Atmosphere& atm,
                                                const Texture& transmittance_lut, double r,
-                                               double mu_s, const PointRule& rule) {
+                                               double mu_s, const PointRule& rule,
+                                               TableCheck table) {
   r = std::clamp(r, atm.bottom_radius_m, atm.top_radius_m);
   mu_s = clamp_cosine(mu_s);
   const double ratio = atm.bottom_radius_m / r;
@@ -227,7 +235,7 @@ MultiscatteringSample multiscattering_at_point(const Atmosphere& atm,
   for (int j = 0; j < azimuths; ++j)
     azimuth_cosines.push_back(std::cos(kPi * (j + 0.5) / azimuths));
   for (size_t k = 0; k < mus.size(); ++k) {
-    march_ring(atm, r, mus[k], rule.quadrature.steps, march);
+    march_ring(atm, r, mus[k], rule.quadrature.steps, table == TableCheck::finite, march);
     const double sin_zenith = safe_sqrt(1.0 - mus[k] * mus[k]);
     cosines.clear();
     for (int j = 0; j < azimuths; ++j)

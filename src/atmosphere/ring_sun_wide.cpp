@@ -48,6 +48,8 @@ SKYBAKE_AVX2 void add_sun_lanes(const Texture& lut, const Atmosphere& atm, const
   const __m256d ground = _mm256_and_pd(
       _mm256_cmp_pd(mu, zero, _CMP_LT_OQ),
       _mm256_cmp_pd(_mm256_add_pd(rr_mm1, _mm256_set1_pd(rb * rb)), zero, _CMP_GE_OQ));
+  // Every lane in the planet's shadow: each would add +0 (the masked read).
+  if (_mm256_movemask_pd(ground) == 0xF) return;
   const __m256d d = _mm256_max_pd(  // distance_to_top_boundary
       _mm256_add_pd(_mm256_mul_pd(_mm256_xor_pd(at.r, _mm256_set1_pd(-0.0)), mu),
                     _mm256_sqrt_pd(_mm256_max_pd(zero, _mm256_add_pd(rr_mm1, _mm256_set1_pd(rt * rt))))),

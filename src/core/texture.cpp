@@ -50,6 +50,10 @@ bool any_non_finite(const float* v, size_t n) {
 
 }  // namespace
 
+bool texture_is_finite(const Texture& tex) {
+  return !any_non_finite(tex.data.data(), tex.data.size());
+}
+
 void check_finite(const Texture& tex, const std::string& what) {
   if (!any_non_finite(tex.data.data(), tex.data.size())) return;
   const size_t nc = tex.channels.size();

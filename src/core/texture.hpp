@@ -61,4 +61,8 @@ struct Texture {
 // its caller already has (core/finite_check.hpp).
 void check_finite(const Texture& tex, const std::string& what);
 
+// Whether every value is finite (no NaN, no infinity): check_finite's scan,
+// for callers that only need to know.
+bool texture_is_finite(const Texture& tex);
+
 }  // namespace skybake

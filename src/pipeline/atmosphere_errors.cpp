@@ -80,12 +80,15 @@ nlohmann::json measure_multiscattering_error(const Scene& scene, const OutputSpe
     return measure_converged_multiscattering_error(scene, spec, in, lut);
   const Atmosphere& atm = scene.atmosphere;
   const PointRule rule = point_rule(kMultiscatteringReference);
+  const Texture& transmittance = *in.at("transmittance");
+  const TableCheck table =
+      texture_is_finite(transmittance) ? TableCheck::finite : TableCheck::unchecked;
   QueryReads reads(kMultiscatteringQueries);
   tbb::parallel_for(size_t(0), reads.size(), [&](size_t i) {
     const RadiusCosine q = multiscattering_query(atm, i);
     reads[i].first = lookup_multiscattering(lut, atm, q.r, q.mu);
     reads[i].second =
-        multiscattering_at_point(atm, *in.at("transmittance"), q.r, q.mu, rule).psi_ms;
+        multiscattering_at_point(atm, transmittance, q.r, q.mu, rule, table).psi_ms;
   });
   return error_record(
       reads,
