@@ -94,8 +94,11 @@ class RayMarcher {
   // n segments over [t0, t1] placed by `dist`; a segment that holds one of
   // the ascending distances `cuts` is integrated as two (or more) pieces.
   // With `block` or `at_ends`, segments_block integrates them.
+  // With `skip_dark` (IntegrationOptions::finite_tables), the block march
+  // reads no source that is multiplied by 0.
   void march(double t0, double t1, int n, StepDistribution dist, MarchState& st,
-             const std::vector<double>& cuts = {}, bool block = false, bool at_ends = false) const {
+             const std::vector<double>& cuts = {}, bool block = false, bool at_ends = false,
+             bool skip_dark = false) const {
     block = block || at_ends;
     if (empty() || !(t1 > t0)) return;
     n = std::max(n, 1);
@@ -124,21 +127,48 @@ class RayMarcher {
       emit(a, b);
       a = b;
     }
-    if (block) segments_block(ends, st, at_ends);
+    if (block) segments_block(ends, st, at_ends, skip_dark);
   }
 
   // segment() over [ends[i], ends[i + 1]] for every i, in order, with the
   // media's exponentials and the weights' expm1s taken in blocks
   // (IntegrationOptions::block_exponentials); `at_ends`: the sources read at
   // the ends instead (IntegrationOptions::sources_at_ends).
-  void segments_block(const std::vector<double>& ends, MarchState& st, bool at_ends) const {
+  void segments_block(const std::vector<double>& ends, MarchState& st, bool at_ends,
+                      bool skip_dark) const {
     // Scratch kept by each thread from march to march (no allocation per ray).
     thread_local BlockScratch b;
     media_block(ends, b);
+    DarkSegments dark{ends.size() - 1, false};
+    if (skip_dark) dark = dark_segments(ends, b, st.transmittance);
     if (at_ends)
-      light_at_ends(ends, b, st);
+      light_at_ends(ends, b, dark, st);
     else
-      light_at_midpoints(ends, b, st);
+      light_at_midpoints(ends, b, dark, st);
+  }
+
+  // Which of media_block's segments need their sources read (`skip_dark`).
+  struct DarkSegments {
+    size_t lit;     // segments before the transmittance from the viewer is 0
+    bool no_light;  // none of those scatters: every source is multiplied by 0
+  };
+  // The sums' transmittance, the same products in the same order, from `t`.
+  DarkSegments dark_segments(const std::vector<double>& ends, const BlockScratch& b,
+                             glm::dvec3 t) const {
+    const size_t n = ends.size() - 1;
+    DarkSegments out{n, true};
+    for (size_t i = 0; i < n; ++i) {
+      if (t == glm::dvec3(0.0)) {
+        out.lit = i;
+        break;
+      }
+      const double dt = ends[i + 1] - ends[i];
+      if (!(dt > 0.0) || b.sigma_t[i] == glm::dvec3(0.0)) continue;
+      if (b.sigma_s_phase[i] != glm::dvec3(0.0) || (mslut_ && b.sigma_s[i] != glm::dvec3(0.0)))
+        out.no_light = false;
+      for (int c = 0; c < 3; ++c) t[c] *= 1.0 + b.em[3 * i + c];
+    }
+    return out;
   }
 
   // The segments' midpoints, media (sigma_s, sigma_t, sigma_s_phase) and the
@@ -178,15 +208,21 @@ class RayMarcher {
   // segment()'s sums over media_block's segments, the sources read at the
   // midpoints: every segment's two reads first, four at a time where AVX2
   // runs (sky_reads.hpp, the same bits), then the sums in order.
-  void light_at_midpoints(const std::vector<double>& ends, BlockScratch& b, MarchState& st) const {
-    const size_t n = ends.size() - 1;
+  void light_at_midpoints(const std::vector<double>& ends, BlockScratch& b,
+                          const DarkSegments& dark, MarchState& st) const {
+    const size_t n = dark.lit;
     const std::vector<double>& em = b.em;
     const std::vector<glm::dvec3>&sigma_s = b.sigma_s, &sigma_t = b.sigma_t,
     &sigma_s_phase = b.sigma_s_phase;
-    b.sun.resize(n);
-    b.ms.resize(n);
-    sky_reads(atm_, tlut_, mslut_, msmap_, b.r.data(), b.mu_s.data(), n, b.sun.data(),
-              b.ms.data());
+    if (dark.no_light) {  // 0 times any finite read is the 0 read here
+      b.sun.assign(n, glm::dvec3(0.0));
+      b.ms.assign(n, glm::dvec3(0.0));
+    } else {
+      b.sun.resize(n);
+      b.ms.resize(n);
+      sky_reads(atm_, tlut_, mslut_, msmap_, b.r.data(), b.mu_s.data(), n, b.sun.data(),
+                b.ms.data());
+    }
     for (size_t i = 0; i < n; ++i) {
       const double dt = ends[i + 1] - ends[i];
       if (!(dt > 0.0) || sigma_t[i] == glm::dvec3(0.0)) continue;
@@ -201,8 +237,9 @@ class RayMarcher {
   // The sums over media_block's segments with the sun's transmittance and
   // Psi_ms read at the segments' ends and each channel's source integrated
   // linear between them (segment_sources.hpp).
-  void light_at_ends(const std::vector<double>& ends, BlockScratch& b, MarchState& st) const {
-    const size_t n = ends.size() - 1;
+  void light_at_ends(const std::vector<double>& ends, BlockScratch& b, const DarkSegments& dark,
+                     MarchState& st) const {
+    const size_t n = dark.lit;
     for (std::vector<double>* v : {&b.end_r, &b.end_mu_s}) v->resize(n + 1);
     b.end_sun.resize(n + 1);
     b.end_ms.resize(n + 1);
@@ -216,8 +253,13 @@ class RayMarcher {
       b.end_r[k] = r;
       b.end_mu_s[k] = clamp_cosine((os + t * ds) / r);
     }
-    sky_reads(atm_, tlut_, mslut_, msmap_, b.end_r.data(), b.end_mu_s.data(), n + 1,
-              b.end_sun.data(), b.end_ms.data());
+    if (dark.no_light) {  // 0 times any finite read is the 0 read here
+      b.end_sun.assign(n + 1, glm::dvec3(0.0));
+      b.end_ms.assign(n + 1, glm::dvec3(0.0));
+    } else {
+      sky_reads(atm_, tlut_, mslut_, msmap_, b.end_r.data(), b.end_mu_s.data(), n + 1,
+                b.end_sun.data(), b.end_ms.data());
+    }
     for (size_t i = 0; i < n; ++i) {
       const double dt = ends[i + 1] - ends[i];
       if (!(dt > 0.0) || b.sigma_t[i] == glm::dvec3(0.0)) continue;
@@ -312,7 +354,7 @@ ScatteringResult integrate_scattered_luminance(const Atmosphere& atm,
   MarchState st;
   marcher.march(span.t_enter, t_end, steps, options.distribution, st,
                 options.cut_at_shadow ? marcher.shadow_crossings() : std::vector<double>{},
-                options.block_exponentials, options.sources_at_ends);
+                options.block_exponentials, options.sources_at_ends, options.finite_tables);
   if (options.lit_ground && span.exits_on_ground && t_end >= span.t_exit)
     marcher.lit_ground(span.t_exit, st);
   return {st.luminance, st.transmittance};

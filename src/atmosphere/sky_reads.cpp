@@ -56,6 +56,10 @@ SKYBAKE_AVX2 void sun_lanes(const Atmosphere& atm, const Texture& lut, __m256d r
   const __m256d ground = _mm256_and_pd(
       _mm256_cmp_pd(mu, zero, _CMP_LT_OQ),
       _mm256_cmp_pd(_mm256_add_pd(rr_mm1, _mm256_set1_pd(rb * rb)), zero, _CMP_GE_OQ));
+  if (_mm256_movemask_pd(ground) == 0xF) {  // every lane in the planet's shadow: +0 reads
+    for (int k = 0; k < count; ++k) out[k] = glm::dvec3(0.0);
+    return;
+  }
   const __m256d rho = _mm256_sqrt_pd(_mm256_max_pd(
       zero, _mm256_mul_pd(_mm256_sub_pd(r, _mm256_set1_pd(rb)), _mm256_add_pd(r, _mm256_set1_pd(rb)))));
   const __m256d d = _mm256_max_pd(  // distance_to_top_boundary: max(0, -r mu + safe_sqrt(...))

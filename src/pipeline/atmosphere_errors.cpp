@@ -105,6 +105,11 @@ nlohmann::json measure_multiscattering_error(const Scene& scene, const OutputSpe
 
 namespace {
 
+// IntegrationOptions::finite_tables of a march that reads these tables.
+bool tables_are_finite(const Texture& transmittance, const Texture* multiscattering) {
+  return texture_is_finite(transmittance) && (!multiscattering || texture_is_finite(*multiscattering));
+}
+
 // The sky-view table read at the query points against the same single-
 // scattering march finer, reading `multiscattering` (null: none), plus
 // `more_light` toward each query's direction.
@@ -116,6 +121,7 @@ QueryReads skyview_reads(
   IntegrationOptions options;
   options.distribution = baked.distribution;
   options.block_exponentials = true;
+  options.finite_tables = tables_are_finite(transmittance, multiscattering);
   const MultiscatteringMapping mapping =
       multiscattering ? multiscattering_mapping_of(*multiscattering) : MultiscatteringMapping{};
   options.multiscattering_mapping = &mapping;
@@ -180,6 +186,7 @@ nlohmann::json measure_aerial_perspective_error(const Scene& scene, const Output
   const glm::dvec3 sun = sun_direction(baked.sun_zenith_rad, baked.sun_azimuth_rad);
   IntegrationOptions options = aerial_reference_options();
   const Texture* multiscattering = in.at("multiscattering");
+  options.finite_tables = tables_are_finite(*in.at("transmittance"), multiscattering);
   const MultiscatteringMapping mapping =
       multiscattering ? multiscattering_mapping_of(*multiscattering) : MultiscatteringMapping{};
   options.multiscattering_mapping = &mapping;
