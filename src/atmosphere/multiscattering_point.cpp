@@ -116,9 +116,9 @@ void ring_media(const Atmosphere& atm, double r, double mu, RingMarch& out) {
   }
 }
 
-// `drop_dark`: TableCheck::finite's shortcuts (multiscattering_point.hpp).
-void march_ring(const Atmosphere& atm, double r, double mu, int steps, bool drop_dark,
-                RingMarch& out) {
+// `finite_table`: multiscattering_at_point's (multiscattering_point.hpp).
+void march_ring(const Atmosphere& atm, double r, double mu, int steps,
+                const FiniteOnce* finite_table, RingMarch& out) {
   out.distances.clear();
   out.radii.clear();
   out.inverse_radii.clear();
@@ -152,7 +152,7 @@ void march_ring(const Atmosphere& atm, double r, double mu, int steps, bool drop
     const glm::dvec3 scattered = transmittance * out.media.scattering[i] * w.weight;
     out.l_f += scattered;
     transmittance *= w.transmittance;
-    if (drop_dark && scattered == glm::dvec3(0.0)) {
+    if (scattered == glm::dvec3(0.0) && finite_table && (*finite_table)()) {
       // Every later segment scatters transmittance (0) times finite terms.
       if (transmittance == glm::dvec3(0.0)) break;
       continue;
@@ -221,7 +221,7 @@ PointRule point_rule(const PointQuadrature& quadrature) {
 MultiscatteringSample multiscattering_at_point(const Atmosphere& atm,
                                                const Texture& transmittance_lut, double r,
                                                double mu_s, const PointRule& rule,
-                                               TableCheck table) {
+                                               const FiniteOnce* finite_table) {
   r = std::clamp(r, atm.bottom_radius_m, atm.top_radius_m);
   mu_s = clamp_cosine(mu_s);
   const double ratio = atm.bottom_radius_m / r;
@@ -235,7 +235,7 @@ MultiscatteringSample multiscattering_at_point(const Atmosphere& atm,
   for (int j = 0; j < azimuths; ++j)
     azimuth_cosines.push_back(std::cos(kPi * (j + 0.5) / azimuths));
   for (size_t k = 0; k < mus.size(); ++k) {
-    march_ring(atm, r, mus[k], rule.quadrature.steps, table == TableCheck::finite, march);
+    march_ring(atm, r, mus[k], rule.quadrature.steps, finite_table, march);
     const double sin_zenith = safe_sqrt(1.0 - mus[k] * mus[k]);
     cosines.clear();
     for (int j = 0; j < azimuths; ++j)

@@ -40,6 +40,7 @@
 #include "atmosphere/medium.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/sphere_rule.hpp"
+#include "core/finite_once.hpp"
 #include "core/texture.hpp"
 
 namespace skybake {
@@ -58,22 +59,19 @@ struct PointRule {
 };
 PointRule point_rule(const PointQuadrature& quadrature);
 
-// Whether the caller has checked that the transmittance table holds no NaN
-// or infinity (texture_is_finite, core/texture.hpp). With `finite`, a sample
-// whose scattered light is 0 in every channel (the ray's transmittance has
-// underflowed to 0, or the air there does not scatter) is left out of the
-// ring's sun reads, and a ring stops where its transmittance is 0: each such
-// sample adds 0 times a finite sum of reads, so the result has the same bits
-// as with `unchecked`, which reads every sample (the straightforward rule,
-// tests/atmosphere/multiscattering_point_test.cpp).
-enum class TableCheck { unchecked, finite };
-
+// With `finite_table` (null: none), a sample whose scattered light is 0 in
+// every channel (the ray's transmittance has underflowed to 0, or the air
+// there does not scatter) is left out of the ring's sun reads, and a ring
+// stops where its transmittance is 0, once `finite_table` has found the
+// transmittance table free of NaN and infinity: each such sample adds 0 times
+// a finite sum of reads, so the result has the same bits as without it,
+// which reads every sample (tests/atmosphere/multiscattering_point_test.cpp).
 // Eq. 5-10 at radius r (clamped to the shell) for a sun of zenith cosine mu_s
 // (clamped); f_ms clamped to kMaxMultiscatteringTransfer as in the table.
 // Thread-safe.
 MultiscatteringSample multiscattering_at_point(const Atmosphere& atm,
                                                const Texture& transmittance_lut, double r,
                                                double mu_s, const PointRule& rule,
-                                               TableCheck table = TableCheck::unchecked);
+                                               const FiniteOnce* finite_table = nullptr);
 
 }  // namespace skybake

@@ -94,11 +94,11 @@ class RayMarcher {
   // n segments over [t0, t1] placed by `dist`; a segment that holds one of
   // the ascending distances `cuts` is integrated as two (or more) pieces.
   // With `block` or `at_ends`, segments_block integrates them.
-  // With `skip_dark` (IntegrationOptions::finite_tables), the block march
+  // With `finite` (IntegrationOptions::finite_tables), the block march
   // reads no source that is multiplied by 0.
   void march(double t0, double t1, int n, StepDistribution dist, MarchState& st,
              const std::vector<double>& cuts = {}, bool block = false, bool at_ends = false,
-             bool skip_dark = false) const {
+             const FiniteOnce* finite = nullptr) const {
     block = block || at_ends;
     if (empty() || !(t1 > t0)) return;
     n = std::max(n, 1);
@@ -127,7 +127,7 @@ class RayMarcher {
       emit(a, b);
       a = b;
     }
-    if (block) segments_block(ends, st, at_ends, skip_dark);
+    if (block) segments_block(ends, st, at_ends, finite);
   }
 
   // segment() over [ends[i], ends[i + 1]] for every i, in order, with the
@@ -135,12 +135,15 @@ class RayMarcher {
   // (IntegrationOptions::block_exponentials); `at_ends`: the sources read at
   // the ends instead (IntegrationOptions::sources_at_ends).
   void segments_block(const std::vector<double>& ends, MarchState& st, bool at_ends,
-                      bool skip_dark) const {
+                      const FiniteOnce* finite) const {
     // Scratch kept by each thread from march to march (no allocation per ray).
     thread_local BlockScratch b;
     media_block(ends, b);
     DarkSegments dark{ends.size() - 1, false};
-    if (skip_dark) dark = dark_segments(ends, b, st.transmittance);
+    if (finite) {
+      const DarkSegments found = dark_segments(ends, b, st.transmittance);
+      if ((found.lit < dark.lit || found.no_light) && (*finite)()) dark = found;
+    }
     if (at_ends)
       light_at_ends(ends, b, dark, st);
     else

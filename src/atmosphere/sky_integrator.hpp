@@ -36,6 +36,7 @@
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/medium.hpp"
 #include "atmosphere/transmittance_lut.hpp"
+#include "core/finite_once.hpp"
 #include "core/texture.hpp"
 #include "core/texture_sampling.hpp"
 
@@ -78,14 +79,14 @@ struct IntegrationOptions {
   // record: converged on stiff media"). n + 1 reads of each table for n
   // segments. Takes the block path (block_exponentials).
   bool sources_at_ends = false;
-  // The caller has checked that both tables hold no NaN or infinity
-  // (texture_is_finite, core/texture.hpp). The block march then leaves out
-  // the reads whose light is multiplied by 0: every segment after the
-  // transmittance from the viewer has underflowed to 0 in all channels, and
-  // a whole ray along which no segment scatters (sigma_s = 0). Each such
-  // term adds 0 times a finite source, so the result has the same bits as
-  // with the reads (tests/atmosphere/sky_integrator_test.cpp).
-  bool finite_tables = false;
+  // Where set (null: none), the block march leaves out the reads whose
+  // light is multiplied by 0, every segment after the transmittance from the
+  // viewer has underflowed to 0 in all channels and a whole ray along which
+  // no segment scatters (sigma_s = 0), once it has found both tables free of
+  // NaN and infinity: each such term adds 0 times a finite source, so the
+  // result has the same bits as with the reads (tests/atmosphere/
+  // sky_integrator_test.cpp).
+  const FiniteOnce* finite_tables = nullptr;
   // The multiple-scattering table's mapping (multiscattering_mapping_of),
   // parsed once by a caller that marches many rays; null: parsed per ray.
   const MultiscatteringMapping* multiscattering_mapping = nullptr;

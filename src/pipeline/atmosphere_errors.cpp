@@ -81,14 +81,13 @@ nlohmann::json measure_multiscattering_error(const Scene& scene, const OutputSpe
   const Atmosphere& atm = scene.atmosphere;
   const PointRule rule = point_rule(kMultiscatteringReference);
   const Texture& transmittance = *in.at("transmittance");
-  const TableCheck table =
-      texture_is_finite(transmittance) ? TableCheck::finite : TableCheck::unchecked;
+  const FiniteOnce finite{&transmittance};
   QueryReads reads(kMultiscatteringQueries);
   tbb::parallel_for(size_t(0), reads.size(), [&](size_t i) {
     const RadiusCosine q = multiscattering_query(atm, i);
     reads[i].first = lookup_multiscattering(lut, atm, q.r, q.mu);
     reads[i].second =
-        multiscattering_at_point(atm, transmittance, q.r, q.mu, rule, table).psi_ms;
+        multiscattering_at_point(atm, transmittance, q.r, q.mu, rule, &finite).psi_ms;
   });
   return error_record(
       reads,
@@ -105,11 +104,6 @@ nlohmann::json measure_multiscattering_error(const Scene& scene, const OutputSpe
 
 namespace {
 
-// IntegrationOptions::finite_tables of a march that reads these tables.
-bool tables_are_finite(const Texture& transmittance, const Texture* multiscattering) {
-  return texture_is_finite(transmittance) && (!multiscattering || texture_is_finite(*multiscattering));
-}
-
 // The sky-view table read at the query points against the same single-
 // scattering march finer, reading `multiscattering` (null: none), plus
 // `more_light` toward each query's direction.
@@ -121,7 +115,8 @@ QueryReads skyview_reads(
   IntegrationOptions options;
   options.distribution = baked.distribution;
   options.block_exponentials = true;
-  options.finite_tables = tables_are_finite(transmittance, multiscattering);
+  const FiniteOnce finite{&transmittance, multiscattering};
+  options.finite_tables = &finite;
   const MultiscatteringMapping mapping =
       multiscattering ? multiscattering_mapping_of(*multiscattering) : MultiscatteringMapping{};
   options.multiscattering_mapping = &mapping;
@@ -186,7 +181,8 @@ nlohmann::json measure_aerial_perspective_error(const Scene& scene, const Output
   const glm::dvec3 sun = sun_direction(baked.sun_zenith_rad, baked.sun_azimuth_rad);
   IntegrationOptions options = aerial_reference_options();
   const Texture* multiscattering = in.at("multiscattering");
-  options.finite_tables = tables_are_finite(*in.at("transmittance"), multiscattering);
+  const FiniteOnce finite{in.at("transmittance"), multiscattering};
+  options.finite_tables = &finite;
   const MultiscatteringMapping mapping =
       multiscattering ? multiscattering_mapping_of(*multiscattering) : MultiscatteringMapping{};
   options.multiscattering_mapping = &mapping;
