@@ -37,6 +37,20 @@ SKYBAKE_AVX2 RadiusLanes radius_lanes(const Texture& lut, const Atmosphere& atm,
   return l;
 }
 
+// texel_lanes (wide_lookups.hpp) by one 128-bit load a texel, its three
+// floats and the next, transposed: the same floats widened the same way.
+// `last` is the offset of the table's last texel, which is loaded masked.
+SKYBAKE_AVX2 inline RgbTexelLanes texel_lanes_loaded(const float* data, __m128i o, int last) {
+  alignas(16) int off[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(off), o);
+  __m128 t[4];
+  for (int k = 0; k < 4; ++k)
+    t[k] = off[k] < last ? _mm_loadu_ps(data + off[k])
+                         : _mm_maskload_ps(data + off[k], _mm_setr_epi32(-1, -1, -1, 0));
+  _MM_TRANSPOSE4_PS(t[0], t[1], t[2], t[3]);
+  return {{_mm256_cvtps_pd(t[0]), _mm256_cvtps_pd(t[1]), _mm256_cvtps_pd(t[2])}};
+}
+
 // lookup_sun_transmittance(lut, at, rb, mu) in each lane, `at` the lane's
 // RadiusLanes, mu already clamped; adds each channel to sum[c].
 SKYBAKE_AVX2 void add_sun_lanes(const Texture& lut, const Atmosphere& atm, const RadiusLanes& at,
@@ -62,8 +76,9 @@ SKYBAKE_AVX2 void add_sun_lanes(const Texture& lut, const Atmosphere& atm, const
   const __m128i o00 = _mm_add_epi32(at.row0, ax.o0), o10 = _mm_add_epi32(at.row0, ax.o1);
   const __m128i o01 = _mm_add_epi32(at.row1, ax.o0), o11 = _mm_add_epi32(at.row1, ax.o1);
   const float* data = lut.data.data();
-  RgbTexelLanes t00 = texel_lanes(data, o00), t10 = texel_lanes(data, o10);
-  RgbTexelLanes t01 = texel_lanes(data, o01), t11 = texel_lanes(data, o11);
+  const int last = int(lut.data.size()) - lut.channel_count();
+  RgbTexelLanes t00 = texel_lanes_loaded(data, o00, last), t10 = texel_lanes_loaded(data, o10, last);
+  RgbTexelLanes t01 = texel_lanes_loaded(data, o01, last), t11 = texel_lanes_loaded(data, o11, last);
   for (int c = 0; c < 3; ++c) {  // sample_bilinear_rgb's operations
     const __m256d lo = _mm256_add_pd(t00.c[c], _mm256_mul_pd(ax.f, _mm256_sub_pd(t10.c[c], t00.c[c])));
     const __m256d hi = _mm256_add_pd(t01.c[c], _mm256_mul_pd(ax.f, _mm256_sub_pd(t11.c[c], t01.c[c])));
