@@ -19,6 +19,14 @@ void density_block(const DensityProfile& profile, const double* h, size_t n, Nod
     scratch.layer[i] = &layer_at(profile, h[i]);
     scratch.exponent[i] = scratch.layer[i]->exp_scale_per_m * h[i];
   }
+  // A profile of linear layers only (ozone's tent): layer_density ignores
+  // the exponential where exp_term is 0, so none is taken.
+  const bool linear = std::all_of(profile.layers.begin(), profile.layers.end(),
+                                  [](const DensityLayer& l) { return l.exp_term == 0.0; });
+  if (linear) {
+    for (size_t i = 0; i < n; ++i) density[i] = layer_density(*scratch.layer[i], h[i], 0.0);
+    return;
+  }
   if (exp_kind == NodeExp::block) {
     for (size_t i = 0; i < n; ++i)
       scratch.exponent[i] = std::min(std::max(scratch.exponent[i], -708.0), 708.0);

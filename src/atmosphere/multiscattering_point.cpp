@@ -230,7 +230,9 @@ MultiscatteringSample multiscattering_at_point(const Atmosphere& atm,
   const int azimuths = rule.quadrature.azimuths;
   const double sun_x = safe_sqrt(1.0 - mu_s * mu_s);
   MultiscatteringSample out;
-  RingMarch march;
+  // Kept by each thread from point to point: the record's 24 points would
+  // otherwise grow a dozen arrays each (march_ring clears what it fills).
+  thread_local RingMarch march;
   std::vector<double> azimuth_cosines;  // the same for every ring
   for (int j = 0; j < azimuths; ++j)
     azimuth_cosines.push_back(std::cos(kPi * (j + 0.5) / azimuths));
