@@ -23,6 +23,7 @@
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "atmosphere/density_kinks.hpp"
@@ -409,9 +410,12 @@ std::vector<glm::dvec3> compute_transmittances_to_top(const Atmosphere& atm,
                                                       NodeExp exp_kind) {
   std::vector<glm::dvec3> out(rays.size());
   const RayQuadrature shared(atm, rule == SegmentRule::gauss8, exp_kind);
+  // One copy per thread, not per task: a copy is the set-up and its grading
+  // cache, which a task of 16 rays would otherwise rebuild.
+  tbb::enumerable_thread_specific<RayQuadrature> scratch(shared);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 16),
                     [&](const tbb::blocked_range<size_t>& range) {
-                      RayQuadrature q = shared;  // scratch arrays of this task
+                      RayQuadrature& q = scratch.local();
                       for (size_t i = range.begin(); i != range.end(); ++i) {
                         const double r = rays[i].x, mu = rays[i].y;
                         const double d = distance_to_top_boundary(atm.top_radius_m, r, mu);
