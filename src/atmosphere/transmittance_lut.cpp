@@ -408,6 +408,10 @@ std::vector<glm::dvec3> compute_transmittances_to_top(const Atmosphere& atm,
                                                       const std::vector<glm::dvec2>& rays,
                                                       int steps, SegmentRule rule,
                                                       NodeExp exp_kind) {
+  // In vacuum every optical depth is 0 (integrate_optical_depth): one
+  // transmittance for all.
+  if (atm.components.empty())
+    return std::vector<glm::dvec3>(rays.size(), transmittance_from_optical_depth(glm::dvec3(0.0)));
   std::vector<glm::dvec3> out(rays.size());
   const RayQuadrature shared(atm, rule == SegmentRule::gauss8, exp_kind);
   // One copy per thread, not per task: a copy is the set-up and its grading
