@@ -11,11 +11,24 @@ namespace skybake {
 namespace {
 
 #if SKYBAKE_HAS_AVX2
-// Lane k's bilinear read of `tex` at texel coordinates (u, v), its three
-// channels in out[k]'s, for the first `count` lanes; lanes whose `zero` bits
-// are set read 0 (the one-value read's early return of +0).
-SKYBAKE_AVX2 void read_lanes(const Texture& tex, __m256d u, __m256d v, __m256d zero, int count,
+// Where a group's read of a table falls: texel coordinates u, v in each lane,
+// and the lanes that read 0 (all bits set in `zero`; `dark`: every lane).
+struct ReadCoords {
+  __m256d u, v, zero;
+  bool dark;
+};
+
+// Lane k's bilinear read of `tex` at texel coordinates (at.u, at.v), its
+// three channels in out[k]'s, for the first `count` lanes; lanes whose
+// `zero` bits are set read 0 (the one-value read's early return of +0),
+// without a load when all are.
+SKYBAKE_AVX2 void read_lanes(const Texture& tex, const ReadCoords& at, int count,
                              glm::dvec3* out) {
+  if (at.dark) {
+    for (int k = 0; k < count; ++k) out[k] = glm::dvec3(0.0);
+    return;
+  }
+  const __m256d u = at.u, v = at.v, zero = at.zero;
   const int channels = tex.channel_count();
   const AxisLanes ax = bilinear_axis_lanes(tex.width, channels, u);
   const AxisLanes ay = bilinear_axis_lanes(tex.height, tex.width * channels, v);
@@ -43,10 +56,10 @@ SKYBAKE_AVX2 inline __m256d texel_lanes(__m256d x, int n) {
   return _mm256_add_pd(_mm256_set1_pd(0.5 / n), _mm256_mul_pd(x, _mm256_set1_pd(1.0 - 1.0 / n)));
 }
 
-// lookup_sun_transmittance(lut, atm, r, mu_s) in each lane: the clamps, Vis,
-// then transmittance_uv_from_r_mu's operations.
-SKYBAKE_AVX2 void sun_lanes(const Atmosphere& atm, const Texture& lut, __m256d r, __m256d mu,
-                            int count, glm::dvec3* out) {
+// lookup_sun_transmittance(lut, atm, r, mu_s)'s coordinates in each lane: the
+// clamps, Vis, then transmittance_uv_from_r_mu's operations.
+SKYBAKE_AVX2 inline ReadCoords sun_coords(const Atmosphere& atm, const Texture& lut, __m256d r,
+                                          __m256d mu) {
   const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
   const double horizon = safe_sqrt((rt - rb) * (rt + rb));  // horizon_distance
   const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
@@ -56,10 +69,6 @@ SKYBAKE_AVX2 void sun_lanes(const Atmosphere& atm, const Texture& lut, __m256d r
   const __m256d ground = _mm256_and_pd(
       _mm256_cmp_pd(mu, zero, _CMP_LT_OQ),
       _mm256_cmp_pd(_mm256_add_pd(rr_mm1, _mm256_set1_pd(rb * rb)), zero, _CMP_GE_OQ));
-  if (_mm256_movemask_pd(ground) == 0xF) {  // every lane in the planet's shadow: +0 reads
-    for (int k = 0; k < count; ++k) out[k] = glm::dvec3(0.0);
-    return;
-  }
   const __m256d rho = _mm256_sqrt_pd(_mm256_max_pd(
       zero, _mm256_mul_pd(_mm256_sub_pd(r, _mm256_set1_pd(rb)), _mm256_add_pd(r, _mm256_set1_pd(rb)))));
   const __m256d d = _mm256_max_pd(  // distance_to_top_boundary: max(0, -r mu + safe_sqrt(...))
@@ -71,15 +80,16 @@ SKYBAKE_AVX2 void sun_lanes(const Atmosphere& atm, const Texture& lut, __m256d r
   const __m256d x_mu =
       clamp_lanes(_mm256_div_pd(_mm256_sub_pd(d, d_min), _mm256_sub_pd(d_max, d_min)), 0.0, 1.0);
   const __m256d x_r = _mm256_div_pd(rho, _mm256_set1_pd(horizon));
-  read_lanes(lut, texel_lanes(x_mu, lut.width), texel_lanes(x_r, lut.height), ground, count, out);
+  return {texel_lanes(x_mu, lut.width), texel_lanes(x_r, lut.height), ground,
+          _mm256_movemask_pd(ground) == 0xF};
 }
 
-// lookup_multiscattering(lut, m, atm, r, mu_s) in each lane:
+// lookup_multiscattering(lut, m, atm, r, mu_s)'s coordinates in each lane:
 // multiscattering_uv_from_r_mu_s's operations; the terminator mapping's
 // x_mu_s is unit_from_sun_cosine's own, lane by lane.
-SKYBAKE_AVX2 void multiscattering_lanes(const Atmosphere& atm, const Texture& lut,
-                                        const MultiscatteringMapping& m, __m256d r, __m256d mu,
-                                        int count, glm::dvec3* out) {
+SKYBAKE_AVX2 inline ReadCoords multiscattering_coords(const Atmosphere& atm, const Texture& lut,
+                                                      const MultiscatteringMapping& m, __m256d r,
+                                                      __m256d mu) {
   const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
   r = clamp_lanes(r, rb, rt);
   __m256d x_mu;
@@ -95,26 +105,38 @@ SKYBAKE_AVX2 void multiscattering_lanes(const Atmosphere& atm, const Texture& lu
   }
   __m256d x_h = _mm256_div_pd(_mm256_sub_pd(r, _mm256_set1_pd(rb)), _mm256_set1_pd(rt - rb));
   if (m.altitude == AltitudeMapping::quadratic) x_h = _mm256_sqrt_pd(x_h);
-  read_lanes(lut, texel_lanes(x_mu, lut.width), texel_lanes(x_h, lut.height),
-             _mm256_setzero_pd(), count, out);
+  return {texel_lanes(x_mu, lut.width), texel_lanes(x_h, lut.height), _mm256_setzero_pd(), false};
 }
 
 SKYBAKE_AVX2 void sky_reads_avx2(const Atmosphere& atm, const Texture& transmittance_lut,
                                  const Texture* multiscattering_lut,
                                  const MultiscatteringMapping& mapping, const double* r,
                                  const double* mu_s, size_t n, glm::dvec3* sun, glm::dvec3* ms) {
-  for (size_t k = 0; k < n; k += 4) {
-    // A last group of fewer than four repeats its last point in the spare lanes.
-    const int count = int(std::min<size_t>(4, n - k));
-    alignas(32) double rl[4], ml[4];
-    for (int j = 0; j < 4; ++j) {
-      rl[j] = r[k + size_t(std::min(j, count - 1))];
-      ml[j] = mu_s[k + size_t(std::min(j, count - 1))];
+  // Two groups' coordinates first, then their reads: the chains of square
+  // roots and divisions of both tables and both groups in flight at once.
+  for (size_t k = 0; k < n; k += 8) {
+    const int groups = n - k > 4 ? 2 : 1;
+    int count[2];
+    ReadCoords sun_at[2], ms_at[2];
+    for (int q = 0; q < groups; ++q) {
+      // A last group of fewer than four repeats its last point in the spare lanes.
+      const size_t first = k + 4 * size_t(q);
+      count[q] = int(std::min<size_t>(4, n - first));
+      alignas(32) double rl[4], ml[4];
+      for (int j = 0; j < 4; ++j) {
+        rl[j] = r[first + size_t(std::min(j, count[q] - 1))];
+        ml[j] = mu_s[first + size_t(std::min(j, count[q] - 1))];
+      }
+      const __m256d rv = _mm256_load_pd(rl), mv = _mm256_load_pd(ml);
+      sun_at[q] = sun_coords(atm, transmittance_lut, rv, mv);
+      if (multiscattering_lut)
+        ms_at[q] = multiscattering_coords(atm, *multiscattering_lut, mapping, rv, mv);
     }
-    const __m256d rv = _mm256_load_pd(rl), mv = _mm256_load_pd(ml);
-    sun_lanes(atm, transmittance_lut, rv, mv, count, sun + k);
-    if (multiscattering_lut)
-      multiscattering_lanes(atm, *multiscattering_lut, mapping, rv, mv, count, ms + k);
+    for (int q = 0; q < groups; ++q) {
+      const size_t first = k + 4 * size_t(q);
+      read_lanes(transmittance_lut, sun_at[q], count[q], sun + first);
+      if (multiscattering_lut) read_lanes(*multiscattering_lut, ms_at[q], count[q], ms + first);
+    }
   }
   // GCC leaves out the vzeroupper after calls that pass 256-bit values: the
   // SSE2 code that follows (the march, the next bake) would then run with the
