@@ -100,16 +100,16 @@ void ring_media(const Atmosphere& atm, double r, double mu, RingMarch& out) {
   sample_medium_block(atm, out.altitudes.data(), n, wide ? NodeExp::block : NodeExp::libm,
                       out.media);
   out.expm1s.resize(4 * n);
+  // expm1_block's range (the wide loops): beyond it the weights' -1 and the
+  // centroid's 1 / expm1 change by less than 1e-307. Clamped as written.
+  const double bound = wide ? 708.0 : INFINITY;
   for (size_t i = 0; i < n; ++i) {
     const double dt = ends[i + 1] - ends[i];
     const glm::dvec3& e = out.media.extinction[i];
-    for (int c = 0; c < 3; ++c) out.expm1s[4 * i + c] = -e[c] * dt;
-    out.expm1s[4 * i + 3] = (e.x + e.y + e.z) / 3.0 * dt;
+    for (int c = 0; c < 3; ++c) out.expm1s[4 * i + c] = std::clamp(-e[c] * dt, -bound, bound);
+    out.expm1s[4 * i + 3] = std::clamp((e.x + e.y + e.z) / 3.0 * dt, -bound, bound);
   }
   if (wide) {
-    // expm1_block's range: beyond it the weights' -1 and the centroid's
-    // 1 / expm1 change by less than 1e-307.
-    for (double& x : out.expm1s) x = std::clamp(x, -708.0, 708.0);
     expm1_block(out.expm1s.data(), out.expm1s.size());
   } else {
     for (double& x : out.expm1s) x = std::expm1(x);
