@@ -6,6 +6,9 @@
 // integral) at many rays, at the record's query points.
 #include "atmosphere/multiscattering_point.hpp"
 
+#include <cmath>
+#include <cstring>
+
 #include <gtest/gtest.h>
 
 #include "atmosphere/query_points.hpp"
@@ -135,6 +138,65 @@ TEST(MultiscatteringAtPoint, WideLoopsWithinRoundingOfTheOneValueLoops) {
     EXPECT_LT(s.max_rel, 1e-13);
     EXPECT_GT(one.front().x, 0.0);
   }
+}
+
+// Every field of the point's sample, as bits.
+bool same_bits(const MultiscatteringSample& a, const MultiscatteringSample& b) {
+  return std::memcmp(&a.psi_ms, &b.psi_ms, sizeof a.psi_ms) == 0 &&
+         std::memcmp(&a.l2, &b.l2, sizeof a.l2) == 0 &&
+         std::memcmp(&a.f_ms, &b.f_ms, sizeof a.f_ms) == 0;
+}
+
+TEST(MultiscatteringAtPoint, DarkSamplesLeftOutKeepEveryBit) {
+  // With a finite table the rule leaves out the sun reads of samples that
+  // scatter nothing (an opaque medium, an absorber) and of groups in the
+  // planet's shadow: against the rule that reads every sample, at the
+  // record's points and at suns below the horizon, the same bits, with
+  // AVX2 and without. Earth, Earth under Rayleigh of 1 /m (transmittance
+  // underflows within metres), and Earth's air with scattering turned to
+  // absorption.
+  Atmosphere opaque = fixtures::earth_atmosphere();
+  for (MediumComponent& c : opaque.components)
+    if (c.name == "rayleigh") c.scattering_per_m = glm::dvec3(1.0);
+  Atmosphere absorber = fixtures::earth_atmosphere();
+  for (MediumComponent& c : absorber.components) {
+    c.absorption_per_m += c.scattering_per_m;
+    c.scattering_per_m = glm::dvec3(0.0);
+  }
+  const PointRule rule = point_rule(kRecord);
+  for (bool wide : {false, true}) {
+    const test::WideVectorsAs as(wide);
+    for (const Atmosphere& atm : {fixtures::earth_atmosphere(), opaque, absorber}) {
+      const Texture t = bake_transmittance_lut(atm, {64, 16, 8}, {});
+      const FiniteOnce finite{&t};
+      for (size_t i = 0; i < kRecordQueries; ++i) {
+        const RadiusCosine q = multiscattering_query(atm, i);
+        for (double mu_s : {q.mu, -0.3}) {
+          const MultiscatteringSample all = multiscattering_at_point(atm, t, q.r, mu_s, rule);
+          const MultiscatteringSample fast =
+              multiscattering_at_point(atm, t, q.r, mu_s, rule, &finite);
+          EXPECT_TRUE(same_bits(all, fast)) << i << " " << mu_s << " wide " << wide;
+        }
+      }
+    }
+  }
+}
+
+TEST(MultiscatteringAtPoint, NonFiniteTableIsReadEverywhere) {
+  // An infinite texel: 0 times it is NaN, so nothing may be left out; the
+  // finiteness check sees it and the rule reads every sample as without it.
+  Atmosphere opaque = fixtures::earth_atmosphere();
+  for (MediumComponent& c : opaque.components)
+    if (c.name == "rayleigh") c.scattering_per_m = glm::dvec3(1.0);
+  Texture t = bake_transmittance_lut(opaque, {64, 16, 8}, {});
+  for (float& v : t.data) v = INFINITY;
+  const FiniteOnce finite{&t};
+  const PointRule rule = point_rule(kRecord);
+  const RadiusCosine q = multiscattering_query(opaque, 0);
+  const MultiscatteringSample all = multiscattering_at_point(opaque, t, q.r, q.mu, rule);
+  EXPECT_TRUE(same_bits(all, multiscattering_at_point(opaque, t, q.r, q.mu, rule, &finite)));
+  EXPECT_TRUE(std::isnan(all.l2.x));
+  EXPECT_FALSE(finite());
 }
 
 TEST(MultiscatteringAtPoint, AgreesWithTheTableIntegratorAtManyRays) {

@@ -7,6 +7,7 @@
 #include "atmosphere/sky_integrator.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <functional>
 
 #include <gtest/gtest.h>
@@ -16,6 +17,7 @@
 #include "atmosphere/segment_sources.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "support/test_atmospheres.hpp"
+#include "support/wide_vectors_as.hpp"
 
 namespace skybake {
 namespace {
@@ -238,6 +240,65 @@ TEST(Integrator, BlockExponentialsAreTheMarchToRounding) {
             }
           }
   }
+}
+
+// The block march with and without IntegrationOptions::finite_tables over
+// lit and shadowed rays, both source rules, cut and plain: the luminance and
+// transmittance bits of each pair compared.
+void expect_dark_reads_left_out_keep_bits(const Atmosphere& atm, const Texture& transmittance,
+                                          const Texture& multiscattering) {
+  const FiniteOnce finite{&transmittance, &multiscattering};
+  const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+  for (double r : {rb + 10.0, rb + 0.5 * (rt - rb), 1.5 * rt})
+    for (double elevation : {-0.9, -0.05, 0.02, 0.4, 1.4})
+      for (double sun_elevation : {-1.2, -0.1, 0.05, 0.8})
+        for (int rule = 0; rule < 4; ++rule) {
+          IntegrationOptions options;
+          options.block_exponentials = true;
+          options.sources_at_ends = rule >= 2;
+          options.cut_at_shadow = rule % 2 == 1;
+          const glm::dvec3 p(0.0, 0.0, r);
+          const glm::dvec3 dir(std::cos(elevation), 0.0, std::sin(elevation));
+          const glm::dvec3 sun(std::cos(sun_elevation) * 0.6, std::cos(sun_elevation) * 0.8,
+                               std::sin(sun_elevation));
+          const ScatteringResult all = integrate_scattered_luminance(
+              atm, transmittance, &multiscattering, p, dir, sun, INFINITY, 41, options);
+          options.finite_tables = &finite;
+          const ScatteringResult fast = integrate_scattered_luminance(
+              atm, transmittance, &multiscattering, p, dir, sun, INFINITY, 41, options);
+          EXPECT_EQ(std::memcmp(&all.luminance, &fast.luminance, sizeof all.luminance), 0)
+              << r << " " << elevation << " " << sun_elevation << " " << rule;
+          EXPECT_EQ(std::memcmp(&all.transmittance, &fast.transmittance, sizeof all.transmittance),
+                    0)
+              << r << " " << elevation << " " << sun_elevation << " " << rule;
+        }
+}
+
+TEST(Integrator, DarkReadsLeftOutKeepEveryBit) {
+  // The references leave out the reads past the point where the view ray's
+  // transmittance underflows to 0, along rays that scatter nothing, and of
+  // groups wholly in the planet's shadow: the same bits as reading them, with
+  // AVX2 and without. Earth, Earth under Rayleigh of 1 /m (opaque within
+  // metres), and Earth's air with scattering turned to absorption.
+  Atmosphere opaque = earth_atmosphere();
+  for (MediumComponent& c : opaque.components)
+    if (c.name == "rayleigh") c.scattering_per_m = glm::dvec3(1.0);
+  Atmosphere absorber = earth_atmosphere();
+  for (MediumComponent& c : absorber.components) {
+    c.absorption_per_m += c.scattering_per_m;
+    c.scattering_per_m = glm::dvec3(0.0);
+  }
+  for (const Atmosphere& atm : {earth_atmosphere(), opaque, absorber}) {
+    const fixtures::SkyLutInputs l = fixtures::bake_sky_lut_inputs(atm);
+    for (bool wide : {false, true}) {
+      const test::WideVectorsAs as(wide);
+      expect_dark_reads_left_out_keep_bits(atm, l.transmittance, l.multiscattering);
+    }
+  }
+  // A table with an infinite texel: nothing is left out (0 times it is NaN).
+  fixtures::SkyLutInputs l = fixtures::bake_sky_lut_inputs(opaque);
+  l.multiscattering.data[5] = INFINITY;
+  expect_dark_reads_left_out_keep_bits(opaque, l.transmittance, l.multiscattering);
 }
 
 TEST(Integrator, MappingParsedOnceIsTheMappingParsedPerRay) {

@@ -1,7 +1,8 @@
 // check_finite (core/texture.hpp): every finite float passes, including the
 // extremes (largest, denormal, negative zero); every NaN and infinity is
 // refused wherever it sits, and the message names the first one's texel
-// and channel.
+// and channel. texture_is_finite and FiniteOnce (core/finite_once.hpp) give
+// the same verdict without a message.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/finite_once.hpp"
 #include "core/texture.hpp"
 
 namespace skybake {
@@ -59,6 +61,23 @@ TEST(CheckFinite, EveryNonFiniteIsRefusedAtItsTexel) {
           << message;
       EXPECT_NE(message.find(where), std::string::npos) << message << " | expected " << where;
     }
+}
+
+TEST(CheckFinite, TextureIsFiniteAndFiniteOnceAgree) {
+  Texture t(3, 2, 1, 1, {"R", "G", "B"});
+  t.data.assign(t.data.size(), 0.5f);
+  t.data[4] = std::numeric_limits<float>::denorm_min();
+  t.data[5] = -0.0f;
+  Texture u = t;
+  EXPECT_TRUE(texture_is_finite(t));
+  EXPECT_TRUE((FiniteOnce{&t, nullptr})());
+  for (uint32_t bits : {0x7f800000u, 0xff800000u, 0x7fc00000u, 0x7f800001u}) {
+    u.data[17] = from_bits(bits);
+    EXPECT_FALSE(texture_is_finite(u)) << bits;
+    const FiniteOnce both{&t, &u};
+    EXPECT_FALSE(both());
+    EXPECT_FALSE(both());  // remembered
+  }
 }
 
 }  // namespace
