@@ -343,6 +343,24 @@ AtmosphereSpan clip_ray_to_atmosphere(const Atmosphere& atm, glm::dvec3 position
   return span;
 }
 
+namespace {
+
+// integrate_scattered_luminance's march on a ray already clipped and set up:
+// `cuts` the shadow's crossings where options.cut_at_shadow.
+ScatteringResult march_span(const RayMarcher& marcher, const AtmosphereSpan& span,
+                            double max_distance_m, int steps, const IntegrationOptions& options,
+                            const std::vector<double>& cuts) {
+  const double t_end = std::min(span.t_exit, std::max(max_distance_m, 0.0));
+  MarchState st;
+  marcher.march(span.t_enter, t_end, steps, options.distribution, st, cuts,
+                options.block_exponentials, options.sources_at_ends, options.finite_tables);
+  if (options.lit_ground && span.exits_on_ground && t_end >= span.t_exit)
+    marcher.lit_ground(span.t_exit, st);
+  return {st.luminance, st.transmittance};
+}
+
+}  // namespace
+
 ScatteringResult integrate_scattered_luminance(const Atmosphere& atm,
                                                const Texture& transmittance_lut,
                                                const Texture* multiscattering_lut,
@@ -351,16 +369,10 @@ ScatteringResult integrate_scattered_luminance(const Atmosphere& atm,
                                                const IntegrationOptions& options) {
   const AtmosphereSpan span = clip_ray_to_atmosphere(atm, position_m, view_dir);
   if (!span.hits_atmosphere) return {};
-  const double t_end = std::min(span.t_exit, std::max(max_distance_m, 0.0));
   const RayMarcher marcher(atm, transmittance_lut, multiscattering_lut, position_m, view_dir,
                            sun_dir, options.multiscattering_mapping);
-  MarchState st;
-  marcher.march(span.t_enter, t_end, steps, options.distribution, st,
-                options.cut_at_shadow ? marcher.shadow_crossings() : std::vector<double>{},
-                options.block_exponentials, options.sources_at_ends, options.finite_tables);
-  if (options.lit_ground && span.exits_on_ground && t_end >= span.t_exit)
-    marcher.lit_ground(span.t_exit, st);
-  return {st.luminance, st.transmittance};
+  return march_span(marcher, span, max_distance_m, steps, options,
+                    options.cut_at_shadow ? marcher.shadow_crossings() : std::vector<double>{});
 }
 
 glm::dvec3 extrapolated_scattered_luminance(const Atmosphere& atm, const Texture& transmittance_lut,
@@ -370,10 +382,14 @@ glm::dvec3 extrapolated_scattered_luminance(const Atmosphere& atm, const Texture
                                             IntegrationOptions options) {
   options.cut_at_shadow = true;
   n = std::max(n, 1);
+  // Both marches share the ray's clipping, set-up and shadow crossings.
+  const AtmosphereSpan span = clip_ray_to_atmosphere(atm, position_m, view_dir);
+  if (!span.hits_atmosphere) return (4.0 * glm::dvec3(0.0) - glm::dvec3(0.0)) / 3.0;
+  const RayMarcher marcher(atm, transmittance_lut, multiscattering_lut, position_m, view_dir,
+                           sun_dir, options.multiscattering_mapping);
+  const std::vector<double> cuts = marcher.shadow_crossings();
   const auto march = [&](int steps) {
-    return integrate_scattered_luminance(atm, transmittance_lut, multiscattering_lut, position_m,
-                                         view_dir, sun_dir, max_distance_m, steps, options)
-        .luminance;
+    return march_span(marcher, span, max_distance_m, steps, options, cuts).luminance;
   };
   return (4.0 * march(2 * n) - march(n)) / 3.0;
 }
