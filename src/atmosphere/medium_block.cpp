@@ -13,19 +13,22 @@ void density_block(const DensityProfile& profile, const double* h, size_t n, Nod
     std::fill(density, density + n, 0.0);
     return;
   }
-  scratch.exponent.resize(n);
-  scratch.layer.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    scratch.layer[i] = &layer_at(profile, h[i]);
-    scratch.exponent[i] = scratch.layer[i]->exp_scale_per_m * h[i];
-  }
   // A profile of linear layers only (ozone's tent): layer_density ignores
   // the exponential where exp_term is 0, so none is taken.
   const bool linear = std::all_of(profile.layers.begin(), profile.layers.end(),
                                   [](const DensityLayer& l) { return l.exp_term == 0.0; });
   if (linear) {
-    for (size_t i = 0; i < n; ++i) density[i] = layer_density(*scratch.layer[i], h[i], 0.0);
+    for (size_t i = 0; i < n; ++i) density[i] = layer_density(layer_at(profile, h[i]), h[i], 0.0);
     return;
+  }
+  // One layer (the exponential profiles): no layer to look up per altitude,
+  // and loops the compiler vectorizes.
+  const DensityLayer* only = profile.layers.size() == 1 ? &profile.layers[0] : nullptr;
+  scratch.exponent.resize(n);
+  scratch.layer.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    scratch.layer[i] = only ? only : &layer_at(profile, h[i]);
+    scratch.exponent[i] = scratch.layer[i]->exp_scale_per_m * h[i];
   }
   if (exp_kind == NodeExp::block) {
     for (size_t i = 0; i < n; ++i)
@@ -33,6 +36,10 @@ void density_block(const DensityProfile& profile, const double* h, size_t n, Nod
     exp_block(scratch.exponent.data(), n);
   } else {
     for (size_t i = 0; i < n; ++i) scratch.exponent[i] = std::exp(scratch.exponent[i]);
+  }
+  if (only) {
+    for (size_t i = 0; i < n; ++i) density[i] = layer_density(*only, h[i], scratch.exponent[i]);
+    return;
   }
   for (size_t i = 0; i < n; ++i)
     density[i] = layer_density(*scratch.layer[i], h[i], scratch.exponent[i]);
