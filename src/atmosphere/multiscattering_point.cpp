@@ -238,6 +238,8 @@ MultiscatteringSample multiscattering_at_point(const Atmosphere& atm,
     azimuth_cosines.push_back(std::cos(kPi * (j + 0.5) / azimuths));
   for (size_t k = 0; k < mus.size(); ++k) {
     march_ring(atm, r, mus[k], rule.quadrature.steps, finite_table, march);
+    // In vacuum a ring that does not meet the ground sees no light: it adds +0.
+    if (atm.components.empty() && !march.ground) continue;
     const double sin_zenith = safe_sqrt(1.0 - mus[k] * mus[k]);
     cosines.clear();
     for (int j = 0; j < azimuths; ++j)

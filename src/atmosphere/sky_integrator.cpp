@@ -367,6 +367,9 @@ ScatteringResult integrate_scattered_luminance(const Atmosphere& atm,
                                                glm::dvec3 position_m, glm::dvec3 view_dir,
                                                glm::dvec3 sun_dir, double max_distance_m, int steps,
                                                const IntegrationOptions& options) {
+  // Vacuum without a lit ground: nothing scatters or attenuates (the march's
+  // result with no segment).
+  if (atm.components.empty() && !options.lit_ground) return {};
   const AtmosphereSpan span = clip_ray_to_atmosphere(atm, position_m, view_dir);
   if (!span.hits_atmosphere) return {};
   const RayMarcher marcher(atm, transmittance_lut, multiscattering_lut, position_m, view_dir,
@@ -382,9 +385,12 @@ glm::dvec3 extrapolated_scattered_luminance(const Atmosphere& atm, const Texture
                                             IntegrationOptions options) {
   options.cut_at_shadow = true;
   n = std::max(n, 1);
-  // Both marches share the ray's clipping, set-up and shadow crossings.
+  // Both marches share the ray's clipping, set-up and shadow crossings; in
+  // vacuum without a lit ground, and off the atmosphere, both are black.
+  const glm::dvec3 black = (4.0 * glm::dvec3(0.0) - glm::dvec3(0.0)) / 3.0;
+  if (atm.components.empty() && !options.lit_ground) return black;
   const AtmosphereSpan span = clip_ray_to_atmosphere(atm, position_m, view_dir);
-  if (!span.hits_atmosphere) return (4.0 * glm::dvec3(0.0) - glm::dvec3(0.0)) / 3.0;
+  if (!span.hits_atmosphere) return black;
   const RayMarcher marcher(atm, transmittance_lut, multiscattering_lut, position_m, view_dir,
                            sun_dir, options.multiscattering_mapping);
   const std::vector<double> cuts = marcher.shadow_crossings();
