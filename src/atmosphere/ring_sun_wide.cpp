@@ -37,20 +37,6 @@ SKYBAKE_AVX2 RadiusLanes radius_lanes(const Texture& lut, const Atmosphere& atm,
   return l;
 }
 
-// texel_lanes (wide_lookups.hpp) by one 128-bit load a texel, its three
-// floats and the next, transposed: the same floats widened the same way.
-// `last` is the offset of the table's last texel, which is loaded masked.
-SKYBAKE_AVX2 inline RgbTexelLanes texel_lanes_loaded(const float* data, __m128i o, int last) {
-  alignas(16) int off[4];
-  _mm_store_si128(reinterpret_cast<__m128i*>(off), o);
-  __m128 t[4];
-  for (int k = 0; k < 4; ++k)
-    t[k] = off[k] < last ? _mm_loadu_ps(data + off[k])
-                         : _mm_maskload_ps(data + off[k], _mm_setr_epi32(-1, -1, -1, 0));
-  _MM_TRANSPOSE4_PS(t[0], t[1], t[2], t[3]);
-  return {{_mm256_cvtps_pd(t[0]), _mm256_cvtps_pd(t[1]), _mm256_cvtps_pd(t[2])}};
-}
-
 // Where lookup_sun_transmittance(lut, at, rb, mu) reads in each lane, `at`
 // the lane's RadiusLanes, mu already clamped: the texels' offsets, the
 // weight along the row and Vis (`ground`: all bits set where it is 0).
@@ -95,8 +81,8 @@ SKYBAKE_AVX2 inline void add_sun_texels(const Texture& lut, const SunTexels& s, 
   if (s.dark) return;
   const float* data = lut.data.data();
   const int last = int(lut.data.size()) - lut.channel_count();
-  RgbTexelLanes t00 = texel_lanes_loaded(data, s.o00, last), t10 = texel_lanes_loaded(data, s.o10, last);
-  RgbTexelLanes t01 = texel_lanes_loaded(data, s.o01, last), t11 = texel_lanes_loaded(data, s.o11, last);
+  RgbTexelLanes t00 = texel_lanes(data, s.o00, last), t10 = texel_lanes(data, s.o10, last);
+  RgbTexelLanes t01 = texel_lanes(data, s.o01, last), t11 = texel_lanes(data, s.o11, last);
   for (int c = 0; c < 3; ++c) {
     const __m256d lo = _mm256_add_pd(t00.c[c], _mm256_mul_pd(s.fx, _mm256_sub_pd(t10.c[c], t00.c[c])));
     const __m256d hi = _mm256_add_pd(t01.c[c], _mm256_mul_pd(s.fx, _mm256_sub_pd(t11.c[c], t01.c[c])));
@@ -146,9 +132,11 @@ SKYBAKE_AVX2 inline void group_sums(const Texture& lut, const GroupTexels& g, gl
   for (int j = 0; j < g.count; ++j) sums[j] = {out[0][j], out[1][j], out[2][j]};
 }
 
-// Two groups' coordinates first, then their reads: eight independent chains
-// of square roots and divisions in flight, where one read at a time waited
-// on each chain (the same operations per lane, so the same bits).
+// Two groups' coordinates first, then their reads, so that eight
+// independent chains of square roots and divisions are in flight at once (a
+// read right after its own coordinates waits on the whole chain;
+// docs/decisions.md "Error records of the extreme cases, third pass"). The
+// same operations per lane: the same bits.
 SKYBAKE_AVX2 void ring_sun_sums_avx2(const Texture& lut, const Atmosphere& atm,
                                      const double* radii, const double* distances,
                                      const double* inverse_radii, size_t n, double height,

@@ -4,7 +4,8 @@
 // in the lanes of one group, the radius's half of the read
 // (transmittance_at_radius) once per group, then each azimuth's read in the
 // same lanes and the sums over azimuths lane by lane, in the one-value loop's
-// order (0 + a0 + a1 + a2 + a3). Per lane the operations of
+// order (0 + a0 + a1 + a2 + a3); a group wholly in the planet's shadow reads
+// nothing (each lane would add the masked read's +0). Per lane the operations of
 // transmittance_at_radius and lookup_sun_transmittance on the same operands,
 // without FMA: the same bits (tests/atmosphere/ring_sun_wide_test.cpp).
 #pragma once

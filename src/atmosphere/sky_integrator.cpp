@@ -150,7 +150,7 @@ class RayMarcher {
       light_at_midpoints(ends, b, dark, st);
   }
 
-  // Which of media_block's segments need their sources read (`skip_dark`).
+  // Which of media_block's segments need their sources read (`finite`).
   struct DarkSegments {
     size_t lit;     // segments before the transmittance from the viewer is 0
     bool no_light;  // none of those scatters: every source is multiplied by 0

@@ -5,9 +5,8 @@
 // the one-value functions, without FMA, so the same bits
 // (core/wide_vectors.hpp). The clamps are core/wide_intrinsics.hpp's
 // clamp_lanes, and std::max(0.0, v) is _mm256_max_pd(v, 0), signed zeros
-// included. Texel reads load the same floats (gathers, or one texel's three
-// floats into one vector), widened to double as the one-value read widens
-// them. For the .cpp files of such loops only (core/wide_intrinsics.hpp).
+// included. Texel reads load the same floats (gathers, or one texel's floats
+// into one vector), widened to double as the one-value read widens them. For the .cpp files of such loops only (core/wide_intrinsics.hpp).
 #pragma once
 
 #include "atmosphere/transmittance_lut.hpp"
@@ -60,20 +59,21 @@ SKYBAKE_AVX2 inline __m256d bilinear_rgb_texels(const float* row0, const float* 
 }
 
 // The first three channels of the texels at float offsets `o` of `data`, one
-// texel a lane, widened to double: R and G as one 64-bit gather of the pair,
-// split by a permute, B as a 32-bit gather (two gathers a texel, not three).
+// texel a lane, widened to double: one 128-bit load a texel (its three
+// floats and the next), the four transposed; `last` is the offset of the
+// table's last texel, loaded masked so that no float past the data is read.
 struct RgbTexelLanes {
   __m256d c[3];
 };
-SKYBAKE_AVX2 inline RgbTexelLanes texel_lanes(const float* data, __m128i o) {
-  const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
-  const __m256d rg_pairs = _mm256_mask_i32gather_pd(  // the masked form: a defined source
-      _mm256_setzero_pd(), reinterpret_cast<const double*>(data), _mm_slli_epi32(o, 2), all, 1);
-  const __m256 rg = _mm256_permutevar8x32_ps(_mm256_castpd_ps(rg_pairs),
-                                             _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7));
-  return {{_mm256_cvtps_pd(_mm256_castps256_ps128(rg)),
-           _mm256_cvtps_pd(_mm256_extractf128_ps(rg, 1)),
-           _mm256_cvtps_pd(_mm_i32gather_ps(data + 2, o, 4))}};
+SKYBAKE_AVX2 inline RgbTexelLanes texel_lanes(const float* data, __m128i o, int last) {
+  alignas(16) int off[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(off), o);
+  __m128 t[4];
+  for (int k = 0; k < 4; ++k)
+    t[k] = off[k] < last ? _mm_loadu_ps(data + off[k])
+                         : _mm_maskload_ps(data + off[k], _mm_setr_epi32(-1, -1, -1, 0));
+  _MM_TRANSPOSE4_PS(t[0], t[1], t[2], t[3]);
+  return {{_mm256_cvtps_pd(t[0]), _mm256_cvtps_pd(t[1]), _mm256_cvtps_pd(t[2])}};
 }
 
 // sample_bilinear_rgb(tex, row, u) in each lane, tex `width` texels wide
