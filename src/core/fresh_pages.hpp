@@ -86,7 +86,9 @@ struct FreshPagesAllocator {
 // a fresh page's first write costs several microseconds (about 2 ms of CPU
 // per MB on the shared development machine, docs/decisions.md "The
 // cloud-noise set's CPU, fourth pass"). Buffers under 32 MB then come from
-// the heap and freed heap memory is kept: a process's resident memory stays
+// the heap and freed heap memory is kept (a texture's texels from 1 MB up
+// excepted: FreshPagesAllocator maps and unmaps its own, in huge pages at
+// one fault per 2 MB): a process's resident memory stays
 // at its peak until it exits (short bake processes). Called once, first
 // thing in main (glibc's mallopt is not for concurrent use).
 void keep_freed_memory();
