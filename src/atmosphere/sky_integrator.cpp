@@ -345,6 +345,12 @@ AtmosphereSpan clip_ray_to_atmosphere(const Atmosphere& atm, glm::dvec3 position
 
 namespace {
 
+// Vacuum without a lit ground: nothing scatters or attenuates, every ray is
+// black (the march's result with no segment).
+bool nothing_to_march(const Atmosphere& atm, const IntegrationOptions& options) {
+  return atm.components.empty() && !options.lit_ground;
+}
+
 // integrate_scattered_luminance's march on a ray already clipped and set up:
 // `cuts` the shadow's crossings where options.cut_at_shadow.
 ScatteringResult march_span(const RayMarcher& marcher, const AtmosphereSpan& span,
@@ -367,9 +373,7 @@ ScatteringResult integrate_scattered_luminance(const Atmosphere& atm,
                                                glm::dvec3 position_m, glm::dvec3 view_dir,
                                                glm::dvec3 sun_dir, double max_distance_m, int steps,
                                                const IntegrationOptions& options) {
-  // Vacuum without a lit ground: nothing scatters or attenuates (the march's
-  // result with no segment).
-  if (atm.components.empty() && !options.lit_ground) return {};
+  if (nothing_to_march(atm, options)) return {};
   const AtmosphereSpan span = clip_ray_to_atmosphere(atm, position_m, view_dir);
   if (!span.hits_atmosphere) return {};
   const RayMarcher marcher(atm, transmittance_lut, multiscattering_lut, position_m, view_dir,
@@ -387,10 +391,10 @@ glm::dvec3 extrapolated_scattered_luminance(const Atmosphere& atm, const Texture
   n = std::max(n, 1);
   // Both marches share the ray's clipping, set-up and shadow crossings; in
   // vacuum without a lit ground, and off the atmosphere, both are black.
-  const glm::dvec3 black = (4.0 * glm::dvec3(0.0) - glm::dvec3(0.0)) / 3.0;
-  if (atm.components.empty() && !options.lit_ground) return black;
+  // (4 * 0 - 0) / 3 is +0 in every channel.
+  if (nothing_to_march(atm, options)) return glm::dvec3(0.0);
   const AtmosphereSpan span = clip_ray_to_atmosphere(atm, position_m, view_dir);
-  if (!span.hits_atmosphere) return black;
+  if (!span.hits_atmosphere) return glm::dvec3(0.0);
   const RayMarcher marcher(atm, transmittance_lut, multiscattering_lut, position_m, view_dir,
                            sun_dir, options.multiscattering_mapping);
   const std::vector<double> cuts = marcher.shadow_crossings();

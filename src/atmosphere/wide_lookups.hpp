@@ -6,7 +6,8 @@
 // (core/wide_vectors.hpp). The clamps are core/wide_intrinsics.hpp's
 // clamp_lanes, and std::max(0.0, v) is _mm256_max_pd(v, 0), signed zeros
 // included. Texel reads load the same floats (gathers, or one texel's floats
-// into one vector), widened to double as the one-value read widens them. For the .cpp files of such loops only (core/wide_intrinsics.hpp).
+// into one vector), widened to double as the one-value read widens them.
+// For the .cpp files of such loops only (core/wide_intrinsics.hpp).
 #pragma once
 
 #include "atmosphere/transmittance_lut.hpp"

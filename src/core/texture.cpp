@@ -55,7 +55,7 @@ bool texture_is_finite(const Texture& tex) {
 }
 
 void check_finite(const Texture& tex, const std::string& what) {
-  if (!any_non_finite(tex.data.data(), tex.data.size())) return;
+  if (texture_is_finite(tex)) return;
   const size_t nc = tex.channels.size();
   for (size_t i = 0; i < tex.data.size(); ++i) {
     if (std::isfinite(tex.data[i])) continue;

@@ -19,8 +19,8 @@
 
 namespace skybake {
 
-// A texture's floats. Large ones come from fresh_pages' allocator: faulted
-// in on every thread, in huge pages where they fit (core/fresh_pages.hpp).
+// A texture's floats, from fresh_pages' allocator: zeroed, and from 1 MB up
+// in huge pages faulted in on every thread (core/fresh_pages.hpp).
 using TexelVector = std::vector<float, FreshPagesAllocator<float>>;
 
 struct Texture {
