@@ -18,6 +18,13 @@
 #   noise_dds       the same, DDS only
 #   scattering4     the 4D table 32x128x32x8 (single Mie), 4 orders, EXR
 #   scattering_tol  the same at tolerance 1e-3
+#
+# With TILEABLE_VOLUME_NOISE=EXE (a build of Hillaire's TileableVolumeNoise
+# generator, which is not a Debian package: the build used is described in
+# docs/decisions.md "The cloud-noise set against TileableVolumeNoise"), each
+# run also times EXE in a fresh folder (it writes its volumes where it
+# runs) and prints its medians and how many times the CPU of the first
+# SKYBAKE's noise rows it takes.
 # Not a test: figures depend on the machine and its load (printed with them).
 set -euo pipefail
 
@@ -33,12 +40,16 @@ done
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-PYTHONPATH="$here" python3 - "$RUNS" "$repo" "$work" "${ONLY:-}" "${exes[@]}" <<'EOF'
+[ -z "${TILEABLE_VOLUME_NOISE:-}" ] || [ -x "$TILEABLE_VOLUME_NOISE" ] ||
+  { echo "commands: TILEABLE_VOLUME_NOISE=$TILEABLE_VOLUME_NOISE: not an executable" >&2; exit 2; }
+
+PYTHONPATH="$here" python3 - "$RUNS" "$repo" "$work" "${ONLY:-}" "${TILEABLE_VOLUME_NOISE:-}" "${exes[@]}" <<'EOF'
 import json, os, shutil, statistics, sys
 
 from process_timing import machine, timed
 
-runs, repo, work, only, exes = int(sys.argv[1]), sys.argv[2], sys.argv[3], sys.argv[4].split(), sys.argv[5:]
+runs, repo, work, only, other, exes = (int(sys.argv[1]), sys.argv[2], sys.argv[3], sys.argv[4].split(),
+                                       sys.argv[5], sys.argv[6:])
 
 def scene(name, outputs, atmosphere=True):
     d = {"name": name, "outputs": outputs}
@@ -77,6 +88,11 @@ for _ in range(runs):
             shutil.rmtree(out, ignore_errors=True)
             extra = ["-q", "-o", out] if argv[0] == "bake" else []
             cells.setdefault((key, exe), []).append(timed([exe] + argv + extra, "commands"))
+    if other:
+        folder = os.path.join(work, "other")
+        shutil.rmtree(folder, ignore_errors=True)
+        os.makedirs(folder)
+        cells.setdefault(("other", other), []).append(timed([other], "commands", cwd=folder))
 
 print(f"runs per cell: {runs}; median CPU s (user+sys) / median wall s; {machine()}")
 print()
@@ -88,4 +104,13 @@ for key in rows:
         c = cells[(key, exe)]
         line.append(f"{statistics.median(x[0] for x in c):.3f} / {statistics.median(x[1] for x in c):.3f}")
     print(f"| {key} | " + " | ".join(line) + " |")
+if other:
+    c = cells[("other", other)]
+    cpu = statistics.median(x[0] for x in c)
+    print()
+    print(f"{other}: {cpu:.3f} / {statistics.median(x[1] for x in c):.3f}")
+    for key in ("noise_all", "noise_dds"):
+        if key in rows:
+            mine = statistics.median(x[0] for x in cells[(key, exes[0])])
+            print(f"  CPU against {key} of {exes[0]}: {cpu / mine:.0f}x")
 EOF

@@ -8,13 +8,14 @@ import tempfile
 import time
 
 
-def timed(argv, who):
-    """(CPU s, wall s) of one command. CPU is user + sys from wait4's rusage:
-    the process and every descendant it waited for (ninja's edges included).
-    A failure exits, naming `who`, the command and what it printed on stderr."""
+def timed(argv, who, cwd=None):
+    """(CPU s, wall s) of one command, run in `cwd` (default: this process's
+    folder). CPU is user + sys from wait4's rusage: the process and every
+    descendant it waited for (ninja's edges included). A failure exits,
+    naming `who`, the command and what it printed on stderr."""
     with tempfile.TemporaryFile() as err:  # a file, not a pipe: no full-pipe stall
         t0 = time.perf_counter()
-        p = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=err)
+        p = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=err, cwd=cwd)
         _, status, ru = os.wait4(p.pid, 0)
         wall = time.perf_counter() - t0
         if os.waitstatus_to_exitcode(status) != 0:
