@@ -1,302 +1,34 @@
-// EXR writer and reader through OpenEXR; the file shapes and header
-// attributes are documented in exr.hpp.
+// EXR reader through OpenEXR; the file shapes and header attributes are
+// documented in exr.hpp.
 #include "io/exr.hpp"
 
 #include <sys/stat.h>
 
 #include <algorithm>
 #include <cerrno>
-#include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <limits>
-#include <memory>
-#include <mutex>
 #include <optional>
-#include <type_traits>
+#include <string>
 #include <vector>
 
 #include <ImfChannelList.h>
-#include <ImfDoubleAttribute.h>
-#include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputPart.h>
 #include <ImfIntAttribute.h>
 #include <ImfMultiPartInputFile.h>
-#include <ImfMultiPartOutputFile.h>
-#include <ImfOutputFile.h>
-#include <ImfOutputPart.h>
 #include <ImfPartType.h>
 #include <ImfStringAttribute.h>
-#include <ImfVecAttribute.h>
-#include <ImfThreading.h>
-#include <half.h>
 #include <fmt/format.h>
-#include <tbb/global_control.h>
 
 #include "core/error.hpp"
 #include "io/exr_attributes.hpp"
+#include "io/exr_format.hpp"
 #include "io/size_math.hpp"
 
 namespace skybake {
-
-namespace {
-
-const std::string kPrefix = "skybake:";
-const char* const kReservedKeys[] = {"shape",      "channels",    "layout",       "atlas_columns",
-                                     "atlas_rows", "slice_width", "slice_height", "slice_count"};
-// Half values at or above this magnitude round to Inf (65504 + half an ulp).
-constexpr float kHalfOverflow = 65520.0f;
-
-bool is_reserved(const std::string& key) {
-  for (const char* r : kReservedKeys)
-    if (key == r) return true;
-  return false;
-}
-
-std::string shape_attribute(const Texture& tex) {
-  return fmt::format("{}x{}x{}x{}", tex.width, tex.height, tex.depth, tex.layers);
-}
-
-std::string join_channels(const std::vector<std::string>& channels) {
-  std::string s;
-  for (size_t i = 0; i < channels.size(); ++i) s += (i ? "," : "") + channels[i];
-  return s;
-}
-
-std::vector<std::string> split_channels(const std::string& s) {
-  std::vector<std::string> out;
-  size_t start = 0;
-  for (size_t comma; (comma = s.find(',', start)) != std::string::npos; start = comma + 1)
-    out.push_back(s.substr(start, comma - start));
-  out.push_back(s.substr(start));
-  return out;
-}
-
-// Refuses what the file could not represent, before anything is created.
-void check_writable(const std::string& path, const Texture& tex, ExrPrecision precision,
-                    FiniteCheck finite) {
-  if (tex.width < 1 || tex.height < 1 || tex.depth < 1 || tex.layers < 1 || tex.channels.empty())
-    throw IoError(fmt::format("{}: expected a non-empty texture, got {} with {} channels", path,
-                              tex.shape_string(), tex.channels.size()));
-  if (tex.data.size() != tex.texel_count() * tex.channels.size())
-    throw Error(fmt::format("{}: expected {} floats for {}, got {}", path,
-                            tex.texel_count() * tex.channels.size(), tex.shape_string(),
-                            tex.data.size()));
-  if (tex.is_volume() && tex.is_array())
-    throw IoError(fmt::format("{}: expected a volume or a 2D array, got both ({})", path,
-                              tex.shape_string()));
-  for (const std::string& name : tex.channels)
-    if (name.empty() || name.find(',') != std::string::npos)
-      throw IoError(fmt::format("{}: expected channel names without commas, got '{}'", path, name));
-  for (const auto& [key, value] : tex.metadata)
-    if (is_reserved(key))
-      throw Error(fmt::format("{}: expected a metadata key other than the reserved '{}{}'", path,
-                              kPrefix, key));
-  if (finite == FiniteCheck::run) check_finite(tex, path);
-  if (precision == ExrPrecision::half)
-    for (float v : tex.data)
-      if (std::fabs(v) >= kHalfOverflow)
-        throw IoError(fmt::format(
-            "{}: expected values below {} in magnitude for half output, got {}; use float32", path,
-            kHalfOverflow, v));
-}
-
-Imf::Compression imf_compression(ExrCompression c) {
-  switch (c) {
-    case ExrCompression::none: return Imf::NO_COMPRESSION;
-    case ExrCompression::zip: return Imf::ZIP_COMPRESSION;
-    case ExrCompression::zips: return Imf::ZIPS_COMPRESSION;
-    case ExrCompression::piz: return Imf::PIZ_COMPRESSION;
-  }
-  return Imf::ZIP_COMPRESSION;
-}
-
-// OpenEXR's thread pool (compression and decompression of line blocks) as
-// large as TBB may be (--threads); the bytes do not depend on it, blocks are
-// written in order.
-int exr_threads() {
-  const int n = int(
-      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
-  const int threads = n > 1 ? n : 0;  // 0: the calling thread only, no pool
-  static std::mutex resize;
-  const std::lock_guard<std::mutex> lock(resize);
-  if (Imf::globalThreadCount() != threads) Imf::setGlobalThreadCount(threads);
-  return threads;
-}
-
-// The threads of a file written with `header`: none when it is not
-// compressed. Each line block is then a copy of its scanlines, and handing
-// it to the pool (a task and a semaphore post per scanline) costs more than
-// the copy; the bytes are the same either way.
-int exr_write_threads(const Imf::Header& header) {
-  return header.compression() == Imf::NO_COMPRESSION ? 0 : exr_threads();
-}
-
-// The header every part shares: channels, compression, metadata and shape.
-Imf::Header base_header(const Texture& tex, int width, int height, ExrPrecision precision,
-                        const std::string& layout) {
-  Imf::Header header(width, height);
-  header.compression() = Imf::ZIP_COMPRESSION;
-  const Imf::PixelType type = precision == ExrPrecision::half ? Imf::HALF : Imf::FLOAT;
-  for (const std::string& name : tex.channels) header.channels().insert(name, Imf::Channel(type));
-  for (const auto& [key, value] : tex.metadata) insert_typed_attribute(header, kPrefix + key, value);
-  header.insert(kPrefix + "shape", Imf::StringAttribute(shape_attribute(tex)));
-  header.insert(kPrefix + "channels", Imf::StringAttribute(join_channels(tex.channels)));
-  header.insert(kPrefix + "layout", Imf::StringAttribute(layout));
-  return header;
-}
-
-// Interleaved pixels (float, or half for writing half files: OpenEXR
-// converts types when reading, not when writing) of `width` texels per row,
-// channels in `channels` order. `min_x`, `min_y`: the data window's origin,
-// the buffer's texel 0.
-template <class T>
-Imf::FrameBuffer frame_buffer(const std::vector<std::string>& channels, const T* pixels,
-                              int64_t width, int64_t min_x, int64_t min_y) {
-  const Imf::PixelType type = std::is_same_v<T, half> ? Imf::HALF : Imf::FLOAT;
-  const size_t x_stride = sizeof(T) * channels.size();
-  const size_t y_stride = x_stride * size_t(width);
-  // OpenEXR addresses texel (x, y) at base + x x_stride + y y_stride.
-  char* base = reinterpret_cast<char*>(const_cast<T*>(pixels)) -
-               (min_x * int64_t(x_stride) + min_y * int64_t(y_stride));
-  Imf::FrameBuffer fb;
-  for (size_t c = 0; c < channels.size(); ++c)
-    fb.insert(channels[c], Imf::Slice(type, base + c * sizeof(T), x_stride, y_stride));
-  return fb;
-}
-
-// The frame buffer of one part to write, or of its `rows` scanlines from
-// `min_y` (all of them by default); half parts are rounded here (Imath's
-// float-to-half rounds to nearest even) into `halves`.
-Imf::FrameBuffer write_buffer(const Imf::Header& header, const std::vector<std::string>& channels,
-                              const float* pixels, std::vector<half>& halves, int64_t min_y = 0,
-                              int64_t rows = -1) {
-  const Imath::Box2i& dw = header.dataWindow();
-  const int64_t width = dw.max.x + 1;
-  if (rows < 0) rows = dw.max.y + 1;
-  if (header.channels().begin().channel().type != Imf::HALF)
-    return frame_buffer(channels, pixels, width, 0, min_y);
-  halves.resize(size_t(width) * size_t(rows) * channels.size());
-  for (size_t i = 0; i < halves.size(); ++i) halves[i] = half(pixels[i]);
-  return frame_buffer(channels, halves.data(), width, 0, min_y);
-}
-
-// Runs `write`; what OpenEXR throws removes the partial file and becomes
-// "<path>: cannot write EXR: <reason>".
-template <class Write>
-void write_or_remove(const std::string& path, Write write) {
-  try {
-    write();
-  } catch (const std::exception& e) {
-    std::remove(path.c_str());
-    throw IoError(fmt::format("{}: cannot write EXR: {}", path, e.what()));
-  }
-}
-
-// Writes a volume as an atlas image of columns x rows cells, one row of
-// cells (tex.height scanlines) at a time: the slice rows behind it are
-// copied into one reused band, never the whole atlas (a fresh copy of the
-// volume, zero-filled first). Scanlines go out in the same order, so the
-// file is the same.
-void write_atlas(const std::string& path, const Imf::Header& header, const Texture& tex,
-                 int columns, int rows) {
-  const size_t nc = tex.channels.size(), slice_row = size_t(tex.width) * nc;
-  const size_t atlas_width = size_t(columns) * size_t(tex.width);
-  std::vector<float> band(atlas_width * size_t(tex.height) * nc);
-  std::vector<half> halves;
-  write_or_remove(path, [&] {
-    Imf::OutputFile out(path.c_str(), header, exr_write_threads(header));
-    for (int r = 0; r < rows; ++r) {
-      for (int k = 0; k < columns; ++k)
-        for (int y = 0; y < tex.height; ++y) {
-          const float* src = tex.texel(0, y, r * columns + k, 0);
-          std::copy(src, src + slice_row, &band[(size_t(y) * atlas_width + size_t(k) * tex.width) * nc]);
-        }
-      out.setFrameBuffer(write_buffer(header, tex.channels, band.data(), halves,
-                                      int64_t(r) * tex.height, tex.height));
-      out.writePixels(tex.height);
-    }
-  });
-}
-
-// Writes the given parts (one header and one pixel pointer each, float32 with
-// channels interleaved in texture order) as a single- or multi-part EXR.
-void write_parts(const std::string& path, std::vector<Imf::Header>& headers,
-                 const std::vector<const float*>& pixels, const std::vector<std::string>& channels) {
-  std::vector<half> halves;
-  write_or_remove(path, [&] {
-    if (headers.size() == 1) {
-      Imf::OutputFile out(path.c_str(), headers[0], exr_write_threads(headers[0]));
-      out.setFrameBuffer(write_buffer(headers[0], channels, pixels[0], halves));
-      out.writePixels(headers[0].dataWindow().max.y + 1);
-    } else {
-      for (Imf::Header& h : headers) h.setType(Imf::SCANLINEIMAGE);
-      Imf::MultiPartOutputFile out(path.c_str(), headers.data(), int(headers.size()),
-                                   /*overrideSharedAttributes=*/false,
-                                   exr_write_threads(headers[0]));
-      for (size_t i = 0; i < headers.size(); ++i) {
-        Imf::OutputPart part(out, int(i));
-        part.setFrameBuffer(write_buffer(headers[i], channels, pixels[i], halves));
-        part.writePixels(headers[i].dataWindow().max.y + 1);
-      }
-    }
-  });
-}
-
-}  // namespace
-
-ExrCompression exr_compression_from_name(const std::string& name) {
-  if (name == "none") return ExrCompression::none;
-  if (name == "zip") return ExrCompression::zip;
-  if (name == "zips") return ExrCompression::zips;
-  if (name == "piz") return ExrCompression::piz;
-  throw Error(fmt::format("expected an EXR compression of none, zip, zips or piz, got '{}'", name));
-}
-
-int exr_atlas_columns(int depth) {
-  int rows = 1;  // the largest divisor of depth not above sqrt(depth)
-  for (int r = 2; int64_t(r) * r <= depth; ++r)
-    if (depth % r == 0) rows = r;
-  return depth / rows;
-}
-
-void write_exr(const std::string& path, const Texture& tex, ExrPrecision precision,
-               ExrVolumeLayout layout, ExrCompression compression, FiniteCheck finite) {
-  check_writable(path, tex, precision, finite);
-  std::vector<Imf::Header> specs;
-  std::vector<const float*> pixels;
-  if (tex.is_volume() && layout == ExrVolumeLayout::atlas) {
-    const int columns = exr_atlas_columns(tex.depth);
-    const int rows = tex.depth / columns;  // columns * rows == depth: no empty cell
-    Imf::Header spec =
-        base_header(tex, columns * tex.width, rows * tex.height, precision, "atlas");
-    spec.insert(kPrefix + "atlas_columns", Imf::IntAttribute(columns));
-    spec.insert(kPrefix + "atlas_rows", Imf::IntAttribute(rows));
-    spec.insert(kPrefix + "slice_width", Imf::IntAttribute(tex.width));
-    spec.insert(kPrefix + "slice_height", Imf::IntAttribute(tex.height));
-    spec.insert(kPrefix + "slice_count", Imf::IntAttribute(tex.depth));
-    spec.compression() = imf_compression(compression);
-    write_atlas(path, spec, tex, columns, rows);
-    return;
-  } else if (tex.is_volume() || tex.is_array()) {
-    const bool volume = tex.is_volume();
-    const int parts = volume ? tex.depth : tex.layers;
-    for (int i = 0; i < parts; ++i) {
-      specs.push_back(
-          base_header(tex, tex.width, tex.height, precision, volume ? "slices" : "layers"));
-      specs.back().setName(fmt::format("{}{}", volume ? "slice" : "layer", i));
-      pixels.push_back(volume ? tex.texel(0, 0, i, 0) : tex.texel(0, 0, 0, i));
-    }
-  } else {
-    specs.push_back(base_header(tex, tex.width, tex.height, precision, "image"));
-    pixels.push_back(tex.data.data());
-  }
-  for (Imf::Header& header : specs) header.compression() = imf_compression(compression);
-  write_parts(path, specs, pixels, tex.channels);
-}
 
 namespace {
 
@@ -429,7 +161,7 @@ std::vector<float> read_part(const std::string& path, Imf::MultiPartInputFile& i
           fmt::format("{}: expected a channel '{}' in part {}, got none", path, name, part));
   std::vector<float> out(size_t(info.width) * size_t(info.height) * channels.size());
   Imf::InputPart input(in, part);
-  input.setFrameBuffer(frame_buffer(channels, out.data(), info.width, info.min_x, info.min_y));
+  input.setFrameBuffer(exr_frame_buffer(channels, out.data(), info.width, info.min_x, info.min_y));
   input.readPixels(int(info.min_y), int(info.min_y + info.height - 1));
   return out;
 }
@@ -446,11 +178,11 @@ void expect_part_size(const std::string& path, const PartInfo& spec, int part, i
 // the volume, atlas_columns x atlas_rows cells hold exactly slice_count
 // slices, and the image is that many slices wide and high. Returns columns.
 int atlas_columns(const std::string& path, const Imf::Header& h, const PartShape& shape) {
-  const int columns = int_attribute(h, kPrefix + "atlas_columns");
-  const int rows = int_attribute(h, kPrefix + "atlas_rows");
-  const int count = int_attribute(h, kPrefix + "slice_count");
-  const int width = int_attribute(h, kPrefix + "slice_width");
-  const int height = int_attribute(h, kPrefix + "slice_height");
+  const int columns = int_attribute(h, kExrPrefix + "atlas_columns");
+  const int rows = int_attribute(h, kExrPrefix + "atlas_rows");
+  const int count = int_attribute(h, kExrPrefix + "slice_count");
+  const int width = int_attribute(h, kExrPrefix + "slice_width");
+  const int height = int_attribute(h, kExrPrefix + "slice_height");
   if (shape.layers != 1)
     throw IoError(fmt::format("{}: expected 1 layer in an atlas (skybake:shape), got {}", path,
                               shape.layers));
@@ -530,7 +262,7 @@ Texture read_exr_file(const std::string& path, ExrShape shape_from) {
 
   PartShape shape{int(head_info.width), int(head_info.height), 1, int(specs.size())};
   const bool recorded = shape_from == ExrShape::recorded;
-  const std::string shape_text = recorded ? string_attribute(head, kPrefix + "shape") : "";
+  const std::string shape_text = recorded ? string_attribute(head, kExrPrefix + "shape") : "";
   if (!shape_text.empty()) {
     const std::optional<PartShape> parsed = parse_shape(shape_text);
     if (!parsed)
@@ -540,10 +272,10 @@ Texture read_exr_file(const std::string& path, ExrShape shape_from) {
     shape = *parsed;
   }
   const std::string stored = specs.size() > 1 ? "layers" : "image";
-  const std::string layout = recorded ? string_attribute(head, kPrefix + "layout", stored) : stored;
-  const std::string channel_text = string_attribute(head, kPrefix + "channels");
+  const std::string layout = recorded ? string_attribute(head, kExrPrefix + "layout", stored) : stored;
+  const std::string channel_text = string_attribute(head, kExrPrefix + "channels");
   const std::vector<std::string> channels =
-      channel_text.empty() ? file_channels(head) : split_channels(channel_text);
+      channel_text.empty() ? file_channels(head) : split_exr_channels(channel_text);
   for (size_t c = 0; c < channels.size(); ++c)
     if (!has_channel(head, channels[c]) ||
         std::find(channels.begin(), channels.begin() + c, channels[c]) != channels.begin() + c)
@@ -565,9 +297,9 @@ Texture read_exr_file(const std::string& path, ExrShape shape_from) {
   Texture tex(shape.width, shape.height, shape.depth, shape.layers, channels);
   for (auto it = head.begin(); it != head.end(); ++it) {
     const std::string name = it.name();
-    if (name.rfind(kPrefix, 0) != 0) continue;
-    const std::string key = name.substr(kPrefix.size());
-    if (is_reserved(key)) continue;
+    if (name.rfind(kExrPrefix, 0) != 0) continue;
+    const std::string key = name.substr(kExrPrefix.size());
+    if (is_reserved_exr_key(key)) continue;
     if (std::optional<MetaValue> value = typed_attribute(it.attribute())) tex.metadata[key] = *value;
   }
 
@@ -601,10 +333,10 @@ ExrLayout read_exr_layout(const std::string& path) {
     const Imf::Header& h = in.header(0);
     ExrLayout out;
     out.parts = in.parts();
-    out.layout = string_attribute(h, kPrefix + "layout", out.parts > 1 ? "layers" : "image");
-    out.atlas_columns = int_attribute(h, kPrefix + "atlas_columns");
-    out.atlas_rows = int_attribute(h, kPrefix + "atlas_rows");
-    out.slice_count = int_attribute(h, kPrefix + "slice_count");
+    out.layout = string_attribute(h, kExrPrefix + "layout", out.parts > 1 ? "layers" : "image");
+    out.atlas_columns = int_attribute(h, kExrPrefix + "atlas_columns");
+    out.atlas_rows = int_attribute(h, kExrPrefix + "atlas_rows");
+    out.slice_count = int_attribute(h, kExrPrefix + "slice_count");
     return out;
   } catch (const Error&) {
     throw;
