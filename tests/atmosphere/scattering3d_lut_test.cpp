@@ -41,14 +41,6 @@ Scattering3dSpec small_spec(int orders) {
   return spec;
 }
 
-Atmosphere scaled(Atmosphere atm, double factor) {
-  for (MediumComponent& c : atm.components) {
-    c.scattering_per_m *= factor;
-    c.absorption_per_m *= factor;
-  }
-  return atm;
-}
-
 // ---- Mappings -------------------------------------------------------------------
 
 TEST(Scattering3dMapping, AxesRoundTripAtTexelCentres) {
@@ -317,7 +309,7 @@ TEST(BakeScattering3d, EachOrderIsSmallerThanTheLastByTheSlabsOpacity) {
 }
 
 TEST(BakeScattering3d, FiftyTimesDenserEarthConverges) {
-  const Atmosphere atm = scaled(fixtures::earth_atmosphere(), 50.0);
+  const Atmosphere atm = fixtures::scaled_atmosphere(fixtures::earth_atmosphere(), 50.0);
   const Texture lut = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{});
   Scattering3dSpec spec = small_spec(4);
   spec.tolerance = 5e-3;
@@ -344,7 +336,7 @@ TEST(BakeScattering3d, GeometricTailApproachesTheConvergedTableFromBelow) {
   // texture and the gathering sum closer to the bake iterated to 1e-4
   // without a tail, and, the tail being an underestimate, never above it
   // (0.5% slack for the reference's own unconverged remainder).
-  const Atmosphere atm = scaled(fixtures::earth_atmosphere(), 20.0);
+  const Atmosphere atm = fixtures::scaled_atmosphere(fixtures::earth_atmosphere(), 20.0);
   const Texture lut = bake_transmittance_lut(atm, {128, 32, 40}, BakeContext{});
   Scattering3dSpec spec = small_spec(4);
   spec.combined_mie_alpha = false;
@@ -470,7 +462,7 @@ TEST(BakeScattering3d, ProgressFollowsTheOrdersAToleranceTakes) {
   // at the end, past half when the last order starts. One thread: the
   // reports arrive in order.
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-  const Atmosphere atm = scaled(fixtures::earth_atmosphere(), 50.0);
+  const Atmosphere atm = fixtures::scaled_atmosphere(fixtures::earth_atmosphere(), 50.0);
   const Texture lut = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{});
   Scattering3dSpec spec = small_spec(4);
   spec.tolerance = 5e-3;

@@ -50,14 +50,6 @@ std::vector<Ray> domain_rays(const Atmosphere& atm) {
   return rays;
 }
 
-Atmosphere scaled(Atmosphere atm, double factor) {
-  for (MediumComponent& c : atm.components) {
-    c.scattering_per_m *= factor;
-    c.absorption_per_m *= factor;
-  }
-  return atm;
-}
-
 // ---- Mapping ----------------------------------------------------------------
 
 TEST(TransmittanceMapping, RMuRoundTrip) {
@@ -334,7 +326,7 @@ TEST(ComputeOpticalDepth, TableRuleIsAsExactAsFortyThreePointSteps) {
   planet_1km.bottom_radius_m = 1e3;
   planet_1km.top_radius_m = 101e3;
   for (const Atmosphere& atm : {fixtures::earth_atmosphere(), mars, fixtures::tiny_planet_atmosphere(),
-                                planet_1km, scaled(fixtures::earth_atmosphere(), 100.0)}) {
+                                planet_1km, fixtures::scaled_atmosphere(fixtures::earth_atmosphere(), 100.0)}) {
     double old_error = 0.0, new_error = 0.0;
     for (int y = 0; y < 64; y += 3) {
       for (int x = 0; x < 256; x += 5) {
@@ -457,7 +449,7 @@ TEST(BakeTransmittanceLut, InTheUnitIntervalAndMonotoneAlongRows) {
   // and the tiny planet. Along a row x grows with the distance d, i.e. mu
   // goes down: T does not increase (float rounding is monotone too).
   for (const Atmosphere& atm :
-       {fixtures::earth_atmosphere(), scaled(fixtures::earth_atmosphere(), 100.0),
+       {fixtures::earth_atmosphere(), fixtures::scaled_atmosphere(fixtures::earth_atmosphere(), 100.0),
         fixtures::tiny_planet_atmosphere()}) {
     const Texture lut = bake_transmittance_lut(atm, {64, 16, 40}, BakeContext{});
     for (float v : lut.data) {

@@ -95,6 +95,16 @@ inline Atmosphere uniform_slab_atmosphere(glm::dvec3 scattering_per_m, glm::dvec
   return atm;
 }
 
+// `atm` with every component's scattering and absorption times `factor`:
+// a denser (or thinner) medium of the same profiles.
+inline Atmosphere scaled_atmosphere(Atmosphere atm, double factor) {
+  for (MediumComponent& c : atm.components) {
+    c.scattering_per_m *= factor;
+    c.absorption_per_m *= factor;
+  }
+  return atm;
+}
+
 // The LUTs the sky-view and aerial-perspective bakers read, small: a 128 x 64
 // transmittance LUT (40 steps) and a 16 x 16 multiple-scattering LUT.
 struct SkyLutInputs {

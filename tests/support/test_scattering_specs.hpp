@@ -35,4 +35,28 @@ inline BrunetonSpec small_bruneton_spec(const ScatteringShape& shape, int orders
   return spec;
 }
 
+// The table of the orders' tests: 12 r x 48 mu x 12 mu_s x 4 nu.
+inline ScatteringShape small_scattering_shape() {
+  return {12, 48, 12, 4, kBrunetonMuSMin};
+}
+
+// small_bruneton_spec of small_scattering_shape() with a finer irradiance
+// table, 32 x 8 gathered over 16 bands.
+inline BrunetonSpec orders_test_spec(int orders) {
+  BrunetonSpec spec = small_bruneton_spec(small_scattering_shape(), orders);
+  spec.irradiance_width = 32;
+  spec.irradiance_height = 8;
+  spec.irradiance_directions = 16;
+  return spec;
+}
+
+// Smaller still, for dense media that need hundreds of orders: the tiny
+// table, 21 nodes per view ray, 6 density bands.
+inline BrunetonSpec dense_medium_spec() {
+  BrunetonSpec spec = small_bruneton_spec(tiny_scattering_shape());
+  spec.ray_nodes = 21;
+  spec.density_directions = 6;
+  return spec;
+}
+
 }  // namespace skybake::fixtures
