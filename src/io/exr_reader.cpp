@@ -26,15 +26,14 @@
 #include "core/error.hpp"
 #include "io/exr_attributes.hpp"
 #include "io/exr_format.hpp"
+#include "io/shape_text.hpp"
 #include "io/size_math.hpp"
 
 namespace skybake {
 
 namespace {
 
-struct PartShape {
-  int width = 0, height = 0, depth = 1, layers = 1;
-};
+using PartShape = ShapeText;
 
 // What the reader needs of one part's header, sizes in 64 bits (a forged data
 // window can span more than INT_MAX).
@@ -92,24 +91,6 @@ std::vector<std::string> file_channels(const Imf::Header& h) {
 // saturate (io/size_math.hpp).
 using sizes::kU64Max;
 using sizes::mul_saturated;
-
-// "WxHxDxL", four integers from 1 to INT_MAX, or nullopt.
-std::optional<PartShape> parse_shape(const std::string& text) {
-  int values[4];
-  const char* p = text.c_str();
-  for (int i = 0; i < 4; ++i) {
-    if (i > 0 && *p++ != 'x') return std::nullopt;
-    if (*p < '0' || *p > '9') return std::nullopt;
-    errno = 0;
-    char* end = nullptr;
-    const long long v = std::strtoll(p, &end, 10);
-    if (errno != 0 || v < 1 || v > std::numeric_limits<int>::max()) return std::nullopt;
-    values[i] = int(v);
-    p = end;
-  }
-  if (*p != '\0') return std::nullopt;
-  return PartShape{values[0], values[1], values[2], values[3]};
-}
 
 // Refuses, before any pixel is allocated, a file whose parts would decode to
 // more float32 bytes than kMaxExrExpansion times the file's size (with a
@@ -264,7 +245,8 @@ Texture read_exr_file(const std::string& path, ExrShape shape_from) {
   const bool recorded = shape_from == ExrShape::recorded;
   const std::string shape_text = recorded ? string_attribute(head, kExrPrefix + "shape") : "";
   if (!shape_text.empty()) {
-    const std::optional<PartShape> parsed = parse_shape(shape_text);
+    const std::optional<PartShape> parsed =
+        parse_shape_text(shape_text, std::numeric_limits<int>::max());
     if (!parsed)
       throw IoError(fmt::format(
           "{}: expected skybake:shape of the form WxHxDxL with sizes from 1 to {}, got '{}'", path,

@@ -8,10 +8,8 @@
 #include <sys/stat.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <memory>
 #include <mutex>
@@ -28,6 +26,7 @@
 #include "core/hash.hpp"
 #include "io/vdb_archive.hpp"
 #include "io/vdb_layout.hpp"
+#include "io/shape_text.hpp"
 #include "io/vdb_leaves.hpp"
 
 namespace skybake {
@@ -51,27 +50,6 @@ constexpr uint64_t kUuidSeeds[2] = {0x736b7962616b6531ull, 0x766462757569643aull
 // scratch plane (every output skybake writes is at most 2 GiB).
 constexpr int64_t kMaxVdbSide = int64_t(1) << 20;
 constexpr uint64_t kMaxVdbDenseBytes = uint64_t(4) << 30;
-
-struct Shape {
-  int width, height, depth, layers;
-};
-
-// "WxHxDxL", four integers from 1 to kMaxVdbSide, or nullopt.
-std::optional<Shape> parse_shape(const std::string& text) {
-  int64_t v[4];
-  const char* p = text.c_str();
-  for (int i = 0; i < 4; ++i) {
-    if (i > 0 && *p++ != 'x') return std::nullopt;
-    if (*p < '0' || *p > '9') return std::nullopt;
-    errno = 0;
-    char* end = nullptr;
-    v[i] = std::strtoll(p, &end, 10);
-    if (errno != 0 || v[i] < 1 || v[i] > kMaxVdbSide) return std::nullopt;
-    p = end;
-  }
-  if (*p != '\0') return std::nullopt;
-  return Shape{int(v[0]), int(v[1]), int(v[2]), int(v[3])};
-}
 
 void init_openvdb() {
   static std::once_flag once;
@@ -352,7 +330,7 @@ openvdb::CoordBBox texture_box(const std::string& path, const openvdb::FloatGrid
     if (active.empty()) throw IoError(fmt::format("{}: expected active voxels, got none", path));
     return active;
   }
-  const std::optional<Shape> s = parse_shape(shape_text);
+  const std::optional<ShapeText> s = parse_shape_text(shape_text, kMaxVdbSide);
   if (!s || s->layers != 1)
     throw IoError(fmt::format(
         "{}: expected skybake:shape of the form WxHxDx1 with sizes from 1 to {}, got '{}'", path,
