@@ -5,16 +5,6 @@
 
 namespace skybake {
 
-const DensityLayer& layer_at(const DensityProfile& profile, double h) {
-  double layer_bottom = 0.0;
-  size_t k = 0;
-  for (; k + 1 < profile.layers.size(); ++k) {
-    if (h < layer_bottom + profile.layers[k].width_m) break;
-    layer_bottom += profile.layers[k].width_m;
-  }
-  return profile.layers[k];
-}
-
 double density_at(const DensityProfile& profile, double h) {
   if (profile.layers.empty()) return 0.0;
   const DensityLayer& l = layer_at(profile, h);

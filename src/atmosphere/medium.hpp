@@ -43,7 +43,16 @@ double density_at(const DensityProfile& profile, double altitude_m);
 // above it, else the last; the profile must have a layer), and that layer's
 // clamped density at h given exponential = exp(l.exp_scale_per_m h) (read
 // only where l.exp_term != 0).
-const DensityLayer& layer_at(const DensityProfile& profile, double altitude_m);
+// Inline: the linear profiles' block loop (medium_block.cpp) calls it per altitude.
+inline const DensityLayer& layer_at(const DensityProfile& profile, double altitude_m) {
+  double layer_bottom = 0.0;
+  size_t k = 0;
+  for (; k + 1 < profile.layers.size(); ++k) {
+    if (altitude_m < layer_bottom + profile.layers[k].width_m) break;
+    layer_bottom += profile.layers[k].width_m;
+  }
+  return profile.layers[k];
+}
 inline double layer_density(const DensityLayer& l, double altitude_m, double exponential) {
   const double e = l.exp_term == 0.0 ? 0.0 : l.exp_term * exponential;
   return std::clamp(e + l.linear_term_per_m * altitude_m + l.constant_term, 0.0, 1.0);

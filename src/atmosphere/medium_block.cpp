@@ -26,13 +26,13 @@ void density_block(const DensityProfile& profile, const double* h, size_t n, Nod
   const DensityLayer* only = profile.layers.size() == 1 ? &profile.layers[0] : nullptr;
   scratch.exponent.resize(n);
   scratch.layer.resize(n);
+  // exp_block's range (NodeExp::block): clamped as written, not in a pass of its own.
+  const double bound = exp_kind == NodeExp::block ? 708.0 : INFINITY;
   for (size_t i = 0; i < n; ++i) {
     scratch.layer[i] = only ? only : &layer_at(profile, h[i]);
-    scratch.exponent[i] = scratch.layer[i]->exp_scale_per_m * h[i];
+    scratch.exponent[i] = std::min(std::max(scratch.layer[i]->exp_scale_per_m * h[i], -bound), bound);
   }
   if (exp_kind == NodeExp::block) {
-    for (size_t i = 0; i < n; ++i)
-      scratch.exponent[i] = std::min(std::max(scratch.exponent[i], -708.0), 708.0);
     exp_block(scratch.exponent.data(), n);
   } else {
     for (size_t i = 0; i < n; ++i) scratch.exponent[i] = std::exp(scratch.exponent[i]);
@@ -47,19 +47,30 @@ void density_block(const DensityProfile& profile, const double* h, size_t n, Nod
 
 void sample_medium_block(const Atmosphere& atm, const double* h, size_t n, NodeExp exp_kind,
                          MediumBlock& out) {
-  out.scattering.assign(n, glm::dvec3(0.0));
-  out.extinction.assign(n, glm::dvec3(0.0));
-  out.density.resize(n);
-  for (const MediumComponent& c : atm.components) {
-    if (c.density.layers.empty()) continue;  // density_at is 0: sample_medium adds nothing
-    density_block(c.density, h, n, exp_kind, out, out.density.data());
-    const glm::dvec3 sigma_t = c.scattering_per_m + c.absorption_per_m;
-    for (size_t i = 0; i < n; ++i) {
-      const double d = out.density[i];
+  // Each present component's densities in a row of its own, then each
+  // altitude's sums in registers, in sample_medium's order: no zeroed arrays
+  // added to once per component.
+  size_t rows = 0;
+  for (const MediumComponent& c : atm.components) rows += c.density.layers.empty() ? 0 : 1;
+  out.density.resize(rows * n);
+  size_t row = 0;
+  for (const MediumComponent& c : atm.components)
+    if (!c.density.layers.empty())  // else density_at is 0: sample_medium adds nothing
+      density_block(c.density, h, n, exp_kind, out, out.density.data() + n * row++);
+  out.scattering.resize(n);
+  out.extinction.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    glm::dvec3 scattering(0.0), extinction(0.0);
+    row = 0;
+    for (const MediumComponent& c : atm.components) {
+      if (c.density.layers.empty()) continue;
+      const double d = out.density[n * row++ + i];
       if (d == 0.0) continue;
-      out.scattering[i] += d * c.scattering_per_m;
-      out.extinction[i] += d * sigma_t;
+      scattering += d * c.scattering_per_m;
+      extinction += d * (c.scattering_per_m + c.absorption_per_m);
     }
+    out.scattering[i] = scattering;
+    out.extinction[i] = extinction;
   }
 }
 

@@ -116,6 +116,54 @@ void ring_media(const Atmosphere& atm, double r, double mu, RingMarch& out) {
   }
 }
 
+// march_ring's sums over its segments, in order: L_f (eq. 8) and each
+// sample that scatters light, written in place (the arrays cut to the samples
+// kept afterwards); returns the transmittance to the ray's end. The sums are
+// locals: the arrays' doubles could alias a sum kept in `out`, which would
+// then be stored and reloaded at every segment.
+glm::dvec3 ring_samples(const FiniteOnce* finite_table, RingMarch& out) {
+  const size_t n = out.ends.size() - 1;
+  const double* ends = out.ends.data();
+  const double* expm1s = out.expm1s.data();
+  const glm::dvec3* extinction = out.media.extinction.data();
+  const glm::dvec3* scattering = out.media.scattering.data();
+  const RingSegmentTerms& terms = out.terms;
+  for (std::vector<double>* v : {&out.distances, &out.radii, &out.inverse_radii}) v->resize(n);
+  out.scattered.resize(n);
+  double *distances = out.distances.data(), *radii = out.radii.data(),
+         *inverse_radii = out.inverse_radii.data();
+  glm::dvec3* scattered_out = out.scattered.data();
+  glm::dvec3 transmittance(1.0), l_f(0.0);
+  size_t kept = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const double dt = ends[i + 1] - ends[i];
+    if (!(dt > 0.0)) continue;
+    if (extinction[i] == glm::dvec3(0.0)) continue;
+    // segment_weights with the block's expm1(-sigma_t dt).
+    SegmentWeights w;
+    for (int c = 0; c < 3; ++c) {
+      w.weight[c] = terms.weight[c][i];
+      w.transmittance[c] = 1.0 + expm1s[4 * i + c];
+    }
+    const glm::dvec3 scattered = transmittance * scattering[i] * w.weight;
+    l_f += scattered;
+    transmittance *= w.transmittance;
+    if (scattered == glm::dvec3(0.0) && finite_table && (*finite_table)()) {
+      // Every later segment scatters transmittance (0) times finite terms.
+      if (transmittance == glm::dvec3(0.0)) break;
+      continue;
+    }
+    distances[kept] = terms.lit_at[i];
+    radii[kept] = terms.lit_radius[i];
+    inverse_radii[kept] = terms.inverse_radius[i];
+    scattered_out[kept++] = scattered;
+  }
+  for (std::vector<double>* v : {&out.distances, &out.radii, &out.inverse_radii}) v->resize(kept);
+  out.scattered.resize(kept);
+  out.l_f = l_f;
+  return transmittance;
+}
+
 // `finite_table`: multiscattering_at_point's (multiscattering_point.hpp).
 void march_ring(const Atmosphere& atm, double r, double mu, int steps,
                 const FiniteOnce* finite_table, RingMarch& out) {
@@ -127,42 +175,15 @@ void march_ring(const Atmosphere& atm, double r, double mu, int steps,
   const double rb = atm.bottom_radius_m;
   out.ground = ray_intersects_ground(rb, r, mu);
   out.length = distance_to_nearest_boundary(rb, atm.top_radius_m, r, mu, out.ground);
-  glm::dvec3 transmittance(1.0);
   if (atm.components.empty()) {  // vacuum: no segment scatters or attenuates
-    out.ground_transmittance = transmittance;
+    out.ground_transmittance = glm::dvec3(1.0);
     return;
   }
-  const std::vector<double>& ends = out.ends;
   segment_ends(r, mu, out.length, std::max(steps, 1), out.ends);
   ring_media(atm, r, mu, out);
-  const size_t n = ends.size() - 1;
-  const RingSegmentTerms& terms = out.terms;
-  ring_segment_terms(ends.data(), n, out.media.extinction.data(), out.expm1s.data(), r, mu, rb,
-                     out.terms);
-  for (size_t i = 0; i < n; ++i) {
-    const double dt = ends[i + 1] - ends[i];
-    if (!(dt > 0.0)) continue;
-    if (out.media.extinction[i] == glm::dvec3(0.0)) continue;
-    // segment_weights with the block's expm1(-sigma_t dt).
-    SegmentWeights w;
-    for (int c = 0; c < 3; ++c) {
-      w.weight[c] = terms.weight[c][i];
-      w.transmittance[c] = 1.0 + out.expm1s[4 * i + c];
-    }
-    const glm::dvec3 scattered = transmittance * out.media.scattering[i] * w.weight;
-    out.l_f += scattered;
-    transmittance *= w.transmittance;
-    if (scattered == glm::dvec3(0.0) && finite_table && (*finite_table)()) {
-      // Every later segment scatters transmittance (0) times finite terms.
-      if (transmittance == glm::dvec3(0.0)) break;
-      continue;
-    }
-    out.distances.push_back(terms.lit_at[i]);
-    out.radii.push_back(terms.lit_radius[i]);
-    out.inverse_radii.push_back(terms.inverse_radius[i]);
-    out.scattered.push_back(scattered);
-  }
-  out.ground_transmittance = transmittance;
+  ring_segment_terms(out.ends.data(), out.ends.size() - 1, out.media.extinction.data(),
+                     out.expm1s.data(), r, mu, rb, out.terms);
+  out.ground_transmittance = ring_samples(finite_table, out);
 }
 
 // The ring's L' of eq. 6 (E_I = 1) summed over its azimuths, each a

@@ -175,37 +175,40 @@ class RayMarcher {
   }
 
   // The segments' midpoints, media (sigma_s, sigma_t, sigma_s_phase) and the
-  // expm1(-sigma_t dt) of each channel, in blocks.
+  // expm1(-sigma_t dt) of each channel, in blocks: each component's
+  // densities in a row of its own, then each segment's sums in registers, in
+  // segment()'s order (no zeroed arrays added to once per component).
   void media_block(const std::vector<double>& ends, BlockScratch& b) const {
     const size_t n = ends.size() - 1;
-    MediumBlock& scratch = b.medium;
-    std::vector<double>&h = b.h, &r = b.r, &mu_s = b.mu_s, &density = b.density, &em = b.em;
-    std::vector<glm::dvec3>&sigma_s = b.sigma_s, &sigma_t = b.sigma_t,
-    &sigma_s_phase = b.sigma_s_phase;
-    for (std::vector<double>* v : {&h, &r, &mu_s, &density}) v->resize(n);
-    em.resize(3 * n);
-    for (std::vector<glm::dvec3>* v : {&sigma_s, &sigma_t, &sigma_s_phase})
-      v->assign(n, glm::dvec3(0.0));
+    for (std::vector<double>* v : {&b.h, &b.r, &b.mu_s}) v->resize(n);
     for (size_t i = 0; i < n; ++i) {
       const glm::dvec3 p = origin_ + (0.5 * (ends[i] + ends[i + 1])) * dir_;
-      r[i] = std::max(glm::length(p), atm_.bottom_radius_m);
-      h[i] = r[i] - atm_.bottom_radius_m;
-      mu_s[i] = clamp_cosine(glm::dot(p, sun_) / r[i]);
+      b.r[i] = std::max(glm::length(p), atm_.bottom_radius_m);
+      b.h[i] = b.r[i] - atm_.bottom_radius_m;
+      b.mu_s[i] = clamp_cosine(glm::dot(p, sun_) / b.r[i]);
     }
-    for (const RayComponent& c : components_) {
-      density_block(*c.density, h.data(), n, NodeExp::block, scratch, density.data());
-      for (size_t i = 0; i < n; ++i) {
-        const double d = density[i];
+    b.density.resize(components_.size() * n);
+    for (size_t k = 0; k < components_.size(); ++k)
+      density_block(*components_[k].density, b.h.data(), n, NodeExp::block, b.medium,
+                    b.density.data() + n * k);
+    for (std::vector<glm::dvec3>* v : {&b.sigma_s, &b.sigma_t, &b.sigma_s_phase}) v->resize(n);
+    b.em.resize(3 * n);
+    for (size_t i = 0; i < n; ++i) {
+      glm::dvec3 sigma_s(0.0), sigma_t(0.0), sigma_s_phase(0.0);
+      for (size_t k = 0; k < components_.size(); ++k) {
+        const double d = b.density[n * k + i];
         if (d == 0.0) continue;
-        sigma_s[i] += d * c.scattering;
-        sigma_t[i] += d * c.extinction;
-        sigma_s_phase[i] += d * c.scattering_phase;
+        sigma_s += d * components_[k].scattering;
+        sigma_t += d * components_[k].extinction;
+        sigma_s_phase += d * components_[k].scattering_phase;
       }
-    }
-    for (size_t i = 0; i < n; ++i)
+      b.sigma_s[i] = sigma_s;
+      b.sigma_t[i] = sigma_t;
+      b.sigma_s_phase[i] = sigma_s_phase;
       for (int c = 0; c < 3; ++c)
-        em[3 * i + c] = std::clamp(-sigma_t[i][c] * (ends[i + 1] - ends[i]), -708.0, 708.0);
-    expm1_block(em.data(), em.size());
+        b.em[3 * i + c] = std::clamp(-sigma_t[c] * (ends[i + 1] - ends[i]), -708.0, 708.0);
+    }
+    expm1_block(b.em.data(), b.em.size());
   }
 
   // segment()'s sums over media_block's segments, the sources read at the
