@@ -22,27 +22,36 @@ void density_block(const DensityProfile& profile, const double* h, size_t n, Nod
     return;
   }
   // One layer (the exponential profiles): no layer to look up per altitude,
-  // and loops the compiler vectorizes.
+  // and loops the compiler vectorizes, with the layer copied to a local (the
+  // output's doubles could alias the profile's: its terms would be reloaded
+  // at every altitude).
   const DensityLayer* only = profile.layers.size() == 1 ? &profile.layers[0] : nullptr;
   scratch.exponent.resize(n);
-  scratch.layer.resize(n);
+  double* exponent = scratch.exponent.data();
   // exp_block's range (NodeExp::block): clamped as written, not in a pass of its own.
   const double bound = exp_kind == NodeExp::block ? 708.0 : INFINITY;
-  for (size_t i = 0; i < n; ++i) {
-    scratch.layer[i] = only ? only : &layer_at(profile, h[i]);
-    scratch.exponent[i] = std::min(std::max(scratch.layer[i]->exp_scale_per_m * h[i], -bound), bound);
+  const auto clamped = [bound](double x) { return std::min(std::max(x, -bound), bound); };
+  if (only) {
+    const double scale = only->exp_scale_per_m;
+    for (size_t i = 0; i < n; ++i) exponent[i] = clamped(scale * h[i]);
+  } else {
+    scratch.layer.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+      scratch.layer[i] = &layer_at(profile, h[i]);
+      exponent[i] = clamped(scratch.layer[i]->exp_scale_per_m * h[i]);
+    }
   }
   if (exp_kind == NodeExp::block) {
-    exp_block(scratch.exponent.data(), n);
+    exp_block(exponent, n);
   } else {
-    for (size_t i = 0; i < n; ++i) scratch.exponent[i] = std::exp(scratch.exponent[i]);
+    for (size_t i = 0; i < n; ++i) exponent[i] = std::exp(exponent[i]);
   }
   if (only) {
-    for (size_t i = 0; i < n; ++i) density[i] = layer_density(*only, h[i], scratch.exponent[i]);
+    const DensityLayer layer = *only;
+    for (size_t i = 0; i < n; ++i) density[i] = layer_density(layer, h[i], exponent[i]);
     return;
   }
-  for (size_t i = 0; i < n; ++i)
-    density[i] = layer_density(*scratch.layer[i], h[i], scratch.exponent[i]);
+  for (size_t i = 0; i < n; ++i) density[i] = layer_density(*scratch.layer[i], h[i], exponent[i]);
 }
 
 void sample_medium_block(const Atmosphere& atm, const double* h, size_t n, NodeExp exp_kind,
