@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/exp_block.hpp"
+#include "core/scratch.hpp"
 
 namespace skybake {
 
@@ -26,8 +27,7 @@ void density_block(const DensityProfile& profile, const double* h, size_t n, Nod
   // output's doubles could alias the profile's: its terms would be reloaded
   // at every altitude).
   const DensityLayer* only = profile.layers.size() == 1 ? &profile.layers[0] : nullptr;
-  scratch.exponent.resize(n);
-  double* exponent = scratch.exponent.data();
+  double* exponent = scratch_entries(scratch.exponent, n);
   // exp_block's range (NodeExp::block): clamped as written, not in a pass of its own.
   const double bound = exp_kind == NodeExp::block ? 708.0 : INFINITY;
   const auto clamped = [bound](double x) { return std::min(std::max(x, -bound), bound); };
@@ -35,7 +35,7 @@ void density_block(const DensityProfile& profile, const double* h, size_t n, Nod
     const double scale = only->exp_scale_per_m;
     for (size_t i = 0; i < n; ++i) exponent[i] = clamped(scale * h[i]);
   } else {
-    scratch.layer.resize(n);
+    scratch_entries(scratch.layer, n);
     for (size_t i = 0; i < n; ++i) {
       scratch.layer[i] = &layer_at(profile, h[i]);
       exponent[i] = clamped(scratch.layer[i]->exp_scale_per_m * h[i]);

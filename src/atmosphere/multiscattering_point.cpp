@@ -13,6 +13,7 @@
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/exp_block.hpp"
 #include "core/math.hpp"
+#include "core/scratch.hpp"
 #include "core/wide_vectors.hpp"
 
 namespace skybake {
@@ -20,6 +21,9 @@ namespace {
 
 // One zenith cosine's march from the point, everything but the sun.
 struct RingMarch {
+  // The samples that scatter light: the first `samples` entries of each
+  // array (core/scratch.hpp).
+  size_t samples = 0;
   std::vector<double> distances;                 // where each segment is lit (weight_centroid)
   std::vector<double> radii;                     // the radius there (at least Rb)
   std::vector<double> inverse_radii;             // 1 / radii
@@ -117,8 +121,8 @@ void ring_media(const Atmosphere& atm, double r, double mu, RingMarch& out) {
 }
 
 // march_ring's sums over its segments, in order: L_f (eq. 8) and each
-// sample that scatters light, written in place (the arrays cut to the samples
-// kept afterwards); returns the transmittance to the ray's end. The sums are
+// sample that scatters light (out.samples of them); returns the
+// transmittance to the ray's end. The sums are
 // locals: the arrays' doubles could alias a sum kept in `out`, which would
 // then be stored and reloaded at every segment.
 glm::dvec3 ring_samples(const FiniteOnce* finite_table, RingMarch& out) {
@@ -128,11 +132,10 @@ glm::dvec3 ring_samples(const FiniteOnce* finite_table, RingMarch& out) {
   const glm::dvec3* extinction = out.media.extinction.data();
   const glm::dvec3* scattering = out.media.scattering.data();
   const RingSegmentTerms& terms = out.terms;
-  for (std::vector<double>* v : {&out.distances, &out.radii, &out.inverse_radii}) v->resize(n);
-  out.scattered.resize(n);
-  double *distances = out.distances.data(), *radii = out.radii.data(),
-         *inverse_radii = out.inverse_radii.data();
-  glm::dvec3* scattered_out = out.scattered.data();
+  double* distances = scratch_entries(out.distances, n);
+  double* radii = scratch_entries(out.radii, n);
+  double* inverse_radii = scratch_entries(out.inverse_radii, n);
+  glm::dvec3* scattered_out = scratch_entries(out.scattered, n);
   glm::dvec3 transmittance(1.0), l_f(0.0);
   size_t kept = 0;
   for (size_t i = 0; i < n; ++i) {
@@ -158,8 +161,7 @@ glm::dvec3 ring_samples(const FiniteOnce* finite_table, RingMarch& out) {
     inverse_radii[kept] = terms.inverse_radius[i];
     scattered_out[kept++] = scattered;
   }
-  for (std::vector<double>* v : {&out.distances, &out.radii, &out.inverse_radii}) v->resize(kept);
-  out.scattered.resize(kept);
+  out.samples = kept;
   out.l_f = l_f;
   return transmittance;
 }
@@ -167,10 +169,7 @@ glm::dvec3 ring_samples(const FiniteOnce* finite_table, RingMarch& out) {
 // `finite_table`: multiscattering_at_point's (multiscattering_point.hpp).
 void march_ring(const Atmosphere& atm, double r, double mu, int steps,
                 const FiniteOnce* finite_table, RingMarch& out) {
-  out.distances.clear();
-  out.radii.clear();
-  out.inverse_radii.clear();
-  out.scattered.clear();
+  out.samples = 0;
   out.l_f = glm::dvec3(0.0);
   const double rb = atm.bottom_radius_m;
   out.ground = ray_intersects_ground(rb, r, mu);
@@ -197,15 +196,14 @@ glm::dvec3 lit_ring(const Atmosphere& atm, const Texture& transmittance_lut, Rin
   const double rb = atm.bottom_radius_m;
   const double height = r * mu_s;
   glm::dvec3 l_prime(0.0);
-  const size_t n = m.distances.size();
-  std::vector<glm::dvec3>& sums = m.sun_sums;
-  sums.resize(n);
+  const size_t n = m.samples;
+  glm::dvec3* sums = scratch_entries(m.sun_sums, n);
   if (cosines.size() != 4 ||
       !ring_sun_sums_wide(transmittance_lut, atm, m.radii.data(), m.distances.data(),
-                          m.inverse_radii.data(), n, height, cosines.data(), sums.data())) {
+                          m.inverse_radii.data(), n, height, cosines.data(), sums)) {
     m.sun_reads.clear();
-    for (double radius : m.radii)
-      m.sun_reads.push_back(transmittance_at_radius(transmittance_lut, atm, radius));
+    for (size_t i = 0; i < n; ++i)
+      m.sun_reads.push_back(transmittance_at_radius(transmittance_lut, atm, m.radii[i]));
     for (size_t i = 0; i < n; ++i) {
       glm::dvec3 sun(0.0);
       for (double c : cosines)

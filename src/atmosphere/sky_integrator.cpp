@@ -12,6 +12,7 @@
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/exp_block.hpp"
 #include "core/math.hpp"
+#include "core/scratch.hpp"
 
 namespace skybake {
 namespace {
@@ -26,7 +27,8 @@ struct RayComponent {
   glm::dvec3 scattering_phase;
 };
 
-// segments_block's arrays, one entry per segment (end_*: per end).
+// segments_block's arrays, one entry per segment (end_*: per end), the first
+// entries of each (core/scratch.hpp: kept from march to march, never shrunk).
 struct BlockScratch {
   MediumBlock medium;
   std::vector<double> h, r, mu_s, density, em, end_r, end_mu_s;
@@ -180,19 +182,20 @@ class RayMarcher {
   // segment()'s order (no zeroed arrays added to once per component).
   void media_block(const std::vector<double>& ends, BlockScratch& b) const {
     const size_t n = ends.size() - 1;
-    for (std::vector<double>* v : {&b.h, &b.r, &b.mu_s}) v->resize(n);
+    for (std::vector<double>* v : {&b.h, &b.r, &b.mu_s}) scratch_entries(*v, n);
     for (size_t i = 0; i < n; ++i) {
       const glm::dvec3 p = origin_ + (0.5 * (ends[i] + ends[i + 1])) * dir_;
       b.r[i] = std::max(glm::length(p), atm_.bottom_radius_m);
       b.h[i] = b.r[i] - atm_.bottom_radius_m;
       b.mu_s[i] = clamp_cosine(glm::dot(p, sun_) / b.r[i]);
     }
-    b.density.resize(components_.size() * n);
+    scratch_entries(b.density, components_.size() * n);
     for (size_t k = 0; k < components_.size(); ++k)
       density_block(*components_[k].density, b.h.data(), n, NodeExp::block, b.medium,
                     b.density.data() + n * k);
-    for (std::vector<glm::dvec3>* v : {&b.sigma_s, &b.sigma_t, &b.sigma_s_phase}) v->resize(n);
-    b.em.resize(3 * n);
+    for (std::vector<glm::dvec3>* v : {&b.sigma_s, &b.sigma_t, &b.sigma_s_phase})
+      scratch_entries(*v, n);
+    scratch_entries(b.em, 3 * n);
     for (size_t i = 0; i < n; ++i) {
       glm::dvec3 sigma_s(0.0), sigma_t(0.0), sigma_s_phase(0.0);
       for (size_t k = 0; k < components_.size(); ++k) {
@@ -208,7 +211,7 @@ class RayMarcher {
       for (int c = 0; c < 3; ++c)
         b.em[3 * i + c] = std::clamp(-sigma_t[c] * (ends[i + 1] - ends[i]), -708.0, 708.0);
     }
-    expm1_block(b.em.data(), b.em.size());
+    expm1_block(b.em.data(), 3 * n);
   }
 
   // segment()'s sums over media_block's segments, the sources read at the
@@ -220,14 +223,12 @@ class RayMarcher {
     const std::vector<double>& em = b.em;
     const std::vector<glm::dvec3>&sigma_s = b.sigma_s, &sigma_t = b.sigma_t,
     &sigma_s_phase = b.sigma_s_phase;
+    glm::dvec3 *sun = scratch_entries(b.sun, n), *ms = scratch_entries(b.ms, n);
     if (dark.no_light) {  // 0 times any finite read is the 0 read here
-      b.sun.assign(n, glm::dvec3(0.0));
-      b.ms.assign(n, glm::dvec3(0.0));
+      std::fill(sun, sun + n, glm::dvec3(0.0));
+      std::fill(ms, ms + n, glm::dvec3(0.0));
     } else {
-      b.sun.resize(n);
-      b.ms.resize(n);
-      sky_reads(atm_, tlut_, mslut_, msmap_, b.r.data(), b.mu_s.data(), n, b.sun.data(),
-                b.ms.data());
+      sky_reads(atm_, tlut_, mslut_, msmap_, b.r.data(), b.mu_s.data(), n, sun, ms);
     }
     for (size_t i = 0; i < n; ++i) {
       const double dt = ends[i + 1] - ends[i];
@@ -246,9 +247,9 @@ class RayMarcher {
   void light_at_ends(const std::vector<double>& ends, BlockScratch& b, const DarkSegments& dark,
                      MarchState& st) const {
     const size_t n = dark.lit;
-    for (std::vector<double>* v : {&b.end_r, &b.end_mu_s}) v->resize(n + 1);
-    b.end_sun.resize(n + 1);
-    b.end_ms.resize(n + 1);
+    for (std::vector<double>* v : {&b.end_r, &b.end_mu_s}) scratch_entries(*v, n + 1);
+    glm::dvec3 *end_sun = scratch_entries(b.end_sun, n + 1),
+               *end_ms = scratch_entries(b.end_ms, n + 1);
     // |origin + t dir|^2 and its dot with the sun, expanded (dir is unit).
     const double oo = glm::dot(origin_, origin_), od = glm::dot(origin_, dir_);
     const double os = glm::dot(origin_, sun_), ds = glm::dot(dir_, sun_);
@@ -260,11 +261,11 @@ class RayMarcher {
       b.end_mu_s[k] = clamp_cosine((os + t * ds) / r);
     }
     if (dark.no_light) {  // 0 times any finite read is the 0 read here
-      b.end_sun.assign(n + 1, glm::dvec3(0.0));
-      b.end_ms.assign(n + 1, glm::dvec3(0.0));
+      std::fill(end_sun, end_sun + n + 1, glm::dvec3(0.0));
+      std::fill(end_ms, end_ms + n + 1, glm::dvec3(0.0));
     } else {
-      sky_reads(atm_, tlut_, mslut_, msmap_, b.end_r.data(), b.end_mu_s.data(), n + 1,
-                b.end_sun.data(), b.end_ms.data());
+      sky_reads(atm_, tlut_, mslut_, msmap_, b.end_r.data(), b.end_mu_s.data(), n + 1, end_sun,
+                end_ms);
     }
     for (size_t i = 0; i < n; ++i) {
       const double dt = ends[i + 1] - ends[i];
