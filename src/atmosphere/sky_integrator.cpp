@@ -216,13 +216,15 @@ class RayMarcher {
 
   // segment()'s sums over media_block's segments, the sources read at the
   // midpoints: every segment's two reads first, four at a time where AVX2
-  // runs (sky_reads.hpp, the same bits), then the sums in order.
+  // runs (sky_reads.hpp, the same bits), then the sums in order. The sums,
+  // the sun and the arrays' starts are locals: stores to `st` could alias
+  // them (doubles all), which would reload them at every segment.
   void light_at_midpoints(const std::vector<double>& ends, BlockScratch& b,
                           const DarkSegments& dark, MarchState& st) const {
     const size_t n = dark.lit;
-    const std::vector<double>& em = b.em;
-    const std::vector<glm::dvec3>&sigma_s = b.sigma_s, &sigma_t = b.sigma_t,
-    &sigma_s_phase = b.sigma_s_phase;
+    const double* em = b.em.data();
+    const glm::dvec3 *sigma_s = b.sigma_s.data(), *sigma_t = b.sigma_t.data(),
+                     *sigma_s_phase = b.sigma_s_phase.data();
     glm::dvec3 *sun = scratch_entries(b.sun, n), *ms = scratch_entries(b.ms, n);
     if (dark.no_light) {  // 0 times any finite read is the 0 read here
       std::fill(sun, sun + n, glm::dvec3(0.0));
@@ -230,20 +232,24 @@ class RayMarcher {
     } else {
       sky_reads(atm_, tlut_, mslut_, msmap_, b.r.data(), b.mu_s.data(), n, sun, ms);
     }
+    const glm::dvec3 sun_illuminance = atm_.sun_illuminance;
+    const bool multiscattering = mslut_ != nullptr;
+    MarchState sums = st;
     for (size_t i = 0; i < n; ++i) {
       const double dt = ends[i + 1] - ends[i];
       if (!(dt > 0.0) || sigma_t[i] == glm::dvec3(0.0)) continue;
-      glm::dvec3 source = b.sun[i] * sigma_s_phase[i];
-      if (mslut_) source += b.ms[i] * sigma_s[i];
+      glm::dvec3 source = sun[i] * sigma_s_phase[i];
+      if (multiscattering) source += ms[i] * sigma_s[i];
       const SegmentWeights w = segment_weights_from_expm1(sigma_t[i], dt, &em[3 * i]);
-      st.luminance += st.transmittance * atm_.sun_illuminance * source * w.weight;
-      st.transmittance *= w.transmittance;
+      sums.luminance += sums.transmittance * sun_illuminance * source * w.weight;
+      sums.transmittance *= w.transmittance;
     }
+    st = sums;
   }
 
   // The sums over media_block's segments with the sun's transmittance and
   // Psi_ms read at the segments' ends and each channel's source integrated
-  // linear between them (segment_sources.hpp).
+  // linear between them (segment_sources.hpp); locals as light_at_midpoints'.
   void light_at_ends(const std::vector<double>& ends, BlockScratch& b, const DarkSegments& dark,
                      MarchState& st) const {
     const size_t n = dark.lit;
@@ -267,23 +273,28 @@ class RayMarcher {
       sky_reads(atm_, tlut_, mslut_, msmap_, b.end_r.data(), b.end_mu_s.data(), n + 1, end_sun,
                 end_ms);
     }
+    const double* em = b.em.data();
+    const glm::dvec3 *sigma_s = b.sigma_s.data(), *sigma_t = b.sigma_t.data(),
+                     *sigma_s_phase = b.sigma_s_phase.data();
+    const glm::dvec3 sun_illuminance = atm_.sun_illuminance;
+    const bool multiscattering = mslut_ != nullptr;
+    MarchState sums = st;
     for (size_t i = 0; i < n; ++i) {
       const double dt = ends[i + 1] - ends[i];
-      if (!(dt > 0.0) || b.sigma_t[i] == glm::dvec3(0.0)) continue;
+      if (!(dt > 0.0) || sigma_t[i] == glm::dvec3(0.0)) continue;
       glm::dvec3 scattered, transmittance;
       for (int c = 0; c < 3; ++c) {
-        const double em = b.em[3 * i + c];
-        transmittance[c] = 1.0 + em;
-        const EndSourceWeights w = end_source_weights(b.sigma_t[i][c] * dt, em, dt);
+        transmittance[c] = 1.0 + em[3 * i + c];
+        const EndSourceWeights w = end_source_weights(sigma_t[i][c] * dt, em[3 * i + c], dt);
         scattered[c] =
-            b.sigma_s_phase[i][c] * end_source_integral(b.end_sun[i][c], b.end_sun[i + 1][c], w);
-        if (mslut_)  // eq. 11
-          scattered[c] +=
-              b.sigma_s[i][c] * end_source_integral(b.end_ms[i][c], b.end_ms[i + 1][c], w);
+            sigma_s_phase[i][c] * end_source_integral(end_sun[i][c], end_sun[i + 1][c], w);
+        if (multiscattering)  // eq. 11
+          scattered[c] += sigma_s[i][c] * end_source_integral(end_ms[i][c], end_ms[i + 1][c], w);
       }
-      st.luminance += st.transmittance * atm_.sun_illuminance * scattered;
-      st.transmittance *= transmittance;
+      sums.luminance += sums.transmittance * sun_illuminance * scattered;
+      sums.transmittance *= transmittance;
     }
+    st = sums;
   }
 
   // Where the ray enters and leaves the planet's shadow, ascending: the
