@@ -104,15 +104,10 @@ SKYBAKE_AVX2 inline void group_texels(const Texture& lut, const Atmosphere& atm,
                                       const double* inverse_radii, size_t k, size_t n,
                                       __m256d height, const double cosines[4], GroupTexels& g) {
   g.count = int(std::min<size_t>(4, n - k));
-  alignas(32) double r[4], t[4], inv[4];
-  for (int j = 0; j < 4; ++j) {
-    const size_t i = k + size_t(std::min(j, g.count - 1));
-    r[j] = radii[i];
-    t[j] = distances[i];
-    inv[j] = inverse_radii[i];
-  }
-  g.at = radius_lanes(lut, atm, _mm256_load_pd(r));
-  const __m256d dist = _mm256_load_pd(t), inverse = _mm256_load_pd(inv);
+  const __m256d radius = group_lanes(radii, k, g.count);
+  const __m256d dist = group_lanes(distances, k, g.count);
+  const __m256d inverse = group_lanes(inverse_radii, k, g.count);
+  g.at = radius_lanes(lut, atm, radius);
   for (int j = 0; j < 4; ++j) {
     // (height + distance c) / r, then clamp_cosine, as the one-value read.
     const __m256d mu = clamp_lanes(

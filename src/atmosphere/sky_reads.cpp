@@ -119,15 +119,9 @@ SKYBAKE_AVX2 void sky_reads_avx2(const Atmosphere& atm, const Texture& transmitt
     int count[2];
     ReadCoords sun_at[2], ms_at[2];
     for (int q = 0; q < groups; ++q) {
-      // A last group of fewer than four repeats its last point in the spare lanes.
       const size_t first = k + 4 * size_t(q);
       count[q] = int(std::min<size_t>(4, n - first));
-      alignas(32) double rl[4], ml[4];
-      for (int j = 0; j < 4; ++j) {
-        rl[j] = r[first + size_t(std::min(j, count[q] - 1))];
-        ml[j] = mu_s[first + size_t(std::min(j, count[q] - 1))];
-      }
-      const __m256d rv = _mm256_load_pd(rl), mv = _mm256_load_pd(ml);
+      const __m256d rv = group_lanes(r, first, count[q]), mv = group_lanes(mu_s, first, count[q]);
       sun_at[q] = sun_coords(atm, transmittance_lut, rv, mv);
       if (multiscattering_lut)
         ms_at[q] = multiscattering_coords(atm, *multiscattering_lut, mapping, rv, mv);

@@ -4,6 +4,9 @@
 // switch is all their users need.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
+
 #include "core/wide_vectors.hpp"
 
 #if defined(__SSE2__)
@@ -19,6 +22,17 @@ namespace skybake {
 // _mm256_min_pd(hi, v) is std::min(v, hi).
 SKYBAKE_AVX2 inline __m256d clamp_lanes(__m256d v, double lo, double hi) {
   return _mm256_min_pd(_mm256_set1_pd(hi), _mm256_max_pd(_mm256_set1_pd(lo), v));
+}
+
+// values[first .. first + count) in the lanes of a group of four, count in
+// [1, 4]; a short group repeats its last value in the spare lanes. A full
+// group is one load: four scalar stores read back as one vector would wait
+// for the stores to retire (no store-to-load forwarding across them).
+SKYBAKE_AVX2 inline __m256d group_lanes(const double* values, size_t first, int count) {
+  if (count == 4) return _mm256_loadu_pd(values + first);
+  alignas(32) double lanes[4];
+  for (int j = 0; j < 4; ++j) lanes[j] = values[first + size_t(std::min(j, count - 1))];
+  return _mm256_load_pd(lanes);
 }
 
 }  // namespace skybake
