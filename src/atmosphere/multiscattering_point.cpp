@@ -122,9 +122,9 @@ void ring_media(const Atmosphere& atm, double r, double mu, RingMarch& out) {
 
 // march_ring's sums over its segments, in order: L_f (eq. 8) and each
 // sample that scatters light (out.samples of them); returns the
-// transmittance to the ray's end. The sums are
-// locals: the arrays' doubles could alias a sum kept in `out`, which would
-// then be stored and reloaded at every segment.
+// transmittance to the ray's end. The sums are locals: the arrays' doubles
+// could alias a sum kept in `out`, which would then be stored and reloaded
+// at every segment.
 glm::dvec3 ring_samples(const FiniteOnce* finite_table, RingMarch& out) {
   const size_t n = out.ends.size() - 1;
   const double* ends = out.ends.data();
