@@ -51,8 +51,7 @@ void write_json(const fs::path& file, const json& j) {
 class FarmGraphTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = test::fresh_dir(std::string("farm_") +
-                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = test::test_dir("farm");
     catalog_ = dir_ / "catalog";
     out_ = dir_ / "out";
     // The referenced atmosphere has no "outputs": the catalog skips it.

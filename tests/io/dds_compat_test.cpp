@@ -5,7 +5,6 @@
 // header of every format that has one, and Pillow (Debian python3-pil) as an
 // independent reader of our legacy RGBA8, R8 and BC files.
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -21,6 +20,8 @@
 #include "core/mip_chain.hpp"
 #include "io/block_compression.hpp"
 #include "io/dds.hpp"
+#include "support/file_bytes.hpp"
+#include "support/run.hpp"
 
 namespace skybake {
 namespace {
@@ -28,27 +29,11 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-std::string scratch_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::string name = std::string(info->test_suite_name()) + "_" + info->name();
-  for (char& c : name)
-    if (!std::isalnum((unsigned char)c)) c = '_';
-  const fs::path dir = fs::path(SKYBAKE_TEST_TMP) / "dds_compat" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string();
-}
+using test::read_bytes;
+using test::u32_at;
 
-std::vector<uint8_t> file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::vector<uint8_t>((std::istreambuf_iterator<char>(in)),
-                              std::istreambuf_iterator<char>());
-}
-
-uint32_t u32_at(const std::vector<uint8_t>& b, size_t offset) {
-  return uint32_t(b.at(offset)) | uint32_t(b.at(offset + 1)) << 8 |
-         uint32_t(b.at(offset + 2)) << 16 | uint32_t(b.at(offset + 3)) << 24;
-}
+// A fresh scratch folder per test.
+std::string scratch_dir() { return test::test_dir("dds_compat").string(); }
 
 // Smooth deterministic values in [0, 1]: a sum of sines, so that 4x4 blocks
 // are not white noise (block formats are judged on data like ours).
@@ -77,7 +62,7 @@ TEST(DdsBlock, HeaderHasTheLinearSizeOfTheTopSlice) {
   const std::string path = scratch_dir() + "/bc1.dds";
   // 10x6: 3 x 2 blocks of 8 bytes.
   write_dds(path, {smooth(10, 6, 1, 3)}, DdsFormat::BC1_UNORM);
-  const std::vector<uint8_t> b = file_bytes(path);
+  const std::vector<uint8_t> b = read_bytes(path);
   EXPECT_EQ(u32_at(b, 8), DDSD_CAPS | DDSD_HEIGHT | DDSD_WIDTH | DDSD_PIXELFORMAT | DDSD_LINEARSIZE);
   EXPECT_EQ(u32_at(b, 20), 3u * 2u * 8u);
   EXPECT_EQ(u32_at(b, 128), 71u);  // DXGI_FORMAT_BC1_UNORM
@@ -106,7 +91,7 @@ TEST(DdsBlock, VolumeStoresEveryMipSliceBySliceInBlocks) {
   const std::vector<Texture> mips = build_mip_chain(smooth(8, 4, 4, 1), MipEdge::wrap);
   ASSERT_EQ(mips.size(), 4u);
   write_dds(path, mips, DdsFormat::BC4_UNORM);
-  const std::vector<uint8_t> b = file_bytes(path);
+  const std::vector<uint8_t> b = read_bytes(path);
   EXPECT_EQ(u32_at(b, 8), DDSD_CAPS | DDSD_HEIGHT | DDSD_WIDTH | DDSD_PIXELFORMAT |
                               DDSD_LINEARSIZE | DDSD_DEPTH | DDSD_MIPMAPCOUNT);
   EXPECT_EQ(u32_at(b, 20), 16u);  // one top-level slice: 2 x 1 blocks
@@ -152,11 +137,11 @@ TEST(DdsBlock, EveryFormatReadsBackEveryLevelAsTheDecoderGivesIt) {
 TEST(DdsBlock, AlphaModeIsCustomWhenTheFourthChannelIsData) {
   const std::string dir = scratch_dir();
   write_dds(dir + "/bc3.dds", {smooth(4, 4, 1, 4)}, DdsFormat::BC3_UNORM);
-  EXPECT_EQ(u32_at(file_bytes(dir + "/bc3.dds"), 144), 4u);  // DDS_ALPHA_MODE_CUSTOM
+  EXPECT_EQ(u32_at(read_bytes(dir + "/bc3.dds"), 144), 4u);  // DDS_ALPHA_MODE_CUSTOM
   write_dds(dir + "/rgba.dds", {smooth(4, 4, 1, 3)}, DdsFormat::R8G8B8A8_UNORM);
-  EXPECT_EQ(u32_at(file_bytes(dir + "/rgba.dds"), 144), 3u);  // alpha left at 1: opaque
+  EXPECT_EQ(u32_at(read_bytes(dir + "/rgba.dds"), 144), 3u);  // alpha left at 1: opaque
   write_dds(dir + "/rg.dds", {smooth(4, 4, 1, 2)}, DdsFormat::R8G8_UNORM);
-  EXPECT_EQ(u32_at(file_bytes(dir + "/rg.dds"), 144), 0u);  // no alpha: unknown
+  EXPECT_EQ(u32_at(read_bytes(dir + "/rg.dds"), 144), 0u);  // no alpha: unknown
 }
 
 // ---- legacy headers --------------------------------------------------------
@@ -197,8 +182,8 @@ TEST(DdsLegacy, PixelFormatsAsDocumentedAndNoDx10Header) {
     const std::vector<Texture> mips = build_mip_chain(smooth(8, 8, 2, l.channels), MipEdge::wrap);
     write_dds(dir + "/legacy.dds", mips, l.format, DdsHeader::legacy);
     write_dds(dir + "/dx10.dds", mips, l.format, DdsHeader::dx10);
-    const std::vector<uint8_t> legacy = file_bytes(dir + "/legacy.dds");
-    const std::vector<uint8_t> dx10 = file_bytes(dir + "/dx10.dds");
+    const std::vector<uint8_t> legacy = read_bytes(dir + "/legacy.dds");
+    const std::vector<uint8_t> dx10 = read_bytes(dir + "/dx10.dds");
     EXPECT_EQ(u32_at(legacy, 80), l.flags);
     EXPECT_EQ(u32_at(legacy, 84), l.four_cc);
     EXPECT_EQ(u32_at(legacy, 88), l.bits);

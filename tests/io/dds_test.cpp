@@ -3,12 +3,12 @@
 // "DDS_HEADER_DXT10"), parsed here and not through our reader; the data order
 // against the "Programming Guide for DDS"; round trips for every format and
 // shape within the format's precision; and the refusals (non-finite values,
-// bad mip chains, truncated or legacy files, unknown format names).
+// bad mip chains, truncated or foreign files); dds_format_name_test.cpp has
+// the format names.
 #include "io/dds.hpp"
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -25,6 +25,8 @@
 #include "core/error.hpp"
 #include "core/mip_chain.hpp"
 #include "io/dds_format_table.hpp"
+#include "support/file_bytes.hpp"
+#include "support/run.hpp"
 
 namespace skybake {
 namespace {
@@ -32,28 +34,11 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
+using test::read_bytes;
+using test::u32_at;
+
 // A fresh scratch folder per test.
-std::string scratch_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::string name = std::string(info->test_suite_name()) + "_" + info->name();
-  for (char& c : name)
-    if (!std::isalnum((unsigned char)c)) c = '_';
-  const fs::path dir = fs::path(SKYBAKE_TEST_TMP) / "dds" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string();
-}
-
-std::vector<uint8_t> file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::vector<uint8_t>((std::istreambuf_iterator<char>(in)),
-                              std::istreambuf_iterator<char>());
-}
-
-uint32_t u32_at(const std::vector<uint8_t>& b, size_t offset) {
-  return uint32_t(b.at(offset)) | uint32_t(b.at(offset + 1)) << 8 |
-         uint32_t(b.at(offset + 2)) << 16 | uint32_t(b.at(offset + 3)) << 24;
-}
+std::string scratch_dir() { return test::test_dir("dds").string(); }
 
 // Deterministic values in [lo, hi).
 float scrambled(size_t i, uint32_t seed, float lo, float hi) {
@@ -138,17 +123,17 @@ TEST(DdsHeader, Plain2D) {
   const std::string path = scratch_dir() + "/a.dds";
   write_dds(path, {filled(8, 4, 1, 1, 4, 1, 0, 1)}, DdsFormat::R16G16B16A16_FLOAT);
   // 8 bytes per texel: pitch 64, data 8 * 4 * 8.
-  check_header(file_bytes(path),
+  check_header(read_bytes(path),
                {kRequired, 8, 4, 0, 1, DDSCAPS_TEXTURE, 0, 10, 3, 1, 64, 8 * 4 * 8,
                 kAlphaCustom});
-  EXPECT_EQ(u32_at(file_bytes(path), 8) & (DDSD_MIPMAPCOUNT | DDSD_DEPTH), 0u);
+  EXPECT_EQ(u32_at(read_bytes(path), 8) & (DDSD_MIPMAPCOUNT | DDSD_DEPTH), 0u);
 }
 
 TEST(DdsHeader, VolumeWithFullMipChain) {
   const std::string path = scratch_dir() + "/v.dds";
   // 8x4x4 -> 4x2x2 -> 2x1x1 -> 1x1x1, one byte per texel.
   write_dds(path, chain(8, 4, 4, 1, 4, 1, 0, 1), DdsFormat::R8_UNORM);
-  check_header(file_bytes(path), {kRequired | DDSD_DEPTH | DDSD_MIPMAPCOUNT, 8, 4, 4, 4,
+  check_header(read_bytes(path), {kRequired | DDSD_DEPTH | DDSD_MIPMAPCOUNT, 8, 4, 4, 4,
                                   DDSCAPS_TEXTURE | DDSCAPS_COMPLEX | DDSCAPS_MIPMAP,
                                   DDSCAPS2_VOLUME, 61, 4, 1, 8, 128 + 16 + 2 + 1});
 }
@@ -156,7 +141,7 @@ TEST(DdsHeader, VolumeWithFullMipChain) {
 TEST(DdsHeader, ArrayWithMips) {
   const std::string path = scratch_dir() + "/arr.dds";
   write_dds(path, chain(4, 4, 1, 3, 2, 3, 0, 1), DdsFormat::R11G11B10_FLOAT);
-  check_header(file_bytes(path), {kRequired | DDSD_MIPMAPCOUNT, 4, 4, 0, 2,
+  check_header(read_bytes(path), {kRequired | DDSD_MIPMAPCOUNT, 4, 4, 0, 2,
                                   DDSCAPS_TEXTURE | DDSCAPS_COMPLEX | DDSCAPS_MIPMAP, 0, 26, 3, 3,
                                   16, 3 * (16 + 4) * 4});
 }
@@ -164,14 +149,14 @@ TEST(DdsHeader, ArrayWithMips) {
 TEST(DdsHeader, ArrayWithoutMipsIsComplex) {
   const std::string path = scratch_dir() + "/arr.dds";
   write_dds(path, {filled(5, 3, 1, 2, 4, 1, 0, 1)}, DdsFormat::R32G32B32A32_FLOAT);
-  check_header(file_bytes(path), {kRequired, 5, 3, 0, 1, DDSCAPS_TEXTURE | DDSCAPS_COMPLEX, 0, 2, 3,
+  check_header(read_bytes(path), {kRequired, 5, 3, 0, 1, DDSCAPS_TEXTURE | DDSCAPS_COMPLEX, 0, 2, 3,
                                   2, 5 * 16, 2 * 5 * 3 * 16, kAlphaCustom});
 }
 
 TEST(DdsHeader, ReadHeaderReturnsRawFields) {
   const std::string path = scratch_dir() + "/v.dds";
   write_dds(path, chain(4, 2, 8, 1, 2, 4, 0, 1), DdsFormat::R8G8B8A8_UNORM);
-  const std::vector<uint8_t> b = file_bytes(path);
+  const std::vector<uint8_t> b = read_bytes(path);
   const DdsHeaderInfo h = read_dds_header(path);
   EXPECT_EQ(h.file_size, b.size());
   EXPECT_EQ(h.size, u32_at(b, 4));
@@ -212,7 +197,7 @@ TEST(DdsLayout, ArrayStoresEachSliceWithAllItsMips) {
     for (int level = 0; level < 3; ++level)
       for (int i = 0; i < (4 >> level) * std::max(1, 2 >> level); ++i)
         expected.push_back(uint8_t(64 * layer + 16 * level + i));
-  const std::vector<uint8_t> b = file_bytes(path);
+  const std::vector<uint8_t> b = read_bytes(path);
   EXPECT_EQ(std::vector<uint8_t>(b.begin() + 148, b.end()), expected);
 }
 
@@ -233,7 +218,7 @@ TEST(DdsLayout, VolumeStoresEachMipWithAllItsSlices) {
         for (int x = 0; x < std::max(1, 4 >> level); ++x)
           expected.push_back(uint8_t(
               32 * level + (z * std::max(1, 2 >> level) + y) * std::max(1, 4 >> level) + x));
-  const std::vector<uint8_t> b = file_bytes(path);
+  const std::vector<uint8_t> b = read_bytes(path);
   EXPECT_EQ(std::vector<uint8_t>(b.begin() + 148, b.end()), expected);
 }
 
@@ -243,7 +228,7 @@ TEST(DdsLayout, LittleEndianFloatsAndHalves) {
   const std::string dir = scratch_dir();
   write_dds(dir + "/f.dds", {t}, DdsFormat::R32G32B32A32_FLOAT);
   write_dds(dir + "/h.dds", {t}, DdsFormat::R16G16B16A16_FLOAT);
-  const auto f = file_bytes(dir + "/f.dds"), h = file_bytes(dir + "/h.dds");
+  const auto f = read_bytes(dir + "/f.dds"), h = read_bytes(dir + "/h.dds");
   EXPECT_EQ(u32_at(f, 148), 0x3F800000u);  // binary32 1.0
   EXPECT_EQ(u32_at(f, 152), 0xC0000000u);  // binary32 -2.0
   EXPECT_EQ(u32_at(h, 148), 0xC0003C00u);  // halves 1.0 (0x3C00), -2.0 (0xC000)
@@ -339,13 +324,13 @@ TEST(DdsConvert, MissingComponentsAreZeroAndMissingAlphaIsOne) {
   const Texture h = read_dds(dir + "/h.dds").mips[0];
   EXPECT_EQ(h.data, (TexelVector{0.25f, 0.5f, 0, 1, 0.75f, 1.0f, 0, 1}));
   write_dds(dir + "/u.dds", {two}, DdsFormat::R8G8B8A8_UNORM);
-  const auto u = file_bytes(dir + "/u.dds");
+  const auto u = read_bytes(dir + "/u.dds");
   EXPECT_EQ(std::vector<uint8_t>(u.begin() + 148, u.end()),
             (std::vector<uint8_t>{64, 128, 0, 255, 191, 255, 0, 255}));  // round(v * 255)
   Texture one(1, 1, 1, 1, {"x"});
   one.data = {2.0f};
   write_dds(dir + "/p.dds", {one}, DdsFormat::R11G11B10_FLOAT);
-  EXPECT_EQ(u32_at(file_bytes(dir + "/p.dds"), 148), 16u << 6);  // R = 2.0, G = B = 0
+  EXPECT_EQ(u32_at(read_bytes(dir + "/p.dds"), 148), 16u << 6);  // R = 2.0, G = B = 0
 }
 
 TEST(DdsConvert, Unorm8RoundsHalvesAwayFromZeroLikeLround) {
@@ -405,7 +390,7 @@ TEST(DdsLayout, LevelsHeldElsewhereGiveTheSameBytes) {
   for (const Texture& m : lower) levels.push_back(&m);
   write_dds(dir + "/a.dds", chain, DdsFormat::R8G8B8A8_UNORM);
   write_dds(dir + "/b.dds", levels, DdsFormat::R8G8B8A8_UNORM);
-  EXPECT_EQ(file_bytes(dir + "/a.dds"), file_bytes(dir + "/b.dds"));
+  EXPECT_EQ(read_bytes(dir + "/a.dds"), read_bytes(dir + "/b.dds"));
 }
 
 TEST(DdsConvert, OutOfRangeValuesClampToTheFormat) {
@@ -496,14 +481,11 @@ TEST(DdsRefuse, ForeignHeadersAndFormats) {
   // A legacy B8G8R8A8 header (D3DFMT_A8R8G8B8: R in the third byte), built by
   // hand from the documented layout: not one of our formats.
   std::vector<uint8_t> b(128 + 4 * 4 * 4, 0);
-  auto put = [&](size_t off, uint32_t v) {
-    for (int i = 0; i < 4; ++i) b[off + i] = uint8_t(v >> (8 * i));
-  };
+  auto put = [&](size_t offset, uint32_t v) { test::put_u32_at(b, offset, v); };
   std::copy_n("DDS ", 4, b.begin());
   put(4, 124), put(8, kRequired), put(12, 4), put(16, 4), put(76, 32), put(80, 0x41);
   put(88, 32), put(92, 0xff0000), put(96, 0xff00), put(100, 0xff), put(104, 0xff000000);
-  std::ofstream(dir + "/bgra.dds", std::ios::binary)
-      .write(reinterpret_cast<const char*>(b.data()), std::streamsize(b.size()));
+  test::write_bytes(dir + "/bgra.dds", b);
   EXPECT_THAT([&] { read_dds(dir + "/bgra.dds"); },
               ::testing::ThrowsMessage<IoError>(HasSubstr(
                   "expected a DX10 header or the legacy pixel format of one of "
@@ -512,8 +494,7 @@ TEST(DdsRefuse, ForeignHeadersAndFormats) {
                   "masks 0xff0000 0xff00 0xff 0xff000000")));
   put(80, 0x4);
   std::copy_n("DXT3", 4, b.begin() + 84);
-  std::ofstream(dir + "/dxt3.dds", std::ios::binary)
-      .write(reinterpret_cast<const char*>(b.data()), std::streamsize(b.size()));
+  test::write_bytes(dir + "/dxt3.dds", b);
   EXPECT_THAT([&] { read_dds(dir + "/dxt3.dds"); },
               ::testing::ThrowsMessage<IoError>(HasSubstr("got FourCC \"DXT3\"")));
   // Not a DDS file at all.
@@ -529,38 +510,6 @@ TEST(DdsRefuse, ForeignHeadersAndFormats) {
   f.write(bc7, 4);
   f.close();
   EXPECT_THAT([&] { read_dds(path); }, ::testing::ThrowsMessage<IoError>(HasSubstr("got 98")));
-}
-
-// ---- format names ------------------------------------------------------------------
-
-TEST(DdsFormatName, RoundTripsAndDxgiCodes) {
-  const std::vector<std::pair<const char*, uint32_t>> documented = {
-      {"R32G32B32A32_FLOAT", 2}, {"R16G16B16A16_FLOAT", 10}, {"R11G11B10_FLOAT", 26},
-      {"R8G8B8A8_UNORM", 28},    {"R8G8_UNORM", 49},         {"R16_FLOAT", 54},
-      {"R8_UNORM", 61},          {"BC1_UNORM", 71},          {"BC3_UNORM", 77},
-      {"BC4_UNORM", 80},         {"BC5_UNORM", 83}};
-  ASSERT_EQ(dds_formats().size(), documented.size());
-  for (const auto& [name, code] : documented) {
-    const DdsFormat f = dds_format_from_name(name);
-    EXPECT_EQ(uint32_t(f), code) << name;
-    EXPECT_STREQ(dxgi_format_name(f), name);
-    EXPECT_EQ(dds_format_from_name(std::string("DXGI_FORMAT_") + name), f);
-  }
-}
-
-TEST(DdsFormatName, UnknownNameListsValidOnesAndSuggests) {
-  EXPECT_THAT([] { dds_format_from_name("R16G16B16A16_FLOT", "presets/x.json: /dds/format"); },
-              ::testing::ThrowsMessage<IoError>(::testing::AllOf(
-                  HasSubstr("presets/x.json: /dds/format: expected one of R32G32B32A32_FLOAT, "
-                            "R16G16B16A16_FLOAT, R11G11B10_FLOAT, R8G8B8A8_UNORM, R8G8_UNORM, "
-                            "R16_FLOAT, R8_UNORM, BC1_UNORM, BC3_UNORM, BC4_UNORM, BC5_UNORM, "
-                            "got \"R16G16B16A16_FLOT\""),
-                  HasSubstr("did you mean \"R16G16B16A16_FLOAT\"?"))));
-  EXPECT_EQ(dds_format_from_name("R8_UNORM"), DdsFormat::R8_UNORM);
-  EXPECT_THAT([] { dds_format_from_name("r8_unorm"); },
-              ::testing::ThrowsMessage<IoError>(HasSubstr("did you mean \"R8_UNORM\"?")));
-  EXPECT_THAT([] { dds_format_from_name("ASTC_4X4_UNORM_SRGB"); },
-              ::testing::ThrowsMessage<IoError>(::testing::Not(HasSubstr("did you mean"))));
 }
 
 // ---- an independent reader ------------------------------------------------------

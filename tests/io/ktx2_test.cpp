@@ -6,10 +6,7 @@
 #include "io/ktx2.hpp"
 
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -21,6 +18,7 @@
 #include "core/half.hpp"
 #include "core/mip_chain.hpp"
 #include "io/block_compression.hpp"
+#include "support/file_bytes.hpp"
 #include "support/run.hpp"
 
 namespace skybake {
@@ -33,29 +31,11 @@ std::string tmp(const std::string& test, const std::string& file) {
   return test::scratch_file("io_ktx2", test, file);
 }
 
-std::vector<uint8_t> bytes_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
-void write_bytes(const std::string& path, const std::vector<uint8_t>& b) {
-  std::ofstream(path, std::ios::binary | std::ios::trunc)
-      .write(reinterpret_cast<const char*>(b.data()), std::streamsize(b.size()));
-}
-
-uint32_t u32_at(const std::vector<uint8_t>& b, size_t at) {
-  uint32_t v;
-  std::memcpy(&v, &b[at], 4);  // the test host is little-endian, like the file
-  return v;
-}
-uint64_t u64_at(const std::vector<uint8_t>& b, size_t at) {
-  uint64_t v;
-  std::memcpy(&v, &b[at], 8);
-  return v;
-}
-void put_u32_at(std::vector<uint8_t>& b, size_t at, uint32_t v) {
-  std::memcpy(&b[at], &v, 4);
-}
+using test::put_u32_at;
+using test::read_bytes;
+using test::u32_at;
+using test::u64_at;
+using test::write_bytes;
 
 // Values each format stores exactly: k/255 for unorm8, halves of small
 // integers for half, anything finite (here irrational-looking) for float32.
@@ -187,7 +167,7 @@ TEST(Ktx2Layout, BlockLevelsHoldWholeBlocks) {
   // BC1, 6x5 with mips: levels 6x5, 3x2, 1x1 take 2x2, 1x1, 1x1 blocks of 8 bytes.
   const std::string path = tmp("layout", "bc1.ktx2");
   write_ktx2(path, chain(6, 5, 1, 1, 3, Ktx2Encoding::bc, true), Ktx2Format::BC1_RGB_UNORM_BLOCK);
-  const std::vector<uint8_t> b = bytes_of(path);
+  const std::vector<uint8_t> b = read_bytes(path);
   EXPECT_EQ(u32_at(b, 12), 131u);  // VK_FORMAT_BC1_RGB_UNORM_BLOCK
   EXPECT_EQ(u32_at(b, 16), 1u);    // typeSize of a block format
   const uint64_t lengths[] = {32, 8, 8};
@@ -202,7 +182,7 @@ TEST(Ktx2Layout, HeaderIndexAndLevelsSmallestFirstAtAlignedOffsets) {
   const std::vector<Texture> mips = chain(5, 3, 1, 1, 1, Ktx2Encoding::half, true);
   const std::string path = tmp("layout", "r16.ktx2");
   write_ktx2(path, mips, Ktx2Format::R16_SFLOAT);
-  const std::vector<uint8_t> b = bytes_of(path);
+  const std::vector<uint8_t> b = read_bytes(path);
   ASSERT_GE(b.size(), 80u);
   EXPECT_EQ(std::vector<uint8_t>(b.begin(), b.begin() + 12),
             (std::vector<uint8_t>{0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x30, 0xBB, 0x0D, 0x0A, 0x1A,
@@ -259,7 +239,7 @@ TEST(Ktx2Convert, MissingComponentsAreZeroMissingAlphaOneAndRangesClamp) {
   EXPECT_EQ(unorm.mips[0].channels, t.channels);  // the padding alpha is not a channel
   EXPECT_EQ(unorm.mips[0].data,
             (TexelVector{1.0f, 0.0f, 128 / 255.0f, 1.0f, 0.0f, 64 / 255.0f}));
-  const std::vector<uint8_t> b = bytes_of(path);
+  const std::vector<uint8_t> b = read_bytes(path);
   const uint64_t level0 = u64_at(b, 80);
   EXPECT_EQ(b[level0 + 3], 255);  // alpha of a 3-channel texture
   write_ktx2(path, {t}, Ktx2Format::R16G16B16A16_SFLOAT);
@@ -297,7 +277,7 @@ template <typename Edit>
 std::string refusal(const std::string& name, Edit edit) {
   const std::string path = tmp("forged", name + ".ktx2");
   write_ktx2(path, chain(8, 4, 1, 1, 4, Ktx2Encoding::unorm8, true), Ktx2Format::R8G8B8A8_UNORM);
-  std::vector<uint8_t> b = bytes_of(path);
+  std::vector<uint8_t> b = read_bytes(path);
   edit(b);
   write_bytes(path, b);
   try {
@@ -374,7 +354,7 @@ TEST(Ktx2Refuse, NonZeroMipPadding) {
   // padding up to the next multiple of lcm(2, 4) = 4.
   const std::string path = tmp("forged", "padding.ktx2");
   write_ktx2(path, chain(5, 3, 1, 1, 1, Ktx2Encoding::half, true), Ktx2Format::R16_SFLOAT);
-  std::vector<uint8_t> b = bytes_of(path);
+  std::vector<uint8_t> b = read_bytes(path);
   const uint64_t level2 = u64_at(b, 80 + 2 * 24);
   ASSERT_EQ(u64_at(b, 80 + 24), level2 + 4);
   b[level2 + 3] = 7;

@@ -51,8 +51,7 @@ using Recorded = std::set<std::pair<std::string, std::string>>;
 class Bake : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = test::fresh_dir(std::string("bake_") +
-                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = test::test_dir("bake");
     options_.out_dir = dir_ / "out";
     options_.on_recorded = [this](const fs::path& scene_dir, const std::string& name,
                                   const std::string& hash) {

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/dds.hpp"
+#include "support/file_bytes.hpp"
 #include "support/run.hpp"
 
 namespace fs = std::filesystem;
@@ -99,12 +100,6 @@ TEST(DdsOutput, EachEightBitProductTakesTheBlockFormatOfItsChannels) {
 
 // ---- a whole bake ------------------------------------------------------------
 
-std::vector<uint8_t> bytes_of(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::vector<uint8_t>((std::istreambuf_iterator<char>(in)),
-                              std::istreambuf_iterator<char>());
-}
-
 // Cloud textures in block formats, curl in R8G8 through unorm8 and a legacy
 // BC4 volume, small enough for a test.
 fs::path write_preset(const fs::path& dir) {
@@ -158,15 +153,15 @@ TEST(DdsOutputBake, BlockAndLegacyFilesAreWhatTheOptionsSayForOneAndTwoThreads) 
   for (const Expect& e : expected) {
     SCOPED_TRACE(e.file);
     const fs::path one = dir / "1" / "bc" / e.file, two = dir / "2" / "bc" / e.file;
-    EXPECT_EQ(bytes_of(one), bytes_of(two)) << "files differ between 1 and 2 threads";
+    EXPECT_EQ(test::read_bytes(one), test::read_bytes(two)) << "files differ between 1 and 2 threads";
     const DdsImage image = read_dds(one.string());
     EXPECT_EQ(image.format, e.format);
     EXPECT_EQ(image.header, e.header);
     EXPECT_EQ(image.mips.size(), e.levels);
     EXPECT_EQ(image.mips[0].channel_count(), e.channels);
   }
-  EXPECT_EQ(bytes_of(dir / "1" / "bc" / "manifest.json"),
-            bytes_of(dir / "2" / "bc" / "manifest.json"));
+  EXPECT_EQ(test::read_bytes(dir / "1" / "bc" / "manifest.json"),
+            test::read_bytes(dir / "2" / "bc" / "manifest.json"));
   // Our reader decodes the block files for check-tiling too.
   const test::RunResult tiling = test::run_skybake(
       {"check-tiling", (dir / "1" / "bc" / "noise_shape.dds").string(),

@@ -63,7 +63,7 @@ void set_mtime_ns(const fs::path& file, int64_t ns) {
 class FileFreshness : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = test::fresh_dir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = test::test_dir("freshness");
     scene_ = small_scene(dir_);
     options_.out_dir = dir_ / "out";
     first_ = bake_scene(scene_, options_);

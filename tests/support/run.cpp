@@ -4,9 +4,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+
+#include <gtest/gtest.h>
 
 namespace fs = std::filesystem;
 
@@ -41,6 +44,14 @@ fs::path fresh_dir(const std::string& name) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
+}
+
+fs::path test_dir(const std::string& group) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string name = group + "_" + info->test_suite_name() + "_" + info->name();
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return fresh_dir(name);
 }
 
 fs::path source_path(const std::string& relative) {

@@ -25,6 +25,9 @@ RunResult run_skybake(const std::vector<std::string>& args, const std::filesyste
 // process, since ctest runs cases in parallel processes).
 std::filesystem::path fresh_dir(const std::string& name);
 
+// fresh_dir() named `<group>_<suite>_<test>` after the running GoogleTest case.
+std::filesystem::path test_dir(const std::string& group);
+
 std::string read_file(const std::filesystem::path& path);
 
 // Path of `file` in SKYBAKE_TEST_TMP/<group>/<test>/, the folder created and
