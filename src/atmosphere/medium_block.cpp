@@ -56,27 +56,28 @@ void density_block(const DensityProfile& profile, const double* h, size_t n, Nod
 
 void sample_medium_block(const Atmosphere& atm, const double* h, size_t n, NodeExp exp_kind,
                          MediumBlock& out) {
-  // Each present component's densities in a row of its own, then each
-  // altitude's sums in registers, in sample_medium's order: no zeroed arrays
-  // added to once per component.
-  size_t rows = 0;
-  for (const MediumComponent& c : atm.components) rows += c.density.layers.empty() ? 0 : 1;
+  // Each present component's densities in a row of its own and its
+  // coefficients once, then each altitude's sums in registers, in
+  // sample_medium's order: no zeroed arrays added to once per component.
+  out.present.clear();
+  for (const MediumComponent& c : atm.components)
+    if (!c.density.layers.empty())  // else density_at is 0: sample_medium adds nothing
+      out.present.push_back({c.scattering_per_m, c.scattering_per_m + c.absorption_per_m});
+  const size_t rows = out.present.size();
   out.density.resize(rows * n);
   size_t row = 0;
   for (const MediumComponent& c : atm.components)
-    if (!c.density.layers.empty())  // else density_at is 0: sample_medium adds nothing
+    if (!c.density.layers.empty())
       density_block(c.density, h, n, exp_kind, out, out.density.data() + n * row++);
   out.scattering.resize(n);
   out.extinction.resize(n);
   for (size_t i = 0; i < n; ++i) {
     glm::dvec3 scattering(0.0), extinction(0.0);
-    row = 0;
-    for (const MediumComponent& c : atm.components) {
-      if (c.density.layers.empty()) continue;
-      const double d = out.density[n * row++ + i];
+    for (size_t k = 0; k < rows; ++k) {
+      const double d = out.density[n * k + i];
       if (d == 0.0) continue;
-      scattering += d * c.scattering_per_m;
-      extinction += d * (c.scattering_per_m + c.absorption_per_m);
+      scattering += d * out.present[k].scattering;
+      extinction += d * out.present[k].extinction;
     }
     out.scattering[i] = scattering;
     out.extinction[i] = extinction;

@@ -19,6 +19,11 @@ struct MediumBlock {
   std::vector<glm::dvec3> scattering, extinction;  // per altitude, as MediumSample
   std::vector<double> density, exponent;           // scratch
   std::vector<const DensityLayer*> layer;          // scratch
+  // Scratch: the coefficients of the components with a density profile.
+  struct Coefficients {
+    glm::dvec3 scattering, extinction;
+  };
+  std::vector<Coefficients> present;
 };
 
 // density[i] = density_at(profile, h[i]), i < n, the exponentials as below;

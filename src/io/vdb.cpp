@@ -24,9 +24,9 @@
 
 #include "core/error.hpp"
 #include "core/hash.hpp"
+#include "io/shape_text.hpp"
 #include "io/vdb_archive.hpp"
 #include "io/vdb_layout.hpp"
-#include "io/shape_text.hpp"
 #include "io/vdb_leaves.hpp"
 
 namespace skybake {

@@ -31,7 +31,8 @@ inline std::vector<Ray> domain_rays(const Atmosphere& atm) {
     const double mu_h = mu_horizon(atm, r);
     for (double t : {0.0, 1e-6, 1e-3, 0.05, 0.2, 0.5, 0.8, 0.99, 1.0}) {
       const double mu = 1.0 - t * (1.0 - mu_h);  // t = 1 is the horizon
-      // At the top every upward ray has d = 0 (see TopBoundary... below).
+      // At the top every upward ray has d = 0 (transmittance_lut_test.cpp,
+      // TransmittanceMapping.TopBoundaryUpwardRaysMapToTheZenithColumn).
       if (r == rt && mu >= 0.0) continue;
       rays.push_back({r, mu});
     }
