@@ -15,12 +15,13 @@ packages=(
   libopenexr-dev libimath-dev
   libglm-dev nlohmann-json3-dev rapidjson-dev libcli11-dev libtbb-dev zlib1g-dev
   libfmt-dev libspdlog-dev
-  libsquish-dev
+  libsquish-dev libhwy-dev
+  ccache
 )
 # What the tests, benchmarks and sanitizer checks add: test frameworks, the
 # independent readers (OpenImageIO, OpenEXR's and OpenVDB's tools, nvtt,
 # Pillow), the shader compiler and a software GL, clang with its sanitizer
-# and fuzzer runtime.
+# and fuzzer runtime; Slurm and munge for the build-farm end-to-end test.
 if [ "$mode" = all ]; then
   packages+=(
     clang-format libopenvdb-tools libopenimageio-dev openimageio-tools openexr
@@ -28,6 +29,7 @@ if [ "$mode" = all ]; then
     libnvtt-bin python3-pil
     glslang-tools libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev
     clang libclang-rt-14-dev
+    slurmctld slurmd slurm-client munge
   )
   # Node.js runs independent readers in some tests; a machine may already have
   # it from another source (whose npm conflicts with Debian's), so ask apt only

@@ -26,9 +26,9 @@
 #     task succeeds, tasks ran on both nodes, outputs byte-identical to the
 #     local bake, and plan then finds nothing stale.
 #
-# Needs root (or the packages installed and a cluster that starts as this
-# user): as root it installs missing packages (slurmctld slurmd slurm-client
-# munge ninja-build); otherwise it exits 77 (skip) saying why.
+# Needs the packages of scripts/install-deps.sh (slurmctld slurmd
+# slurm-client munge ninja-build; missing ones fail the test) and root, or a
+# cluster that starts as this user; otherwise it exits 77 (skip) saying why.
 # Exit 0 pass, 1 fail, 77 skip.
 set -euo pipefail
 
@@ -54,19 +54,13 @@ for v in $(compgen -e | grep -E '^(SLURM_|SBATCH_|SALLOC_|SRUN_)' || true); do u
 skip() { echo "slurm_e2e: SKIP: $*"; exit 77; }
 
 # --- packages ------------------------------------------------------------------
-packages=(slurmctld slurmd slurm-client munge ninja-build)
+# scripts/install-deps.sh installs slurmctld slurmd slurm-client munge
+# ninja-build; a test never installs packages itself.
 commands=(slurmctld slurmd srun salloc sbatch scontrol sinfo munged munge ninja)
 missing_commands() { local c; for c in "${commands[@]}"; do command -v "$c" >/dev/null || echo "$c"; done; }
 if [ -n "$(missing_commands)" ]; then
-  if [ "$(id -u)" -ne 0 ]; then
-    skip "missing $(missing_commands | tr '\n' ' ')and not root, so cannot apt-get install ${packages[*]}"
-  fi
-  echo "slurm_e2e: installing ${packages[*]}"
-  export DEBIAN_FRONTEND=noninteractive
-  apt_install() { apt-get install -y -q --no-install-recommends -o DPkg::Lock::Timeout=300 "${packages[@]}"; }
-  apt_install || { apt-get update -q && apt_install; } ||
-    { echo "slurm_e2e: FAIL: apt-get install ${packages[*]} failed" >&2; exit 1; }
-  [ -z "$(missing_commands)" ] || { echo "slurm_e2e: FAIL: still missing $(missing_commands)" >&2; exit 1; }
+  echo "slurm_e2e: FAIL: missing $(missing_commands | tr '\n' ' ')(run scripts/install-deps.sh)" >&2
+  exit 1
 fi
 
 # --- the cluster -----------------------------------------------------------------
