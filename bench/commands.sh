@@ -10,7 +10,9 @@
 #
 # Give several executables (e.g. a build of main before and after a change;
 # copy its libskybake_*.so plugins next to it) to compare them in one run.
-# Rows (docs/decisions.md "Speed targets" states the target of each):
+# Each run appends its medians to bench/results/commands.csv, with the commit
+# and the machine (bench/results/README.md).
+# Rows (docs/decisions/speed-targets.md states the target of each):
 #   version         skybake --version
 #   hillaire        Earth's Hillaire set: transmittance, multiscattering,
 #                   skyview, aerial_perspective (presets/earth.json --only)
@@ -21,7 +23,7 @@
 #
 # With TILEABLE_VOLUME_NOISE=EXE (a build of Hillaire's TileableVolumeNoise
 # generator, which is not a Debian package: the build used is described in
-# docs/decisions.md "The cloud-noise set against TileableVolumeNoise"), each
+# docs/decisions/noise-set-speed.md), each
 # run also times EXE in a fresh folder (it writes its volumes where it
 # runs) and prints its medians and how many times the CPU of the first
 # SKYBAKE's noise rows it takes.
@@ -46,7 +48,7 @@ trap 'rm -rf "$work"' EXIT
 PYTHONPATH="$here" python3 - "$RUNS" "$repo" "$work" "${ONLY:-}" "${TILEABLE_VOLUME_NOISE:-}" "${exes[@]}" <<'EOF'
 import json, os, shutil, statistics, sys
 
-from process_timing import machine, timed
+from process_timing import append_results, machine, timed
 
 runs, repo, work, only, other, exes = (int(sys.argv[1]), sys.argv[2], sys.argv[3], sys.argv[4].split(),
                                        sys.argv[5], sys.argv[6:])
@@ -104,6 +106,14 @@ for key in rows:
         c = cells[(key, exe)]
         line.append(f"{statistics.median(x[0] for x in c):.3f} / {statistics.median(x[1] for x in c):.3f}")
     print(f"| {key} | " + " | ".join(line) + " |")
+results = []
+for key in rows:
+    for exe in exes:
+        c = cells[(key, exe)]
+        who = f"{key} ({os.path.relpath(exe, repo)})"
+        results.append((who, f"CPU (user + sys), median of {runs}", "s", f"{statistics.median(x[0] for x in c):.3f}"))
+        results.append((who, f"wall, median of {runs}", "s", f"{statistics.median(x[1] for x in c):.3f}"))
+append_results(repo, "commands", "RUNS=%d ONLY=%r bench/commands.sh" % (runs, " ".join(only)), results)
 if other:
     c = cells[("other", other)]
     cpu = statistics.median(x[0] for x in c)

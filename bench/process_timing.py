@@ -27,3 +27,48 @@ def timed(argv, who, cwd=None):
 def machine():
     """'N CPUs, load a b c' (the 1, 5 and 15 minute load averages)."""
     return f"{os.cpu_count()} CPUs, load {' '.join(f'{x:.2f}' for x in os.getloadavg())}"
+
+
+RESULT_COLUMNS = ["benchmark", "figure", "unit", "value", "commit", "machine", "command"]
+
+
+def commit(repo):
+    """The repository's HEAD commit, short, with '+dirty' when the tree has
+    uncommitted changes; 'unknown' outside a git checkout."""
+    try:
+        head = subprocess.run(["git", "-C", repo, "rev-parse", "--short", "HEAD"],
+                              capture_output=True, text=True, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", repo, "status", "--porcelain", "--untracked-files=no"],
+                               capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+    return head + ("+dirty" if dirty else "")
+
+
+def machine_description():
+    """CPU model and count, and the load when measured (bench/results/README.md)."""
+    model = "unknown CPU"
+    try:
+        for line in open("/proc/cpuinfo"):
+            if line.startswith("model name"):
+                model = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    return f"{model}; {machine()}"
+
+
+def append_results(repo, name, command, rows):
+    """Appends rows (benchmark, figure, unit, value) to bench/results/NAME.csv,
+    with the commit, the machine and the command that measured them."""
+    import csv
+    path = os.path.join(repo, "bench", "results", name + ".csv")
+    new = not os.path.exists(path)
+    with open(path, "a", newline="") as f:
+        w = csv.writer(f)
+        if new:
+            w.writerow(RESULT_COLUMNS)
+        where, what = machine_description(), commit(repo)
+        for benchmark, figure, unit, value in rows:
+            w.writerow([benchmark, figure, unit, value, what, where, command])
+    print(f"appended {len(rows)} rows to {path}")
