@@ -3,7 +3,7 @@
 // A large buffer from malloc is fresh anonymous memory: its first write costs
 // a page fault per 4 KB page, in which the kernel zeroes the page and charges
 // it to the process. For a 32 MB volume that is 8192 faults, 15-20 ms of CPU
-// on the development machine, more than zeroing the memory itself; done by
+// measured, more than zeroing the memory itself; done by
 // the thread that allocates, it is a serial prefix of every parallel bake
 // (docs/decisions.md "Threads: the serial parts of a bake").
 #pragma once
@@ -84,8 +84,7 @@ struct FreshPagesAllocator {
 // up to the largest freed, at most 32 MB) and the heap's free top back to
 // the kernel, so the next buffer is fresh pages again; on a virtual machine
 // a fresh page's first write costs several microseconds (about 2 ms of CPU
-// per MB on the shared development machine, docs/decisions.md "The
-// cloud-noise set's CPU, fourth pass"). Buffers under 32 MB then come from
+// per MB, bench/noise_set_bench.sh). Buffers under 32 MB then come from
 // the heap and freed heap memory is kept (a texture's texels from 1 MB up
 // excepted: FreshPagesAllocator maps and unmaps its own, in huge pages at
 // one fault per 2 MB): a process's resident memory stays

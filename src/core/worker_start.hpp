@@ -3,7 +3,7 @@
 // TBB loads its runtime and creates its worker threads on the first parallel
 // loop of a process: without this, inside the first product's bake, whose
 // first milliseconds then run on one thread while the runtime loads (about
-// 0.4 ms of CPU on the development machine) and the worker starts (0.1 ms
+// 0.4 ms of CPU, bench/startup_bench.sh) and the worker starts (0.1 ms
 // on idle cores, up to 2 ms under load). A 256x64 transmittance table is a
 // 13 ms bake: that alone held its 1 -> 2 thread speed-up to 1.15x
 // (docs/decisions.md "Threads: the serial parts of a bake").
