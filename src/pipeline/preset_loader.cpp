@@ -28,6 +28,7 @@
 #include "pipeline/preset_source.hpp"
 #include "pipeline/product_tables.hpp"
 #include "pipeline/schema_validator.hpp"
+#include "pipeline/table_conventions.hpp"
 
 namespace skybake {
 
@@ -337,6 +338,7 @@ Scene load_scene(const fs::path& file) {
   if (!broken.count("outputs"))
     for (size_t i = 0; i < outputs.size(); ++i) {
       if (broken.count("outputs/" + std::to_string(i))) continue;
+      apply_scene_convention(doc, outputs[i]);
       problems.collect([&] {
         scene.outputs.push_back(output_from(outputs[i], i, display, products, names,
                                             has_planet || has_atmosphere, doc.contains("clouds"),
