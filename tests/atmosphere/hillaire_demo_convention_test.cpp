@@ -231,6 +231,38 @@ TEST(DemoSkyview, HisReadIsSkybakesLookupEverywhere) {
   EXPECT_LT(worst, kBar);
 }
 
+// The cut-down twin of skyview_layout_accuracy_test.cpp: where the azimuth
+// limits (48 x 108, a ground viewer, the sun 2 degrees up), the half circle
+// reads the sky at least twice as close to its march as the full circle.
+TEST(DemoSkyview, HalfCircleBeatsFullCircleWhereTheAzimuthLimits) {
+  const Atmosphere atm = earth_atmosphere();
+  const fixtures::SkyLutInputs in = fixtures::bake_sky_lut_inputs(atm);
+  SkyviewLutSpec spec;
+  spec.width = 48;
+  spec.views = {{200.0, 88.0 * kDeg}};
+  const Texture full = bake_skyview_lut(atm, in.transmittance, in.multiscattering, spec, {});
+  spec.convention = TableConvention::hillaire_demo;
+  const Texture half = bake_skyview_lut(atm, in.transmittance, in.multiscattering, spec, {});
+  const double r = atm.bottom_radius_m + 200.0, zs = 88.0 * kDeg;
+  const glm::dvec3 sun(std::sin(zs), 0.0, std::cos(zs));
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double full_sq = 0.0, half_sq = 0.0;
+  for (int k = 0; k < 512; ++k) {
+    const SkyviewDirection d{0.9 * unit(rng), 2.0 * kPi * unit(rng)};  // the sky around the sun
+    const glm::dvec3 ref = integrate_scattered_luminance(
+        atm, in.transmittance, &in.multiscattering, {0, 0, r}, skyview_vector_from_direction(d),
+        sun, INFINITY, spec.steps, {StepDistribution::quadratic, false}).luminance;
+    const glm::dvec3 a = lookup_skyview(full, 0, atm, r, d) / ref - 1.0;
+    const glm::dvec3 b = lookup_demo_skyview(half, 0, atm, r, d) / ref - 1.0;
+    full_sq += glm::dot(a, a);
+    half_sq += glm::dot(b, b);
+  }
+  std::printf("sky-view 48x108, sun 2 deg up: RMS full circle %.3g, half circle %.3g\n",
+              std::sqrt(full_sq / 1536), std::sqrt(half_sq / 1536));
+  EXPECT_LT(4.0 * half_sq, full_sq);  // RMS at most half
+}
+
 AerialPerspectiveSpec demo_aerial_spec() {
   AerialPerspectiveSpec spec;
   spec.depth_range_m = 128e3;
