@@ -18,9 +18,6 @@ namespace {
 // His PLANET_RADIUS_OFFSET (0.01 km): the planet's-shadow sphere is raised
 // by it, and a viewer moved to the top is put that far inside.
 constexpr double kOffsetM = 10.0;
-// His march's sample position within a segment (SampleSegmentT).
-constexpr double kSegmentT = 0.3;
-
 // Nearest non-negative distance to a sphere, -1 when there is none (his
 // raySphereIntersectNearest).
 double sphere_nearest(glm::dvec3 origin, glm::dvec3 dir, glm::dvec3 centre, double radius) {
@@ -124,10 +121,10 @@ DemoMarchResult demo_integrate(const Atmosphere& atm, const DemoTables& tables,
       const double a = s / count_floor, b = (s + 1.0) / count_floor;
       const double t0 = t_max_floor * a * a;
       const double t1 = b * b > 1.0 ? t_max : t_max_floor * b * b;
-      t = t0 + (t1 - t0) * kSegmentT;
+      t = t0 + (t1 - t0) * march.segment_t;
       dt = t1 - t0;
     } else {
-      const double next = t_max * (s + kSegmentT) / count;
+      const double next = t_max * (s + march.segment_t) / count;
       dt = next - t;
       t = next;
     }

@@ -41,6 +41,7 @@ struct DemoMarch {
   double max_samples = 14.0;
   bool mie_ray_phase = true;    // the components' phases; false: isotropic
   bool lit_ground = false;      // his `ground`: the lit ground's albedo / pi at a ground hit
+  double segment_t = 0.3;       // where in its segment a sample sits (his SampleSegmentT)
 };
 
 struct DemoMarchResult {
