@@ -188,6 +188,11 @@ std::vector<PresetProblem> no_effect_warnings(const json& written, const Scene& 
                     "and cirrus do)");
   if (written.contains("atmosphere") && !read_by_an_output("atmosphere"))
     warn("/atmosphere", "no output reads the planet and atmosphere (the atmosphere tables do)");
+  if (written.contains("convention") &&
+      std::none_of(scene.outputs.begin(), scene.outputs.end(),
+                   [](const OutputSpec& o) { return takes_convention(o.product); }))
+    warn("/convention", "no output is a table it lays out (transmittance, multiscattering, "
+                        "skyview, aerial_perspective)");
   for (size_t i = 0; i < scene.outputs.size(); ++i) {
     const json& out = written["outputs"][i];
     const OutputSpec& spec = scene.outputs[i];

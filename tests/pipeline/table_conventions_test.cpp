@@ -71,5 +71,12 @@ TEST(TableConventions, SkybakesLayoutNamedOrNotIsTheSameOutput) {
   EXPECT_NE(a.find("transmittance")->input_hash, c.find("transmittance")->input_hash);
 }
 
+TEST(TableConventions, ASceneDefaultNoOutputTakesIsReportedAsWithoutEffect) {
+  const Scene scene = load_text(R"({ "product": "irradiance" })", "hillaire_demo");
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  EXPECT_EQ(scene.warnings[0].pointer, "/convention");
+  EXPECT_TRUE(load_text(kOutputs, "hillaire_demo").warnings.empty());
+}
+
 }  // namespace
 }  // namespace skybake
