@@ -78,5 +78,14 @@ TEST(TableConventions, ASceneDefaultNoOutputTakesIsReportedAsWithoutEffect) {
   EXPECT_TRUE(load_text(kOutputs, "hillaire_demo").warnings.empty());
 }
 
+TEST(TableConventions, TheShippedPresetForHisDemoAsksHisLayoutsOfEveryTable) {
+  const Scene scene = load_scene(test::source_path("presets/earth_hillaire_demo.json"));
+  ASSERT_EQ(scene.outputs.size(), 4u);
+  for (const OutputSpec& o : scene.outputs)
+    EXPECT_EQ(output_convention(o), TableConvention::hillaire_demo) << o.product;
+  EXPECT_TRUE(multiscattering_is_converged(*scene.find_output("multiscattering")));
+  EXPECT_TRUE(scene.warnings.empty());
+}
+
 }  // namespace
 }  // namespace skybake
