@@ -13,13 +13,17 @@
 // Each set is rendered by his ray march at his two sample-count settings
 // (RayMarchMinMaxSPP 30-31 and the demo's default 4-14), by the same march
 // at 2000 samples (the tables' share of the error without the march's own)
-// and by his sky-view read; also per camera altitude (worst channels). Views: cameras at 1 m and 10 km, suns 60, 10 and 2 degrees up,
+// and at both settings with each sample at its segment's midpoint
+// (SampleSegmentT 0.5 for his 0.3), and by his sky-view read; also per
+// camera altitude (worst channels). Views: cameras at 1 m and 10 km, suns 60, 10 and 2 degrees up,
 // view_elevations x view_azimuths directions each; statistics as in the
 // sky-radiance section (radiance_stats, sky_radiance.hpp).
 //
 // Targets (Earth): ray march at 30-31 with the converged tables below his own
 // tables' worst channel; at 4-14 no worse than his own + 0.5 points; his
-// sky-view read at most half of his own tables' figure.
+// sky-view read at most half of his own tables' figure; and the midpoint
+// march at 30-31 with the converged tables below his own tables in his
+// march as shipped.
 #pragma once
 
 #include <vector>

@@ -148,7 +148,7 @@ std::string hillaire_runtime_section(const nlohmann::json& h) {
       text(h["path_tracer"]["samples"]), text(h["path_tracer"]["max_bounces"]));
   s += header({"his runtime path", "his own tables", "skybake, paper Psi_ms",
                "skybake, converged Psi_ms"});
-  for (const char* m : {"march_30_31", "march_4_14", "march_2000", "march_30_31_midpoint", "skyview_lookup"}) {
+  for (const char* m : {"march_30_31", "march_4_14", "march_2000", "march_30_31_midpoint", "march_4_14_midpoint", "skyview_lookup"}) {
     std::vector<std::string> cells = {m};
     for (const char* set : {"his_tables", "skybake_paper", "skybake_converged"}) {
       std::string cell;
