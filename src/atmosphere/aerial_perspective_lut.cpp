@@ -54,6 +54,55 @@ FroxelView view_from_aerial_perspective_uvw(const AerialPerspectiveSpec& spec, g
   return {view_dir_from_screen_uv(spec.camera, {uvw.x, uvw.y}), uvw.z * spec.depth_range_m};
 }
 
+double aerial_perspective_slice_distance(const AerialPerspectiveSpec& spec, int k) {
+  if (spec.convention == TableConvention::hillaire_demo)
+    return demo_aerial_slice_distance(k, spec.depth, spec.depth_range_m);
+  return texel_center(k, spec.depth) * spec.depth_range_m;
+}
+
+namespace {
+
+// Hillaire's RenderCameraVolumePS: a froxel whose end point lies within
+// kDemoGroundOffsetM of the ground or below it is moved radially to
+// kDemoGroundOffsetM + kDemoGroundLiftM above the ground, and its path runs
+// straight from the camera to there (stopping at the ground should the
+// chord dip below it, as his march's tMax does). False when the froxel
+// stays where it is.
+bool demo_ground_froxel(const Atmosphere& atm, glm::dvec3 position, glm::dvec3 dir, double d,
+                        glm::dvec3& new_dir, double& new_d) {
+  const glm::dvec3 end = position + d * dir;
+  const double rb = atm.bottom_radius_m;
+  if (glm::length(end) > rb + kDemoGroundOffsetM) return false;
+  const glm::dvec3 moved = glm::normalize(end) * (rb + kDemoGroundOffsetM + kDemoGroundLiftM);
+  new_d = glm::length(moved - position);
+  new_dir = (moved - position) / new_d;
+  return true;
+}
+
+// One froxel column's luminance and transmittance at each slice distance.
+std::vector<ScatteringResult> froxel_column(const Atmosphere& atm, const Texture& transmittance_lut,
+                                            const Texture& multiscattering_lut,
+                                            const AerialPerspectiveSpec& spec,
+                                            glm::dvec3 position, glm::dvec3 dir,
+                                            glm::dvec3 sun_dir,
+                                            const std::vector<double>& distances) {
+  std::vector<ScatteringResult> profile = integrate_scattered_luminance_profile(
+      atm, transmittance_lut, &multiscattering_lut, position, dir, sun_dir, distances,
+      spec.steps_per_slice);
+  if (spec.convention != TableConvention::hillaire_demo) return profile;
+  for (size_t k = 0; k < distances.size(); ++k) {
+    glm::dvec3 moved_dir;
+    double moved_d = 0.0;
+    if (!demo_ground_froxel(atm, position, dir, distances[k], moved_dir, moved_d)) continue;
+    profile[k] = integrate_scattered_luminance(atm, transmittance_lut, &multiscattering_lut,
+                                               position, moved_dir, sun_dir, moved_d,
+                                               spec.steps_per_slice * int(k + 1));
+  }
+  return profile;
+}
+
+}  // namespace
+
 Texture bake_aerial_perspective_lut(const Atmosphere& atm, const Texture& transmittance_lut,
                                     const Texture& multiscattering_lut,
                                     const AerialPerspectiveSpec& spec, const BakeContext& ctx) {
@@ -64,8 +113,9 @@ Texture bake_aerial_perspective_lut(const Atmosphere& atm, const Texture& transm
                     spec.width, spec.height, spec.depth, spec.depth_range_m));
   Texture tex(spec.width, spec.height, spec.depth, 1, {"R", "G", "B", "A"});
   std::vector<double> distances(spec.depth);
-  for (int k = 0; k < spec.depth; ++k)
-    distances[k] = texel_center(k, spec.depth) * spec.depth_range_m;
+  for (int k = 0; k < spec.depth; ++k) distances[k] = aerial_perspective_slice_distance(spec, k);
+  // His A is the opacity, 1 - mean transmittance; skybake's the transmittance.
+  const bool opacity = spec.convention == TableConvention::hillaire_demo;
   const glm::dvec3 position(0.0, 0.0, atm.bottom_radius_m + std::max(spec.camera.altitude_m, 0.0));
   const glm::dvec3 sun_dir = sun_direction(spec.sun_zenith_rad, spec.sun_azimuth_rad);
   ProgressCounter progress(ctx, size_t(spec.height));
@@ -73,14 +123,14 @@ Texture bake_aerial_perspective_lut(const Atmosphere& atm, const Texture& transm
     for (int x = 0; x < spec.width; ++x) {
       const glm::dvec3 dir = view_dir_from_screen_uv(
           spec.camera, {texel_center(x, spec.width), texel_center(y, spec.height)});
-      const std::vector<ScatteringResult> profile = integrate_scattered_luminance_profile(
-          atm, transmittance_lut, &multiscattering_lut, position, dir, sun_dir, distances,
-          spec.steps_per_slice);
+      const std::vector<ScatteringResult> profile = froxel_column(
+          atm, transmittance_lut, multiscattering_lut, spec, position, dir, sun_dir, distances);
       for (int k = 0; k < spec.depth; ++k) {
         float* t = tex.texel(x, y, k);
         for (int c = 0; c < 3; ++c) t[c] = float(profile[k].luminance[c]);
         const glm::dvec3& tr = profile[k].transmittance;
-        t[3] = float((tr.x + tr.y + tr.z) / 3.0);
+        const double mean = (tr.x + tr.y + tr.z) / 3.0;
+        t[3] = float(opacity ? 1.0 - mean : mean);
       }
     }
     progress.tick();
@@ -94,6 +144,19 @@ Texture bake_aerial_perspective_lut(const Atmosphere& atm, const Texture& transm
   set_meta(m, "channels_meaning",
            std::string("RGB in-scattered luminance (units of "
                        "sun_illuminance), A mean RGB transmittance"));
+  if (opacity) {
+    // Hillaire's RenderCameraVolumePS and its read in RenderRayMarchingPS.
+    set_meta(m, "convention", std::string("hillaire_demo"));
+    set_meta(m, "w",
+             std::string("sqrt(distance along the view ray / depth_range_m), slice k at "
+                         "((k + 0.5) / depth)^2 * depth_range_m (squared)"));
+    set_meta(m, "channels_meaning",
+             std::string("RGB in-scattered luminance (units of sun_illuminance), A opacity "
+                         "= 1 - mean RGB transmittance"));
+    set_meta(m, "ground",
+             std::string("a froxel ending within 10 m of the ground or below it is moved "
+                         "radially to 11 m above the ground; its path runs straight there"));
+  }
   set_meta(m, "depth_range_m", spec.depth_range_m);
   set_meta(m, "steps_per_slice", spec.steps_per_slice);
   set_meta(m, "camera_altitude_m", spec.camera.altitude_m);

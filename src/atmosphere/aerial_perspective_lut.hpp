@@ -35,6 +35,7 @@
 #include <glm/glm.hpp>
 
 #include "atmosphere/medium.hpp"
+#include "atmosphere/table_convention.hpp"
 #include "core/bake_context.hpp"
 #include "core/math.hpp"
 #include "core/texture.hpp"
@@ -58,7 +59,14 @@ struct AerialPerspectiveSpec {
   SkyCamera camera;
   double sun_zenith_rad = kPi / 4;  // sun zenith angle, rad
   double sun_azimuth_rad = 0.0;     // sun azimuth in the camera's local frame, rad
+  // Slices, alpha and ground (table_convention.hpp): skybake's above, or
+  // hillaire_demo's squared slices over depth_range_m (his 128 km), A = 1 -
+  // mean transmittance, and froxels at or below the ground moved onto it.
+  TableConvention convention = TableConvention::skybake;
 };
+
+// The distance of slice k's froxels in a volume of `spec`.
+double aerial_perspective_slice_distance(const AerialPerspectiveSpec& spec, int k);
 
 // Camera basis in the local frame (z up).
 struct CameraBasis {

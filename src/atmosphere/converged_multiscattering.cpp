@@ -339,8 +339,7 @@ Texture converged_multiscattering_table(const Atmosphere& atm, const Texture& tr
   tbb::parallel_for(0, table.height, [&](int y) {
     for (int x = 0; x < table.width; ++x) {
       const RadiusSunCosine p = r_mu_s_from_multiscattering_uv(
-          atm, {texel_center(x, table.width), texel_center(y, table.height)}, table.width,
-          table.height, mapping);
+          atm, multiscattering_texel_uv(table, x, y), table.width, table.height, mapping);
       const glm::dvec3 psi =
           compute_converged_multiscattering(atm, transmittance_lut, field, p.r, p.mu_s, quadrature);
       float* t = tex.texel(x, y);
@@ -365,6 +364,7 @@ Texture converged_multiscattering_table(const Atmosphere& atm, const Texture& tr
   set_meta(m, "last_residual", field.last_residual);
   set_meta(m, "bands", spec.bands);
   set_meta(m, "estimator", std::string(psi_estimator_name(spec.estimator)));
+  set_multiscattering_convention_metadata(m, table.convention);
   return tex;
 }
 

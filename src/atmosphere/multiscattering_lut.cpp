@@ -315,7 +315,7 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
   std::vector<int> row_clamped(spec.height, 0);
   ProgressCounter progress(ctx, size_t(spec.height));
   tbb::parallel_for(0, spec.height, [&](int y) {
-    const double v = texel_center(y, spec.height);
+    const double v = multiscattering_texel_uv(spec, 0, y).y;
     // r is constant along a row: its texels share their marches and differ
     // in the sun only; symmetric_gauss splits at the row's own horizon.
     const double r = r_mu_s_from_multiscattering_uv(atm, {0.5, v}, spec.width, spec.height,
@@ -330,7 +330,8 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
     std::vector<double> mu_s(size_t(spec.width), 0.0);
     for (int x = 0; x < spec.width; ++x)
       mu_s[x] = clamp_cosine(r_mu_s_from_multiscattering_uv(
-                                 atm, {texel_center(x, spec.width), v}, spec.width, spec.height,
+                                 atm, {multiscattering_texel_uv(spec, x, y).x, v}, spec.width,
+                                 spec.height,
                                  mapping)
                                  .mu_s);
     std::vector<glm::dvec3> l2(size_t(spec.width), glm::dvec3(0.0));
@@ -373,7 +374,24 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
   set_meta(m, "fms_max", fms_max);
   set_meta(m, "fms_clamp", kMaxMultiscatteringTransfer);
   set_meta(m, "fms_clamped_texels", clamped);
+  set_multiscattering_convention_metadata(m, spec.convention);
   return tex;
+}
+
+TexelPlacement multiscattering_placement(TableConvention c) {
+  return c == TableConvention::hillaire_demo ? TexelPlacement::sub_uv : TexelPlacement::ends;
+}
+
+glm::dvec2 multiscattering_texel_uv(const MultiscatteringLutSpec& spec, int x, int y) {
+  const TexelPlacement p = multiscattering_placement(spec.convention);
+  return {skybake_coord_of_texel(p, x, spec.width), skybake_coord_of_texel(p, y, spec.height)};
+}
+
+void set_multiscattering_convention_metadata(Metadata& m, TableConvention c) {
+  if (c == TableConvention::skybake) return;
+  // Hillaire's GetMultipleScattering reads x at fromUnitToSubUvs(x, n).
+  set_meta(m, "convention", std::string(table_convention_name(c)));
+  set_meta(m, "texel_coord_from_unit", std::string("(x * n + 0.5) / (n + 1)"));
 }
 
 void set_multiscattering_axes_metadata(Metadata& m, const MultiscatteringMapping& mapping,

@@ -50,6 +50,7 @@
 
 #include "atmosphere/medium.hpp"
 #include "atmosphere/sphere_rule.hpp"
+#include "atmosphere/table_convention.hpp"
 #include "core/bake_context.hpp"
 #include "core/texture.hpp"
 #include "core/texture_sampling.hpp"
@@ -110,7 +111,20 @@ struct MultiscatteringLutSpec {
   SunMapping sun_mapping = SunMapping::linear;  // terminator: terminator_mapping(atm)
   AltitudeMapping altitude_mapping = AltitudeMapping::linear;
   DirectionQuadrature quadrature = DirectionQuadrature::fibonacci;
+  // Where the texels sit on x_mu_s and x_h (table_convention.hpp): skybake's
+  // texel_coord_from_unit, or hillaire_demo's sub-uv reads (linear mappings
+  // only).
+  TableConvention convention = TableConvention::skybake;
 };
+
+// The placement of a multiscattering table's texels on both axes.
+TexelPlacement multiscattering_placement(TableConvention c);
+// The texture coordinates (skybake's layout, r_mu_s_from_multiscattering_uv's
+// input) of the point texel (x, y) of a table of `spec` holds.
+glm::dvec2 multiscattering_texel_uv(const MultiscatteringLutSpec& spec, int x, int y);
+// Records the convention in a table's metadata (nothing for skybake's):
+// "convention" and the texel_coord_from_unit formula its u and v use.
+void set_multiscattering_convention_metadata(Metadata& m, TableConvention c);
 
 // The mapping a table of `spec` is baked with for `atm`.
 MultiscatteringMapping multiscattering_mapping(const MultiscatteringLutSpec& spec,

@@ -64,6 +64,16 @@ SkyviewDirection view_from_skyview_uv(const Atmosphere& atm, double r, glm::dvec
   return {std::cos(theta), wrap_azimuth(kTwoPi * uv.x)};
 }
 
+glm::dvec2 skyview_texel_uv(const Atmosphere&, double, const SkyviewLutSpec& spec, int x, int y) {
+  if (spec.convention == TableConvention::skybake)
+    return {texel_center(x, spec.width), texel_center(y, spec.height)};
+  // Hillaire's SkyViewLutParamsToUv: u = sqrt(0.5 - 0.5 cos phi) and the
+  // latitude's x, each read through fromUnitToSubUvs.
+  const double x_u = unit_of_texel(TexelPlacement::sub_uv, x, spec.width);
+  const double phi = std::acos(demo_skyview_cos_azimuth_from_unit(x_u));
+  return {phi / kTwoPi, skybake_coord_of_texel(TexelPlacement::sub_uv, y, spec.height)};
+}
+
 glm::dvec3 skyview_vector_from_direction(SkyviewDirection view) {
   const double sin_theta = safe_sqrt(1.0 - view.mu * view.mu);
   return {sin_theta * std::cos(view.azimuth_rad), sin_theta * std::sin(view.azimuth_rad),
@@ -114,20 +124,23 @@ Texture bake_skyview_lut(const Atmosphere& atm, const Texture& transmittance_lut
   tbb::parallel_for(0, int(radii.size()) * spec.height, [&](int task) {
     const int group = task / spec.height, y = task % spec.height;
     const double r = radii[group];
-    const double v = texel_center(y, spec.height);
+    const double v = skyview_texel_uv(atm, r, spec, 0, y).y;
     const double mu = view_from_skyview_uv(atm, r, {0.5, v}, spec.width, spec.height).mu;
     const SkyviewRowMarch row = march_skyview_row(atm, transmittance_lut, multiscattering_lut,
                                                   mapping, r, mu, spec.steps, spec.distribution);
     // The sky is symmetric about the sun's vertical plane (the medium varies
     // with altitude only): texel width - 1 - x sees the mirror image of
     // texel x, so half the row is marched and mirrored.
-    const int half = (spec.width + 1) / 2;
+    // Hillaire's half-circle layout holds each azimuth once: all of it.
+    const bool mirrored = spec.convention == TableConvention::skybake;
+    const int half = mirrored ? (spec.width + 1) / 2 : spec.width;
     // The row's view directions, the same for every layer at its radius.
     std::vector<double> cos_phi(size_t(half), 0.0), nu(size_t(half), 0.0);
     std::vector<glm::dvec3> view(static_cast<size_t>(half));
     for (int x = 0; x < half; ++x) {
       const SkyviewDirection d =
-          view_from_skyview_uv(atm, r, {texel_center(x, spec.width), v}, spec.width, spec.height);
+          view_from_skyview_uv(atm, r, {skyview_texel_uv(atm, r, spec, x, y).x, v}, spec.width,
+                               spec.height);
       view[x] = skyview_vector_from_direction(d);
       cos_phi[x] = std::cos(d.azimuth_rad);
     }
@@ -141,7 +154,7 @@ Texture bake_skyview_lut(const Atmosphere& atm, const Texture& transmittance_lut
                             nu.data(), half, cos_s, sin_s, luminance.data());
       for (int x = 0; x < half; ++x) {
         float* t = tex.texel(x, y, 0, layer);
-        float* mirror = tex.texel(spec.width - 1 - x, y, 0, layer);
+        float* mirror = mirrored ? tex.texel(spec.width - 1 - x, y, 0, layer) : t;
         for (int c = 0; c < 3; ++c) t[c] = mirror[c] = float(luminance[x][c]);
       }
       progress.tick();
@@ -158,6 +171,14 @@ Texture bake_skyview_lut(const Atmosphere& atm, const Texture& transmittance_lut
                        "0.5 + 0.5 sqrt(-l / beta); beta = atan2(Rb, sqrt(r^2 - Rb^2))"));
   set_meta(m, "texel_coord_from_unit", std::string("0.5 / n + x * (1 - 1 / n)"));
   set_meta(m, "orientation", std::string("row 0 = zenith, last row = nadir; sun at azimuth 0"));
+  if (spec.convention == TableConvention::hillaire_demo) {
+    // Hillaire's SkyViewLutParamsToUv (both axes through fromUnitToSubUvs).
+    set_meta(m, "convention", std::string("hillaire_demo"));
+    set_meta(m, "u",
+             std::string("texel_coord_from_unit(sqrt(0.5 - 0.5 cos(azimuth_from_sun_plane)), "
+                         "width), the half circle, the sun at 0; clamp"));
+    set_meta(m, "texel_coord_from_unit", std::string("(x * n + 0.5) / (n + 1)"));
+  }
   set_meta(m, "bottom_radius_m", atm.bottom_radius_m);
   set_meta(m, "top_radius_m", atm.top_radius_m);
   set_meta(m, "units", std::string("luminance, units of sun_illuminance; no sun disk"));

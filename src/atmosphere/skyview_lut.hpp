@@ -53,6 +53,7 @@
 
 #include "atmosphere/medium.hpp"
 #include "atmosphere/sky_integrator.hpp"
+#include "atmosphere/table_convention.hpp"
 #include "core/bake_context.hpp"
 #include "core/texture.hpp"
 
@@ -69,6 +70,10 @@ struct SkyviewLutSpec {
   int steps = 30;    // segments per ray
   StepDistribution distribution = StepDistribution::quadratic;
   std::vector<SkyviewView> views{SkyviewView{}};  // one layer each
+  // Texel layout (table_convention.hpp): skybake's full circle above, or
+  // hillaire_demo's half circle u = sqrt(0.5 - 0.5 cos phi) (the sun at
+  // u = 0) with both axes read through (x n + 0.5) / (n + 1).
+  TableConvention convention = TableConvention::skybake;
 };
 
 // A view direction in a layer's local frame.
@@ -82,6 +87,12 @@ glm::dvec2 skyview_uv_from_view(const Atmosphere& atm, double r, SkyviewDirectio
                                 int height);
 SkyviewDirection view_from_skyview_uv(const Atmosphere& atm, double r, glm::dvec2 uv, int width,
                                       int height);
+
+// The texture coordinates in skybake's layout (view_from_skyview_uv's
+// input) of the direction texel (x, y) of a table of `spec` holds; the
+// texel's own centre for skybake's convention.
+glm::dvec2 skyview_texel_uv(const Atmosphere& atm, double r, const SkyviewLutSpec& spec, int x,
+                            int y);
 
 // Unit view vector of a local-frame direction, and back (z up, sun at azimuth 0).
 glm::dvec3 skyview_vector_from_direction(SkyviewDirection view);

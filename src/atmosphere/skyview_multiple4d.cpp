@@ -36,9 +36,8 @@ Texture bake_skyview_lut_multiple4d(const Atmosphere& atm, const Texture& transm
     const SkyviewView& v = spec.views[size_t(layer)];
     const double r = atm.bottom_radius_m + std::max(v.altitude_m, 0.0);
     for (int x = 0; x < spec.width; ++x) {
-      const SkyviewDirection d =
-          view_from_skyview_uv(atm, r, {texel_center(x, spec.width), texel_center(y, spec.height)},
-                               spec.width, spec.height);
+      const SkyviewDirection d = view_from_skyview_uv(
+          atm, r, skyview_texel_uv(atm, r, spec, x, y), spec.width, spec.height);
       const glm::dvec3 m = lookup_field_multiple_scattering(atm, field, r, d, v.sun_zenith_rad);
       float* t = tex.texel(x, y, 0, layer);
       for (int c = 0; c < 3; ++c) t[c] = float(double(t[c]) + m[c]);

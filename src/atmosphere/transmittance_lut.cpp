@@ -326,6 +326,19 @@ void set_transmittance_metadata(Metadata& meta, const Atmosphere& atm,
            std::string("x_mu = (u - 0.5/W)/(1 - 1/W), x_r = (v - 0.5/Ht)/(1 - 1/Ht), "
                        "rho = H*x_r, r = sqrt(rho^2 + Rb^2), d = d_min + x_mu*(d_max - d_min), "
                        "mu = (d == 0) ? 1 : (H^2 - rho^2 - d^2)/(2*r*d)"));
+  if (spec.convention == TableConvention::hillaire_demo) {
+    // Hillaire's LutTransmittanceParamsToUv reads u = x_mu, v = x_r directly.
+    set_meta(meta, "convention", std::string("hillaire_demo"));
+    set_meta(meta, "mapping",
+             std::string("Rb = bottom_radius_m, Rt = top_radius_m, H = sqrt(Rt^2 - Rb^2), "
+                         "rho = sqrt(r^2 - Rb^2), d = -r*mu + sqrt(r^2*(mu^2 - 1) + Rt^2), "
+                         "d_min = Rt - r, d_max = rho + H, x_mu = (d - d_min)/(d_max - d_min), "
+                         "x_r = rho/H, u = x_mu, v = x_r (texel i holds x = (i + 0.5)/n)"));
+    set_meta(meta, "inverse_mapping",
+             std::string("x_mu = u, x_r = v, rho = H*x_r, r = sqrt(rho^2 + Rb^2), "
+                         "d = d_min + x_mu*(d_max - d_min), "
+                         "mu = (d == 0) ? 1 : (H^2 - rho^2 - d^2)/(2*r*d)"));
+  }
   set_meta(meta, "domain",
            std::string("rays that do not hit the ground, mu >= -sqrt(1 - Rb^2/r^2); for a ray "
                        "toward the ground from p to q use T(q, -mu_q)/T(p, -mu) "
@@ -335,6 +348,10 @@ void set_transmittance_metadata(Metadata& meta, const Atmosphere& atm,
 }  // namespace
 
 // ---- Mapping ----
+
+TexelPlacement transmittance_placement(TableConvention c) {
+  return c == TableConvention::hillaire_demo ? TexelPlacement::centres : TexelPlacement::ends;
+}
 
 glm::dvec2 transmittance_uv_from_r_mu(const Atmosphere& atm, double r, double mu, int width,
                                       int height) {
@@ -441,6 +458,7 @@ Texture bake_transmittance_lut(const Atmosphere& atm, const TransmittanceLutSpec
         spec.width, spec.height, spec.steps));
   Texture tex(spec.width, spec.height, 1, 1, {"R", "G", "B"});
   set_transmittance_metadata(tex.metadata, atm, spec);
+  const TexelPlacement place = transmittance_placement(spec.convention);
   const RayQuadrature shared(atm, true);
   ProgressCounter progress(ctx, size_t(spec.height));
   tbb::parallel_for(
@@ -448,9 +466,11 @@ Texture bake_transmittance_lut(const Atmosphere& atm, const TransmittanceLutSpec
         RayQuadrature q = shared;  // scratch arrays of this task
         for (int y = rows.begin(); y != rows.end(); ++y) {
           const TransmittanceRow row =
-              transmittance_row(atm, texel_center(y, spec.height), spec.height);
+              transmittance_row(atm, skybake_coord_of_texel(place, y, spec.height), spec.height);
           for (int x = 0; x < spec.width; ++x) {
-            const double r = row.r, mu = transmittance_mu(row, texel_center(x, spec.width), spec.width);
+            const double r = row.r,
+                         mu = transmittance_mu(row, skybake_coord_of_texel(place, x, spec.width),
+                                               spec.width);
             const double d = distance_to_top_boundary(atm.top_radius_m, r, mu);
             const glm::dvec3 T = transmittance_from_optical_depth(
                 integrate_optical_depth(atm, q, r, mu, d, spec.steps, SegmentRule::gauss8));

@@ -32,6 +32,7 @@
 #include "atmosphere/extinction_profile.hpp"
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/medium.hpp"
+#include "atmosphere/table_convention.hpp"
 #include "core/bake_context.hpp"
 #include "core/texture.hpp"
 #include "core/texture_sampling.hpp"
@@ -42,7 +43,14 @@ struct TransmittanceLutSpec {
   int width = 256;  // texels along mu (u)
   int height = 64;  // texels along r (v)
   int steps = 6;    // quadrature segments per ray (8-point Gauss-Legendre each), >= 1
+  // Where the texels sit on x_mu and x_r (table_convention.hpp): skybake's
+  // mapping above, or hillaire_demo's texel i at x = (i + 0.5) / n, read at
+  // u = x_mu, v = x_r.
+  TableConvention convention = TableConvention::skybake;
 };
+
+// The placement of a transmittance table's texels on x_mu and x_r.
+TexelPlacement transmittance_placement(TableConvention c);
 
 // The rule of compute_optical_depth. gauss3: every component sampled with
 // 3-point Gauss-Legendre segments (the reference integrations' rule, 6th

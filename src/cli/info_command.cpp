@@ -36,6 +36,18 @@ nlohmann::json channel_stats(const Texture& tex) {
   return stats;
 }
 
+// The texel layout of a Hillaire-family table (atmosphere/table_convention.hpp):
+// its "convention", skybake's when it records none; empty for other files.
+std::string table_convention_text(const Texture& tex) {
+  if (!tex.metadata.count("product")) return "";
+  const std::string product = meta_string(tex.metadata, "product");
+  for (const char* p : {"transmittance", "multiscattering", "skyview", "aerial_perspective"})
+    if (product == p)
+      return tex.metadata.count("convention") ? meta_string(tex.metadata, "convention")
+                                              : std::string("skybake");
+  return "";
+}
+
 }  // namespace
 
 int run_info(const InfoArgs& args) {
@@ -46,6 +58,7 @@ int run_info(const InfoArgs& args) {
     const Texture& tex = loaded.texture;
     const nlohmann::json stats = channel_stats(tex);
     const nlohmann::json meta = metadata_to_json(tex.metadata);
+    const std::string convention = table_convention_text(tex);
     all.push_back({{"file", file},
                    {"format", loaded.format},
                    {"encoding", loaded.encoding},
@@ -57,12 +70,14 @@ int run_info(const InfoArgs& args) {
                    {"channels", stats},
                    {"metadata", meta},
                    {"details", loaded.details}});
+    if (!convention.empty()) all.back()["convention"] = convention;
     if (args.json) continue;
     std::printf("%s\n  format    %s (%s)\n  shape     %s (width x height%s%s), %d mip level%s\n",
                 file.c_str(), loaded.format.c_str(), loaded.encoding.c_str(),
                 tex.shape_string().c_str(), tex.depth > 1 ? " x depth" : "",
                 tex.layers > 1 ? " [layers]" : "", loaded.mip_levels,
                 loaded.mip_levels == 1 ? "" : "s");
+    if (!convention.empty()) std::printf("  convention %s\n", convention.c_str());
     std::printf("  channels\n");
     for (const auto& s : stats)
       std::printf("    %-8s min %-12.6g max %-12.6g mean %.6g\n",

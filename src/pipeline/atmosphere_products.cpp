@@ -15,6 +15,7 @@
 #include "pipeline/product_options.hpp"
 #include "pipeline/product_tables.hpp"
 #include "pipeline/runtime_metadata.hpp"
+#include "pipeline/table_conventions.hpp"
 
 namespace skybake {
 
@@ -62,6 +63,7 @@ TransmittanceLutSpec transmittance_spec(const OutputSpec& spec) {
   lut.width = spec.size.at(0);
   lut.height = spec.size.at(1);
   lut.steps = option_int(spec, "steps", lut.steps);
+  lut.convention = output_convention(spec);
   return lut;
 }
 
@@ -77,6 +79,7 @@ MultiscatteringLutSpec multiscattering_spec(const OutputSpec& spec) {
     lut.altitude_mapping = AltitudeMapping::quadratic;
   if (spec.options.value("direction_quadrature", std::string("fibonacci")) == "symmetric_gauss")
     lut.quadrature = DirectionQuadrature::symmetric_gauss;
+  lut.convention = output_convention(spec);
   return lut;
 }
 
@@ -118,6 +121,7 @@ SkyviewLutSpec skyview_spec(const OutputSpec& spec) {
   } else {
     lut.views = default_skyview_views();
   }
+  lut.convention = output_convention(spec);
   return lut;
 }
 
@@ -137,6 +141,7 @@ AerialPerspectiveSpec aerial_perspective_spec(const OutputSpec& spec) {
   const nlohmann::json sun = spec.options.value("sun", nlohmann::json::object());
   lut.sun_zenith_rad = json_number(sun, "zenith_deg", 45.0) * kDeg;
   lut.sun_azimuth_rad = json_number(sun, "azimuth_deg", 0.0) * kDeg;
+  lut.convention = output_convention(spec);
   return lut;
 }
 

@@ -20,6 +20,7 @@
 #include "pipeline/output_writer.hpp"
 #include "pipeline/product_graph.hpp"
 #include "pipeline/runtime_metadata.hpp"
+#include "pipeline/table_conventions.hpp"
 #include "pipeline/warnings.hpp"
 
 namespace fs = std::filesystem;
@@ -111,6 +112,7 @@ class SceneBake {
     needed_.assign(n, 0);
     reasons_.assign(n, "");
     textures_.resize(n);
+    twins_.resize(n);
     freshness_.resize(n);
     for (size_t i = 0; i < n; ++i) {
       const GraphNode& node = graph_.nodes[i];
@@ -153,10 +155,16 @@ class SceneBake {
   }
 
   // A dependency the scene writes and that is current on disk is read back
-  // (also under --only, where it is not requested in this run).
+  // (also under --only, where it is not requested in this run); one written
+  // in another convention than skybake's is baked again in skybake's layout
+  // for its dependents instead.
   bool read_back(size_t i) {
     const GraphNode& node = graph_.nodes[i];
     if (stale_[i] || !scene_.find_output(node.info->name) || !freshness(i).current) return false;
+    if (output_convention(node.spec) != TableConvention::skybake) {
+      twins_[i] = node.info->bake(scene_, skybake_layout_twin(node.spec), inputs_of(node), {});
+      return true;
+    }
     textures_[i] = read_lossless_output(before_.entries.at(node.spec.name), summary_.scene_dir);
     if (textures_[i]) summary_.loaded.push_back(node.info->name);
     return textures_[i].has_value();
@@ -181,11 +189,21 @@ class SceneBake {
     set_meta(tex.metadata, "preset", scene_.file.filename().string());
     add_runtime_metadata(scene_, *node.info, tex);
     summary_.computed.push_back(node.info->name);
+    // The bakers that read a table read it in skybake's layout.
+    if (output_convention(node.spec) != TableConvention::skybake && has_dependents(i))
+      twins_[i] = node.info->bake(scene_, skybake_layout_twin(node.spec), inputs, {});
+  }
+
+  bool has_dependents(size_t i) const {
+    for (const GraphNode& other : graph_.nodes)
+      if (std::find(other.deps.begin(), other.deps.end(), i) != other.deps.end()) return true;
+    return false;
   }
 
   ProductInputs inputs_of(const GraphNode& node) const {
     ProductInputs inputs;
-    for (size_t d : node.deps) inputs[graph_.nodes[d].info->name] = &*textures_[d];
+    for (size_t d : node.deps)
+      inputs[graph_.nodes[d].info->name] = twins_[d] ? &*twins_[d] : &*textures_[d];
     return inputs;
   }
 
@@ -198,7 +216,8 @@ class SceneBake {
     OutputRecord rec{node.info->name, "baked", reasons_[i],
                      make_entry(node, tex, std::move(files), bake_seconds_)};
     const auto t_measure = Clock::now();
-    if (node.info->measure_error)
+    // Error records are measured on tables in skybake's layout.
+    if (node.info->measure_error && output_convention(node.spec) == TableConvention::skybake)
       rec.entry.error = node.info->measure_error(scene_, node.spec, inputs_of(node), tex);
     if (node.info->tileable) rec.entry.tiling = tiling_record(tex);
     rec.entry.error_seconds = seconds_since(t_measure);
@@ -272,6 +291,7 @@ class SceneBake {
   std::vector<char> stale_, needed_;
   std::vector<std::string> reasons_;
   std::vector<std::optional<Texture>> textures_;
+  std::vector<std::optional<Texture>> twins_;  // skybake's layout of an output in another
   std::vector<std::optional<Freshness>> freshness_;
   BakeLog log_;
   std::set<std::string> log_touched_;  // entries this bake changed

@@ -16,6 +16,7 @@
 #include "pipeline/preset_loader.hpp"
 #include "pipeline/product_tables.hpp"
 #include "pipeline/schema_validator.hpp"
+#include "pipeline/table_conventions.hpp"
 
 namespace skybake::preset {
 
@@ -274,6 +275,7 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
   check_formats(out, *info, spec, src, problems);
   spec.precision = out.value("precision", std::string("float"));
   spec.options = out;
+  normalize_convention(spec);
   for (const ProductProblem& problem : dds_output_problems(spec, *info))
     problems.add(src, problem.pointer, problem.rule);
   for (const ProductProblem& problem : ktx2_output_problems(spec, *info))
@@ -284,6 +286,9 @@ OutputSpec output_from(json& out, size_t index, const std::string& file,
   // than two voxels), checked before anything is allocated.
   if (info->check && options_ok && size_ok)
     for (const ProductProblem& problem : info->check(spec))
+      problems.add(src, problem.pointer, problem.rule);
+  if (options_ok && size_ok)
+    for (const ProductProblem& problem : convention_problems(spec))
       problems.add(src, problem.pointer, problem.rule);
   return spec;
 }

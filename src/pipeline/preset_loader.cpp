@@ -28,6 +28,7 @@
 #include "pipeline/preset_source.hpp"
 #include "pipeline/product_tables.hpp"
 #include "pipeline/schema_validator.hpp"
+#include "pipeline/table_conventions.hpp"
 
 namespace skybake {
 
@@ -187,6 +188,11 @@ std::vector<PresetProblem> no_effect_warnings(const json& written, const Scene& 
                     "and cirrus do)");
   if (written.contains("atmosphere") && !read_by_an_output("atmosphere"))
     warn("/atmosphere", "no output reads the planet and atmosphere (the atmosphere tables do)");
+  if (written.contains("convention") &&
+      std::none_of(scene.outputs.begin(), scene.outputs.end(),
+                   [](const OutputSpec& o) { return takes_convention(o.product); }))
+    warn("/convention", "no output is a table it lays out (transmittance, multiscattering, "
+                        "skyview, aerial_perspective)");
   for (size_t i = 0; i < scene.outputs.size(); ++i) {
     const json& out = written["outputs"][i];
     const OutputSpec& spec = scene.outputs[i];
@@ -337,6 +343,7 @@ Scene load_scene(const fs::path& file) {
   if (!broken.count("outputs"))
     for (size_t i = 0; i < outputs.size(); ++i) {
       if (broken.count("outputs/" + std::to_string(i))) continue;
+      apply_scene_convention(doc, outputs[i]);
       problems.collect([&] {
         scene.outputs.push_back(output_from(outputs[i], i, display, products, names,
                                             has_planet || has_atmosphere, doc.contains("clouds"),

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "atmosphere/table_convention.hpp"
 #include "core/error.hpp"
 
 namespace skybake {
@@ -61,6 +62,10 @@ void add_runtime_metadata(const Scene& scene, const ProductInfo& product, Textur
   set_meta(tex.metadata, "filter", s.filter);
   const char* names[3] = {"wrap_u", "wrap_v", "wrap_w"};
   for (size_t a = 0; a < axes; ++a) set_meta(tex.metadata, names[a], s.wrap[a]);
+  // Hillaire's demo samples every table with clamp to edge (samplerLinearClamp):
+  // its sky-view azimuth runs over the half circle and does not wrap.
+  if (table_convention_of(tex) == TableConvention::hillaire_demo)
+    for (size_t a = 0; a < axes; ++a) set_meta(tex.metadata, names[a], std::string("clamp"));
   if (!product.atmosphere_table) return;
   set_meta(tex.metadata, "solar_irradiance", scene.atmosphere.sun_illuminance);
   if (product.reads_mie_phase) set_mie_phase_metadata(scene.atmosphere, tex.metadata);

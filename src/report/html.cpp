@@ -133,6 +133,41 @@ std::string target_paragraph(const std::string& model, const nlohmann::json& tar
       status, pct(target["rel_rmse"]), pct(target["rel_rmse_denoised"]));
 }
 
+// Hillaire's demo run-time with each set of tables (hillaire_runtime.hpp):
+// worst-channel and per-channel denoised rel RMSE against the path tracer.
+std::string hillaire_runtime_section(const nlohmann::json& h) {
+  std::string s =
+      "<h2 id=\"hillaire\">Hillaire's runtime with skybake's tables</h2>\n";
+  if (h.is_null()) return s + "<p>Not run (skyview was not selected).</p>\n";
+  s += fmt::format(
+      "<p>His ray march and sky-view read (transcribed), cameras at {} m, suns {} deg up, "
+      "views at {} deg x {} azimuths ({} views); path tracer {} paths, up to {} bounces. Rel "
+      "RMSE without the reference noise, R / G / B.</p>\n<table>\n",
+      text(h["camera_altitudes_m"]), text(h["sun_elevations_deg"]),
+      text(h["view_elevations_deg"]), text(h["view_azimuths"]), text(h["views"]),
+      text(h["path_tracer"]["samples"]), text(h["path_tracer"]["max_bounces"]));
+  s += header({"his runtime path", "his own tables", "skybake, paper Psi_ms",
+               "skybake, converged Psi_ms"});
+  for (const char* m : {"march_30_31", "march_4_14", "march_2000", "march_30_31_midpoint", "march_4_14_midpoint", "skyview_lookup"}) {
+    std::vector<std::string> cells = {m};
+    for (const char* set : {"his_tables", "skybake_paper", "skybake_converged"}) {
+      std::string cell;
+      for (const auto& c : h[m][set]["channels"])
+        cell += (cell.empty() ? "" : " / ") + pct(c["rel_rmse_denoised"]);
+      cells.push_back(cell);
+    }
+    s += row(cells, "");
+  }
+  s += "</table>\n";
+  for (const auto& t : h["targets"]) {
+    const std::string status = t["status"];
+    s += fmt::format("<p>Target ({}): <span class=\"{}\">{}</span>, {} against {}.</p>\n",
+                     text(t["what"]), status == "met" ? "met" : "notmet", status, pct(t["value"]),
+                     pct(t["limit"]));
+  }
+  return s;
+}
+
 std::string sky_section(const nlohmann::json& sky) {
   std::string s = "<h2 id=\"sky\">Sky radiance: LUTs against the path tracer</h2>\n";
   if (sky.is_null()) return s + "<p>Not run (neither skyview nor scattering was selected).</p>\n";
@@ -281,6 +316,7 @@ std::string report_html(const nlohmann::json& report) {
   for (const auto& p : report["products"])
     if (p["kind"] == "lut") s += product_section(p);
   s += sky_section(report["sky_radiance"]);
+  s += hillaire_runtime_section(report["hillaire_runtime"]);
   s += precision_section(report["precision"]);
   s += bruneton_section(report["bruneton_comparison"]);
   if (report["files"].contains("preview"))

@@ -144,6 +144,7 @@ ReportResult run_report(const Scene& scene, const ReportOptions& options) {
       {"level_settings", settings},
       {"products", nlohmann::json::array()},
       {"sky_radiance", nullptr},
+      {"hillaire_runtime", nullptr},
       {"precision", {{"horizon_transmittance", nullptr}, {"half", nlohmann::json::array()}}},
       {"bruneton_comparison", nullptr},
       {"files", {{"json", "report.json"}, {"html", "report.html"}}}};

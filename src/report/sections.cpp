@@ -5,6 +5,7 @@
 #include "report/aerial_perspective.hpp"
 #include "report/bruneton.hpp"
 #include "report/gathering_sum.hpp"
+#include "report/hillaire_runtime.hpp"
 #include "report/irradiance.hpp"
 #include "report/multiscattering.hpp"
 #include "report/precision.hpp"
@@ -55,6 +56,10 @@ const std::vector<ReportSection>& report_sections() {
       // The sky as an engine renders it from either family of tables.
       make_section("sky_radiance", {"skyview", "scattering"}, "/sky_radiance",
                    SkyRadianceSetup::quick(), SkyRadianceSetup::full(), sky_radiance_report),
+      // Hillaire's demo run-time reading skybake's tables in his layout.
+      make_section("hillaire_runtime", {"skyview"}, "/hillaire_runtime",
+                   HillaireRuntimeSetup::quick(), HillaireRuntimeSetup::full(),
+                   hillaire_runtime_report),
       make_section("horizon_transmittance", {"transmittance"}, "/precision/horizon_transmittance",
                    horizon_transmittance_report),
       make_section("bruneton_comparison", {}, "/bruneton_comparison", BrunetonSetup::quick(),
