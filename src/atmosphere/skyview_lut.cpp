@@ -95,72 +95,73 @@ SkyviewDirection skyview_direction_from_vectors(glm::dvec3 up, glm::dvec3 view_d
   return {mu, wrap_azimuth(std::atan2(glm::dot(view_h, side), glm::dot(view_h, forward)))};
 }
 
-Texture bake_skyview_lut(const Atmosphere& atm, const Texture& transmittance_lut,
-                         const Texture& multiscattering_lut, const SkyviewLutSpec& spec,
-                         const BakeContext& ctx) {
-  if (spec.width < 1 || spec.height < 2 || spec.views.empty())
-    throw Error(
-        fmt::format("skyview: expected a size of at least 1x2 and one view, got {}x{} "
-                    "and {} views",
-                    spec.width, spec.height, spec.views.size()));
-  const int layers = int(spec.views.size());
-  Texture tex(spec.width, spec.height, 1, layers, {"R", "G", "B"});
-  // Layers grouped by viewer radius: a row's march is shared by the layers
-  // at its radius (skyview_row_march.hpp).
+namespace {
+
+// The views' layers grouped by viewer radius: a row's march is shared by the
+// layers at its radius (skyview_row_march.hpp).
+struct LayersByRadius {
   std::vector<double> radii;
   std::vector<std::vector<int>> layers_at;
-  for (int layer = 0; layer < layers; ++layer) {
+};
+
+LayersByRadius group_layers_by_radius(const Atmosphere& atm, const SkyviewLutSpec& spec) {
+  LayersByRadius g;
+  for (int layer = 0; layer < int(spec.views.size()); ++layer) {
     const double r = atm.bottom_radius_m + std::max(spec.views[layer].altitude_m, 0.0);
-    const auto it = std::find(radii.begin(), radii.end(), r);
-    if (it == radii.end()) {
-      radii.push_back(r);
-      layers_at.push_back({layer});
+    const auto it = std::find(g.radii.begin(), g.radii.end(), r);
+    if (it == g.radii.end()) {
+      g.radii.push_back(r);
+      g.layers_at.push_back({layer});
     } else {
-      layers_at[size_t(it - radii.begin())].push_back(layer);
+      g.layers_at[size_t(it - g.radii.begin())].push_back(layer);
     }
   }
-  const MultiscatteringMapping mapping = multiscattering_mapping_of(multiscattering_lut);
-  ProgressCounter progress(ctx, size_t(layers) * spec.height);
-  tbb::parallel_for(0, int(radii.size()) * spec.height, [&](int task) {
-    const int group = task / spec.height, y = task % spec.height;
-    const double r = radii[group];
-    const double v = skyview_texel_uv(atm, r, spec, 0, y).y;
-    const double mu = view_from_skyview_uv(atm, r, {0.5, v}, spec.width, spec.height).mu;
-    const SkyviewRowMarch row = march_skyview_row(atm, transmittance_lut, multiscattering_lut,
-                                                  mapping, r, mu, spec.steps, spec.distribution);
-    // The sky is symmetric about the sun's vertical plane (the medium varies
-    // with altitude only): texel width - 1 - x sees the mirror image of
-    // texel x, so half the row is marched and mirrored.
-    // Hillaire's half-circle layout holds each azimuth once: all of it.
-    const bool mirrored = spec.convention == TableConvention::skybake;
-    const int half = mirrored ? (spec.width + 1) / 2 : spec.width;
-    // The row's view directions, the same for every layer at its radius.
-    std::vector<double> cos_phi(size_t(half), 0.0), nu(size_t(half), 0.0);
-    std::vector<glm::dvec3> view(static_cast<size_t>(half));
+  return g;
+}
+
+// Row y of every layer in `layers` (all at radius r): one march, then each
+// layer's sun.
+void bake_skyview_row(const Atmosphere& atm, const Texture& transmittance_lut,
+                      const Texture& multiscattering_lut, const MultiscatteringMapping& mapping,
+                      const SkyviewLutSpec& spec, double r, int y, const std::vector<int>& layers,
+                      Texture& tex, ProgressCounter& progress) {
+  const double v = skyview_texel_uv(atm, r, spec, 0, y).y;
+  const double mu = view_from_skyview_uv(atm, r, {0.5, v}, spec.width, spec.height).mu;
+  const SkyviewRowMarch row = march_skyview_row(atm, transmittance_lut, multiscattering_lut,
+                                                mapping, r, mu, spec.steps, spec.distribution);
+  // The sky is symmetric about the sun's vertical plane (the medium varies
+  // with altitude only): texel width - 1 - x sees the mirror image of
+  // texel x, so half the row is marched and mirrored.
+  // Hillaire's half-circle layout holds each azimuth once: all of it.
+  const bool mirrored = spec.convention == TableConvention::skybake;
+  const int half = mirrored ? (spec.width + 1) / 2 : spec.width;
+  // The row's view directions, the same for every layer at its radius.
+  std::vector<double> cos_phi(size_t(half), 0.0), nu(size_t(half), 0.0);
+  std::vector<glm::dvec3> view(static_cast<size_t>(half));
+  for (int x = 0; x < half; ++x) {
+    const SkyviewDirection d = view_from_skyview_uv(
+        atm, r, {skyview_texel_uv(atm, r, spec, x, y).x, v}, spec.width, spec.height);
+    view[x] = skyview_vector_from_direction(d);
+    cos_phi[x] = std::cos(d.azimuth_rad);
+  }
+  std::vector<glm::dvec3> luminance(static_cast<size_t>(half));
+  for (int layer : layers) {
+    const double sun_zenith = spec.views[layer].sun_zenith_rad;
+    const double cos_s = std::cos(sun_zenith), sin_s = std::sin(sun_zenith);
+    const glm::dvec3 sun_dir(sin_s, 0.0, cos_s);
+    for (int x = 0; x < half; ++x) nu[x] = clamp_cosine(glm::dot(view[x], sun_dir));
+    skyview_row_luminance(row, atm, transmittance_lut, multiscattering_lut, cos_phi.data(),
+                          nu.data(), half, cos_s, sin_s, luminance.data());
     for (int x = 0; x < half; ++x) {
-      const SkyviewDirection d =
-          view_from_skyview_uv(atm, r, {skyview_texel_uv(atm, r, spec, x, y).x, v}, spec.width,
-                               spec.height);
-      view[x] = skyview_vector_from_direction(d);
-      cos_phi[x] = std::cos(d.azimuth_rad);
+      float* t = tex.texel(x, y, 0, layer);
+      float* mirror = mirrored ? tex.texel(spec.width - 1 - x, y, 0, layer) : t;
+      for (int c = 0; c < 3; ++c) t[c] = mirror[c] = float(luminance[x][c]);
     }
-    std::vector<glm::dvec3> luminance(static_cast<size_t>(half));
-    for (int layer : layers_at[group]) {
-      const double sun_zenith = spec.views[layer].sun_zenith_rad;
-      const double cos_s = std::cos(sun_zenith), sin_s = std::sin(sun_zenith);
-      const glm::dvec3 sun_dir(sin_s, 0.0, cos_s);
-      for (int x = 0; x < half; ++x) nu[x] = clamp_cosine(glm::dot(view[x], sun_dir));
-      skyview_row_luminance(row, atm, transmittance_lut, multiscattering_lut, cos_phi.data(),
-                            nu.data(), half, cos_s, sin_s, luminance.data());
-      for (int x = 0; x < half; ++x) {
-        float* t = tex.texel(x, y, 0, layer);
-        float* mirror = mirrored ? tex.texel(spec.width - 1 - x, y, 0, layer) : t;
-        for (int c = 0; c < 3; ++c) t[c] = mirror[c] = float(luminance[x][c]);
-      }
-      progress.tick();
-    }
-  });
-  Metadata& m = tex.metadata;
+    progress.tick();
+  }
+}
+
+void set_skyview_metadata(const Atmosphere& atm, const SkyviewLutSpec& spec, Metadata& m) {
   set_meta(m, "parameterization", std::string("hillaire2020_skyview"));
   set_meta(m, "u",
            std::string("azimuth_from_sun_plane_rad / (2 pi), texel i at 2 pi (i + 0.5) / "
@@ -191,6 +192,29 @@ Texture bake_skyview_lut(const Atmosphere& atm, const Texture& transmittance_lut
     set_meta(m, fmt::format("layer.{}.altitude_m", i), spec.views[i].altitude_m);
     set_meta(m, fmt::format("layer.{}.sun_zenith_rad", i), spec.views[i].sun_zenith_rad);
   }
+}
+
+}  // namespace
+
+Texture bake_skyview_lut(const Atmosphere& atm, const Texture& transmittance_lut,
+                         const Texture& multiscattering_lut, const SkyviewLutSpec& spec,
+                         const BakeContext& ctx) {
+  if (spec.width < 1 || spec.height < 2 || spec.views.empty())
+    throw Error(
+        fmt::format("skyview: expected a size of at least 1x2 and one view, got {}x{} "
+                    "and {} views",
+                    spec.width, spec.height, spec.views.size()));
+  const int layers = int(spec.views.size());
+  Texture tex(spec.width, spec.height, 1, layers, {"R", "G", "B"});
+  const LayersByRadius groups = group_layers_by_radius(atm, spec);
+  const MultiscatteringMapping mapping = multiscattering_mapping_of(multiscattering_lut);
+  ProgressCounter progress(ctx, size_t(layers) * spec.height);
+  tbb::parallel_for(0, int(groups.radii.size()) * spec.height, [&](int task) {
+    const int group = task / spec.height, y = task % spec.height;
+    bake_skyview_row(atm, transmittance_lut, multiscattering_lut, mapping, spec,
+                     groups.radii[group], y, groups.layers_at[group], tex, progress);
+  });
+  set_skyview_metadata(atm, spec, tex.metadata);
   return tex;
 }
 
