@@ -7,6 +7,8 @@
 #include <cmath>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "atmosphere/converged_multiscattering.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/sky_integrator.hpp"
@@ -86,6 +88,16 @@ inline ModelErrors model_errors(const Atmosphere& atm, const Views& views, bool 
   e.relative =
       sky_error(atm, t, converged_multiscattering_table(atm, t, table, spec, field, {}), views);
   return e;
+}
+
+// Earth over the report's own 72 views (8 azimuths from the sun's, camera at
+// 200 m), `paths` paths a view: the relative estimator within 2 %, worst
+// channel, and at most half of Hillaire's table's error.
+inline void expect_earth_within_two_percent(int paths) {
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const ModelErrors e = model_errors(atm, trace_views(atm, 200.0, paths, 8, 0.0), false);
+  EXPECT_LT(e.relative, 0.02) << "mean " << e.mean << ", Hillaire " << e.hillaire;
+  EXPECT_LT(e.relative, 0.5 * e.hillaire) << "Hillaire " << e.hillaire;
 }
 
 // presets/mars.json shrunk k = 339 times (radius 10 km): heights / k,

@@ -28,12 +28,7 @@ TEST(ConvergedTargets, RelativeEstimatorBeatsTheMeanUnderForwardDust) {
 }
 
 // Earth's bar of the accuracy tier at an eighth of its paths.
-TEST(ConvergedTargets, EarthWithinTwoPercentAt1024Paths) {
-  const Atmosphere atm = fixtures::earth_atmosphere();
-  const ModelErrors e = model_errors(atm, trace_views(atm, 200.0, 1024, 8, 0.0), false);
-  EXPECT_LT(e.relative, 0.02) << "mean " << e.mean << ", Hillaire " << e.hillaire;
-  EXPECT_LT(e.relative, 0.5 * e.hillaire) << "Hillaire " << e.hillaire;
-}
+TEST(ConvergedTargets, EarthWithinTwoPercentAt1024Paths) { expect_earth_within_two_percent(1024); }
 
 }  // namespace
 }  // namespace skybake
