@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "atmosphere/direction_march.hpp"
+#include "atmosphere/kernels/sunlit_sums.hpp"
 #include "atmosphere/phase.hpp"
 #include "atmosphere/sky_integrator.hpp"
 #include "atmosphere/transmittance_lut.hpp"

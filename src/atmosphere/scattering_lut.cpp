@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include "atmosphere/geometry.hpp"
+#include "atmosphere/kernels/sun_taps.hpp"
 #include "atmosphere/phase.hpp"
 #include "core/error.hpp"
 
@@ -196,7 +197,7 @@ MuSAxis::MuSAxis(const Atmosphere& atm, const ScatteringShape& shape)
       mu_s_min_(shape.mu_s_min),
       size_(shape.mu_s_size) {}
 
-ScatteringParams ScatteringTexelGrid::at(int x, int y, int z) const {
+ScatteringParams ScatteringTexelGrid::params(int x, int y, int z) const {
   ScatteringParams p;
   const size_t row = size_t(z) * shape.mu_size + y;
   p.r = r[z];
@@ -323,6 +324,14 @@ void ray_quadrature(double r, double mu, double d, int nodes, std::vector<RayNod
 }
 
 // ---- Transmittance reader ----
+
+void MuSAxis::taps(const double* mu_s, int n, int* i0, double* w) const {
+  for (int k = mu_s_taps(constants(), mu_s, n, i0, w); k < n; ++k) {
+    const AxisTap t = tap(mu_s[k]);
+    i0[k] = t.i0;
+    w[k] = t.w;
+  }
+}
 
 TransmittanceReader::TransmittanceReader(const Texture& lut, const Atmosphere& atm)
     : lut_(lut),
@@ -480,10 +489,10 @@ SingleScatteringTables bake_single_scattering(const Atmosphere& atm,
     std::vector<SingleScattering> s(W);
     for (int row = range.begin(); row != range.end(); ++row) {
       const int z = row / shape.mu_size, y = row % shape.mu_size;
-      const ScatteringParams p0 = grid.at(0, y, z);
+      const ScatteringParams p0 = grid.params(0, y, z);
       ray.prepare(atm, reader, p0.r, p0.mu, p0.ray_hits_ground, nodes);
       for (int x = 0; x < W; ++x) {  // every texel (sun) of the row at once
-        const ScatteringParams p = grid.at(x, y, z);
+        const ScatteringParams p = grid.params(x, y, z);
         mu_s[x] = p.mu_s;
         nu[x] = p.nu;
       }
@@ -561,6 +570,28 @@ glm::dvec3 ScatteringOrder::radiance_at(const Atmosphere& atm, const ScatteringS
   if (phases->has_rayleigh) L += phases->rayleigh(nu) * read_scattering(*rayleigh, shape, taps);
   if (phases->has_mie) L += phases->mie(nu) * read_scattering(*mie, shape, taps);
   return L;
+}
+
+void TransmittanceReader::sun_taps(const Row& row, const double* mu_s, int n, int* i0, double* w,
+                                   double* visible) const {
+  for (int k = skybake::sun_taps({rt_, lut_.width, stride_}, row, mu_s, n, i0, w, visible); k < n;
+       ++k) {
+    const double mu = clamp_cosine(mu_s[k]);
+    const double d = distance_to_top_boundary(rt_, row.r, mu);
+    const double t = std::clamp((d - row.d_min) * row.inv_span, 0.0, 1.0) * (lut_.width - 1);
+    i0[k] = std::min(int(t), lut_.width - 2);
+    w[k] = t - i0[k];
+    const double s = (mu_s[k] - row.sun_edge) * row.inv_sun_width;
+    visible[k] = s >= 1.0 ? 1.0 : s <= 0.0 ? 0.0 : s * s * (3.0 - 2.0 * s);
+  }
+}
+
+int TransmittanceReader::add_sun_products(const Row& row, const double* mu_s, int n,
+                                          const glm::dvec3& a_rayleigh, const glm::dvec3& a_mie,
+                                          double* const sums[6], int* i0, double* w,
+                                          double* visible) const {
+  return skybake::add_sun_products({rt_, lut_.width, stride_}, row, mu_s, n, a_rayleigh, a_mie,
+                                   sums, i0, w, visible);
 }
 
 }  // namespace skybake

@@ -138,12 +138,12 @@ class MuSAxis {
     return {i, i + 1, t - i};
   }
   // tap() of n cosines at once (i0 and w; i1 = i0 + 1), the same values
-  // (SSE2, two at a time, or AVX2, four: core/wide_vectors.hpp): the hottest
+  // (SSE2, two at a time, or AVX2, four: core/simd_switches.hpp): the hottest
   // loop of the orders >= 2 (multiple_scattering.cpp), where one tap at a
   // time mispredicted its clamps and could not be vectorized (std::sqrt sets
   // errno).
   void taps(const double* mu_s, int n, int* i0, double* w) const;
-  // The constants of x(mu_s), for loops that inline taps() (row_node.cpp).
+  // The constants of x(mu_s), for loops that inline taps() (kernels/node_slice_reads.cpp).
   struct Constants {
     double rb, rb2, H2, d_min, inv_span, inv_A, mu_s_min;
     int size;
@@ -168,14 +168,14 @@ class MuSAxis {
 
 // Every texel's parameters, from per-axis tables: r per z, mu and the ground
 // flag per (z, y), mu_s per mu_s index, nu per slice before its clamp.
-// at(x, y, z) equals scattering_texel_params(x, y, z) (tests).
+// params(x, y, z) equals scattering_texel_params(x, y, z) (tests).
 struct ScatteringTexelGrid {
   ScatteringShape shape;
   std::vector<double> r, mu, mu_s, nu;
   std::vector<char> ray_hits_ground;
 
-  ScatteringParams at(int x, int y, int z) const;
-  // The clamp of nu at (mu, mu_s): mu mu_s -+ spread(mu, mu_s), which at()
+  ScatteringParams params(int x, int y, int z) const;
+  // The clamp of nu at (mu, mu_s): mu mu_s -+ spread(mu, mu_s), which params()
   // applies; for loops over the nu slices of one (mu, mu_s).
   static double spread(double mu, double mu_s) {
     return std::sqrt((1.0 - mu * mu) * (1.0 - mu_s * mu_s));
@@ -290,7 +290,7 @@ class TransmittanceReader {
   // sums[c][k] += a_rayleigh[c] T_k, sums[3 + c][k] += a_mie[c] T_k, with
   // T_k = to_sun_at of sun_taps(row, mu_s[k]) (the same values, the same
   // operations per lane), for the first cosines in AVX2 (four at a time,
-  // batch_taps.cpp); returns how many it did: a multiple of 4, 0 without
+  // kernels/sun_taps.cpp); returns how many it did: a multiple of 4, 0 without
   // AVX2. Single scattering's hottest loop (SingleScatteringRay::at_suns).
   // i0, w and visible: work arrays of at least n (the taps of a first pass).
   int add_sun_products(const Row& row, const double* mu_s, int n, const glm::dvec3& a_rayleigh,

@@ -240,7 +240,7 @@ void WorleyRows::eval_row(int y, int z, RowScratch& s, float* out) const {
   }
   // Then the compaction, column by column, of the points with q < 1.
 #if SKYBAKE_HAS_AVX2
-  if (wide_vectors()) {
+  if (avx2_enabled()) {
     compact_columns_avx2(qj, offset_x_.data(), rows, p, ox, q, col_of, s.start.data());
     nearest_row_avx2(frac_.data(), cell_f_.data(), cell_.data(), size_, ox, q, col_of,
                      s.start.data(), out);

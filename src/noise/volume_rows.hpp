@@ -14,7 +14,7 @@
 //   leaving ~10 flops per voxel and octave.
 // - The voxels of one Worley cell share their candidates and are scanned 4 at
 //   a time with SSE, or 8 neighbouring voxels at a time with AVX2 (of one
-//   cell or several: core/wide_vectors.hpp); distances are cell-local with
+//   cell or several: core/simd_switches.hpp); distances are cell-local with
 //   worley3_f1's expressions, so the baked Worley values equal the pure
 //   function's bit for bit either way.
 // Voxel i of n sits at the texel centre (i + 0.5) / n of the unit domain, i.e.

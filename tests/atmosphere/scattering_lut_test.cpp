@@ -110,7 +110,7 @@ TEST(ScatteringMapping, TexelCentresStayInTheDomain) {
   for (int z = 0; z < shape.r_size; ++z)
     for (int y = 0; y < shape.mu_size; ++y)
       for (int x = 0; x < shape.texture_width(); ++x) {
-        const ScatteringParams p = grid.at(x, y, z);
+        const ScatteringParams p = grid.params(x, y, z);
         ASSERT_GE(p.r, rb);
         ASSERT_LE(p.r, rt);
         ASSERT_LE(std::abs(p.mu), 1.0);
@@ -137,10 +137,11 @@ TEST(ScatteringMapping, TexelCentresStayInTheDomain) {
   EXPECT_EQ(grid.nu.front(), -1.0);
   EXPECT_EQ(grid.nu.back(), 1.0);
   const int z = 5, half = shape.mu_size / 2;
-  EXPECT_NEAR(grid.at(0, half, z).mu, 1.0, 1e-12);                     // zenith
-  EXPECT_NEAR(grid.at(0, half - 1, z).mu, -1.0, 1e-12);                // nadir
-  EXPECT_NEAR(grid.at(0, 0, z).mu, mu_horizon(atm, grid.r[z]), 1e-9);  // horizon, ground side
-  EXPECT_NEAR(grid.at(0, shape.mu_size - 1, z).mu, mu_horizon(atm, grid.r[z]), 1e-9);  // sky side
+  EXPECT_NEAR(grid.params(0, half, z).mu, 1.0, 1e-12);                     // zenith
+  EXPECT_NEAR(grid.params(0, half - 1, z).mu, -1.0, 1e-12);                // nadir
+  EXPECT_NEAR(grid.params(0, 0, z).mu, mu_horizon(atm, grid.r[z]), 1e-9);  // horizon, ground side
+  EXPECT_NEAR(grid.params(0, shape.mu_size - 1, z).mu, mu_horizon(atm, grid.r[z]),
+              1e-9);  // sky side
 }
 
 TEST(ScatteringMapping, TexelGridEqualsTexelParams) {
@@ -149,7 +150,7 @@ TEST(ScatteringMapping, TexelGridEqualsTexelParams) {
   for (int z = 0; z < kSmall.r_size; z += 3)
     for (int y = 0; y < kSmall.mu_size; y += 5)
       for (int x = 0; x < kSmall.texture_width(); ++x) {
-        const ScatteringParams a = grid.at(x, y, z),
+        const ScatteringParams a = grid.params(x, y, z),
                                b = scattering_texel_params(atm, kSmall, x, y, z);
         ASSERT_EQ(a.r, b.r);
         ASSERT_EQ(a.mu, b.mu);
@@ -303,7 +304,7 @@ TEST(TransmittanceReader, MatchesTheLutLookups) {
   EXPECT_NEAR(half.r, 0.5 * reader.to_top(row, mu_h).r, 1e-12);
 }
 
-// ---- Row-at-a-time taps (batch_taps.cpp) ------------------------------------------
+// ---- Row-at-a-time taps (kernels/sun_taps.cpp) ------------------------------------------
 
 // Cosines across [-1, 1] with the edges, values past them and an odd count
 // (the scalar remainder after the pairs).

@@ -247,7 +247,7 @@ TEST(Integrator, BlockExponentialsAreTheMarchToRounding) {
 // transmittance bits of each pair compared.
 void expect_dark_reads_left_out_keep_bits(const Atmosphere& atm, const Texture& transmittance,
                                           const Texture& multiscattering) {
-  const FiniteOnce finite{&transmittance, &multiscattering};
+  const CachedFiniteCheck finite{&transmittance, &multiscattering};
   const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
   for (double r : {rb + 10.0, rb + 0.5 * (rt - rb), 1.5 * rt})
     for (double elevation : {-0.9, -0.05, 0.02, 0.4, 1.4})

@@ -1,7 +1,7 @@
 // The row evaluator of the Worley volumes (src/noise/volume_rows.hpp)
 // against the pure function worley3_inverted at every voxel of whole rows:
 // the same bits, with the AVX2 loop and with the SSE2 one
-// (core/wide_vectors.hpp). Sizes that are no multiple of the period or of
+// (core/simd_switches.hpp). Sizes that are no multiple of the period or of
 // 8 leave cells of uneven voxel counts, lanes past the row and groups of 8
 // voxels that straddle up to 8 cells.
 #include "noise/volume_rows.hpp"
@@ -11,10 +11,10 @@
 
 #include <gtest/gtest.h>
 
-#include "core/wide_vectors.hpp"
-#include "support/wide_vectors_as.hpp"
+#include "core/simd_switches.hpp"
 #include "noise/lattice_hash.hpp"
 #include "noise/worley.hpp"
+#include "support/wide_vectors_as.hpp"
 
 namespace skybake {
 namespace {
