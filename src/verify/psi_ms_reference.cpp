@@ -14,7 +14,7 @@
 #include "core/scratch.hpp"
 #include "core/simd_switches.hpp"
 #include "verify/ring_segments.hpp"
-#include "verify/ring_sun_sums.hpp"
+#include "verify/kernels/ring_sun_sums.hpp"
 
 namespace skybake {
 namespace {
@@ -28,7 +28,6 @@ struct RingMarch {
   std::vector<double> radii;                     // the radius there (at least Rb)
   std::vector<double> inverse_radii;             // 1 / radii
   std::vector<glm::dvec3> scattered;             // T sigma_s (1 - exp(-sigma_t dt)) / sigma_t
-  std::vector<TransmittanceAtRadius> sun_reads;  // lit_ring's one-value loop: the lookups there
   glm::dvec3 l_f{0.0};                           // eq. 8: the sum of `scattered`
   bool ground = false;                           // the ray ends on the ground
   double length = 0.0;                           // to the ground or the top
@@ -189,8 +188,8 @@ void march_ring(const Atmosphere& atm, double r, double mu, int steps,
 // direction whose cosine with the sun is cosines[j]: a sample at distance t
 // sees the sun at zenith cosine (r mu_s + t c) / r_t, since the point is
 // (0, 0, r). Per sample the azimuths' sun transmittances are summed first
-// and scaled by the sun-independent `scattered` once; four azimuths (the
-// record's rule) are summed four samples at a time in AVX2 (ring_sun_sums.hpp).
+// and scaled by the sun-independent `scattered` once, several samples at a
+// time (kernels/ring_sun_sums.hpp).
 glm::dvec3 lit_ring(const Atmosphere& atm, const Texture& transmittance_lut, RingMarch& m, double r,
                     double mu_s, const std::vector<double>& cosines) {
   const double rb = atm.bottom_radius_m;
@@ -198,20 +197,8 @@ glm::dvec3 lit_ring(const Atmosphere& atm, const Texture& transmittance_lut, Rin
   glm::dvec3 l_prime(0.0);
   const size_t n = m.samples;
   glm::dvec3* sums = scratch_entries(m.sun_sums, n);
-  if (cosines.size() != 4 ||
-      !ring_sun_sums(transmittance_lut, atm, m.radii.data(), m.distances.data(),
-                          m.inverse_radii.data(), n, height, cosines.data(), sums)) {
-    m.sun_reads.clear();
-    for (size_t i = 0; i < n; ++i)
-      m.sun_reads.push_back(transmittance_at_radius(transmittance_lut, atm, m.radii[i]));
-    for (size_t i = 0; i < n; ++i) {
-      glm::dvec3 sun(0.0);
-      for (double c : cosines)
-        sun += lookup_sun_transmittance(transmittance_lut, m.sun_reads[i], rb,
-                                        (height + m.distances[i] * c) * m.inverse_radii[i]);
-      sums[i] = sun;
-    }
-  }
+  ring_sun_sums(transmittance_lut, atm, m.radii.data(), m.distances.data(),
+                m.inverse_radii.data(), n, height, cosines.data(), cosines.size(), sums);
   for (size_t i = 0; i < n; ++i) l_prime += m.scattered[i] * sums[i];
   l_prime *= isotropic_phase();
   if (!m.ground) return l_prime;

@@ -1,19 +1,14 @@
 // The AVX2 loops of the 4D orders (the density's Mie loop, the mu_s taps
 // and the row blends of the multiple-scattering pass) against their SSE2
-// twins, the Mie loop's AVX-512 twin against both, the four-texel loops of
-// the sky-view and multiple-scattering tables against their one-texel ones,
-// and the transmittance table's exponentials: the same bits
-// (core/simd_switches.hpp).
+// twins, the Mie loop's AVX-512 twin against both, and the transmittance
+// table's exponentials: the same bits (core/simd_switches.hpp).
 // Sizes that leave remainders for every loop: 15 texels per row (nu 3 x
-// mu_s 5), 25 direction pairs (5 zenith bands) padded to 32, sky-view rows
-// of 11 texels (22 mirrored) and multiple-scattering rows of 11.
+// mu_s 5), 25 direction pairs (5 zenith bands) padded to 32.
 #include <cstring>
 
 #include <gtest/gtest.h>
 
-#include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/scattering_orders.hpp"
-#include "atmosphere/skyview_lut.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/simd_switches.hpp"
 #include "support/test_atmospheres.hpp"
@@ -71,63 +66,6 @@ TEST(Avx2Bakes, TransmittanceHasTheSameBitsInAvx2AndSse2) {
       avx2 = bake_transmittance_lut(atm, spec, BakeContext{});
     }
     EXPECT_TRUE(same_bits(sse2, avx2)) << "top radius " << atm.top_radius_m;
-  }
-}
-
-TEST(Avx2Bakes, SkyviewHasTheSameBitsInAvx2AndOneTexelAtATime) {
-  {
-    const WideVectorsAs probe(true);
-    if (!avx2_enabled()) GTEST_SKIP() << "this CPU has no AVX2: only the one-texel loop runs";
-  }
-  for (const Atmosphere& atm : {fixtures::earth_atmosphere(), fixtures::tiny_planet_atmosphere()}) {
-    const fixtures::SkyLutInputs l = fixtures::bake_sky_lut_inputs(atm);
-    // The four-texel loop serves the linear sun mapping (the terminator's
-    // reads go one at a time).
-    ASSERT_EQ(multiscattering_mapping_of(l.multiscattering).sun, SunMapping::linear);
-    const double top = atm.top_radius_m - atm.bottom_radius_m;
-    // Ground, sunset, sun below the horizon and space views: rays to the
-    // ground and to space, sun lookups on both sides of the horizon.
-    const SkyviewLutSpec spec{22, 15, 12, StepDistribution::quadratic,
-                              {{0.0, 0.3}, {5e3, 1.5}, {0.0, 1.75}, {top + 20e3, 1.2}}};
-    Texture one, four;
-    {
-      const WideVectorsAs as(false);
-      one = bake_skyview_lut(atm, l.transmittance, l.multiscattering, spec, {});
-    }
-    {
-      const WideVectorsAs as(true);
-      four = bake_skyview_lut(atm, l.transmittance, l.multiscattering, spec, {});
-    }
-    EXPECT_TRUE(same_bits(one, four));
-  }
-}
-
-TEST(Avx2Bakes, MultiscatteringHasTheSameBitsInAvx2AndOneTexelAtATime) {
-  {
-    const WideVectorsAs probe(true);
-    if (!avx2_enabled()) GTEST_SKIP() << "this CPU has no AVX2: only the one-texel loop runs";
-  }
-  // Both direction rules (unweighted and weighted), both sun mappings, a
-  // planet whose rays mostly end on its ground.
-  for (const Atmosphere& atm : {fixtures::earth_atmosphere(), fixtures::tiny_planet_atmosphere()}) {
-    const Texture lut = bake_transmittance_lut(atm, {64, 16, 40}, BakeContext{});
-    for (const DirectionQuadrature q : {DirectionQuadrature::fibonacci, DirectionQuadrature::symmetric_gauss}) {
-      for (const SunMapping sun : {SunMapping::linear, SunMapping::terminator}) {
-        MultiscatteringLutSpec spec{11, 6, 24, 8};
-        spec.quadrature = q;
-        spec.sun_mapping = sun;
-        Texture one, four;
-        {
-          const WideVectorsAs as(false);
-          one = bake_multiscattering_lut(atm, lut, spec, {});
-        }
-        {
-          const WideVectorsAs as(true);
-          four = bake_multiscattering_lut(atm, lut, spec, {});
-        }
-        EXPECT_TRUE(same_bits(one, four)) << int(q) << " " << int(sun);
-      }
-    }
   }
 }
 

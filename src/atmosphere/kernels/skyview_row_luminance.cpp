@@ -1,109 +1,118 @@
-// skyview_row_luminance: the texels of a sky-view row half, four at a time
-// where AVX2 runs (core/simd_switches.hpp), one at a time otherwise.
-//
-// The four-wide loop does, per lane, the operations of
-// skyview_texel_luminance in the same order on the same operands, with the
-// reads of atmosphere/kernels/table_read_lanes.hpp, so its values are the same bits
-// (tests/atmosphere/avx2_bakes_test.cpp bakes with and without it and
-// compares).
+// skyview_row_luminance over lanes (Highway, every target from one source):
+// per lane the operations of skyview_texel_luminance in the same order on
+// the same operands, with the table reads of table_lanes-inl.h, so the same
+// bits as one texel at a time (tests/atmosphere/simd_targets_test.cpp).
 #include "atmosphere/kernels/skyview_row_luminance.hpp"
 
-#include <cmath>
+#include <algorithm>
 #include <vector>
 
-#include "atmosphere/kernels/table_read_lanes.hpp"
 #include "atmosphere/phase.hpp"
 
-namespace skybake {
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "atmosphere/kernels/skyview_row_luminance.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
 
+#include <hwy/highway.h>
+
+#include "atmosphere/kernels/table_lanes-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace skybake {
+namespace HWY_NAMESPACE {
 namespace {
 
-#if SKYBAKE_HAS_AVX2
-// skyview_texel_luminance for texels k .. k + 3 (linear sun mapping only).
-SKYBAKE_AVX2 void skyview_four_texels(const SkyviewRowMarch& row, const Atmosphere& atm,
-                                      const Texture& transmittance_lut,
-                                      const Texture& multiscattering_lut, const double* cos_phi,
-                                      const double* phase, double cos_theta_s,
-                                      double sin_theta_s, glm::dvec3* out) {
-  const size_t nc = row.components.size();
-  const __m256d zero = _mm256_setzero_pd();
-  // phase[(c * 3 + channel) * 4 + lane]: sigma_s p(nu) of component c.
-  const __m256d across_scale = _mm256_mul_pd(_mm256_loadu_pd(cos_phi), _mm256_set1_pd(sin_theta_s));
-  __m256d lum[3] = {zero, zero, zero};
+// The texels of one group, `count` of them (a short group repeats its last
+// texel's cos_phi in the spare lanes); phase[(c * 3 + channel) * N + lane]
+// is sigma_s p(nu) of component c.
+template <class D>
+void GroupLuminance(D d, const SkyviewRowMarch& row, const Atmosphere& atm,
+                    const Texture& transmittance_lut, const Texture& multiscattering_lut,
+                    Lanes<D> cos_phi, const double* phase, double cos_theta_s, double sin_theta_s,
+                    size_t count, glm::dvec3* out) {
+  const size_t nc = row.components.size(), n = hn::Lanes(d);
+  const Lanes<D> across_scale = hn::Mul(cos_phi, hn::Set(d, sin_theta_s));
+  RgbLanes<D> lum{{hn::Zero(d), hn::Zero(d), hn::Zero(d)}};
   const double* density = row.densities.data();
   for (const SkyviewRowSegment& seg : row.segments) {
-    __m256d ssp[3] = {zero, zero, zero};
+    Lanes<D> ssp[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
     for (size_t c = 0; c < nc; ++c)
       for (int ch = 0; ch < 3; ++ch)
-        ssp[ch] = _mm256_add_pd(ssp[ch], _mm256_mul_pd(_mm256_set1_pd(density[c]),
-                                                       _mm256_loadu_pd(phase + (c * 3 + ch) * 4)));
+        ssp[ch] = hn::Add(ssp[ch], hn::Mul(hn::Set(d, density[c]),
+                                           hn::LoadU(d, phase + (c * 3 + ch) * n)));
     density += nc;
-    const __m256d mu_s = clamp_lanes(
-        _mm256_add_pd(_mm256_set1_pd(seg.along * cos_theta_s),
-                      _mm256_mul_pd(_mm256_set1_pd(seg.across), across_scale)),
-        -1.0, 1.0);
-    const RgbLanes t_sun = sun_transmittance_lanes(seg.transmittance, transmittance_lut.width,
-                                                          atm.bottom_radius_m, mu_s);
+    const Lanes<D> mu_s = ClampLanes(d,
+                                     hn::Add(hn::Set(d, seg.along * cos_theta_s),
+                                             hn::Mul(hn::Set(d, seg.across), across_scale)),
+                                     -1.0, 1.0);
+    const RgbLanes<D> t_sun = SunTransmittance(
+        d, transmittance_lut, atm, RadiusAt(d, transmittance_lut, seg.transmittance), mu_s);
     const MultiscatteringAtRadius& ms_at = seg.multiscattering;
-    const __m256d x = _mm256_add_pd(_mm256_set1_pd(0.5), _mm256_mul_pd(_mm256_set1_pd(0.5), mu_s));
-    const RgbLanes ms = bilinear_rgb_lanes(
-        ms_at.row, multiscattering_lut.width,
-        _mm256_add_pd(_mm256_set1_pd(ms_at.u_offset), _mm256_mul_pd(x, _mm256_set1_pd(ms_at.u_scale))));
+    const Lanes<D> x = hn::Add(hn::Set(d, 0.5), hn::Mul(hn::Set(d, 0.5), mu_s));
+    const Lanes<D> u = hn::Add(hn::Set(d, ms_at.u_offset), hn::Mul(x, hn::Set(d, ms_at.u_scale)));
+    const RgbLanes<D> ms =
+        ReadRgb(d, multiscattering_lut.data.data(), RowQuad(d, multiscattering_lut, ms_at.row, u));
     for (int ch = 0; ch < 3; ++ch) {  // eq. 11
-      const __m256d source = _mm256_add_pd(_mm256_mul_pd(t_sun.c[ch], ssp[ch]),
-                                           _mm256_mul_pd(ms.c[ch], _mm256_set1_pd(seg.sigma_s[ch])));
-      lum[ch] = _mm256_add_pd(lum[ch], _mm256_mul_pd(_mm256_set1_pd(seg.view_weight[ch]), source));
+      const Lanes<D> source = hn::Add(hn::Mul(t_sun.c[ch], ssp[ch]),
+                                      hn::Mul(ms.c[ch], hn::Set(d, seg.sigma_s[ch])));
+      lum.c[ch] = hn::Add(lum.c[ch], hn::Mul(hn::Set(d, seg.view_weight[ch]), source));
     }
   }
-  alignas(32) double lanes[3][4];
-  for (int ch = 0; ch < 3; ++ch) _mm256_store_pd(lanes[ch], lum[ch]);
-  for (int k = 0; k < 4; ++k) out[k] = glm::dvec3(lanes[0][k], lanes[1][k], lanes[2][k]);
+  StoreRgb(d, lum, count, out);
 }
-
-// The texels the four-wide loop does: all but the last n % 4; none where the
-// sun's lookup uses the terminator mapping (an arctangent per read).
-SKYBAKE_AVX2 int skyview_row_avx2(const SkyviewRowMarch& row, const Atmosphere& atm,
-                                  const Texture& transmittance_lut,
-                                  const Texture& multiscattering_lut, const double* cos_phi,
-                                  const double* nu, int n, double cos_theta_s, double sin_theta_s,
-                                  glm::dvec3* out) {
-  if (row.segments.empty() ||
-      row.segments.front().multiscattering.mapping.sun != SunMapping::linear)
-    return 0;
-  const size_t nc = row.components.size();
-  std::vector<double> phase(nc * 3 * 4);
-  int k = 0;
-  for (; k + 4 <= n; k += 4) {
-    for (size_t c = 0; c < nc; ++c) {
-      const MediumComponent& m = *row.components[c];
-      for (int lane = 0; lane < 4; ++lane) {
-        const glm::dvec3 sp = m.scattering_per_m * phase_function(m.phase, m.g, nu[k + lane]);
-        for (int ch = 0; ch < 3; ++ch) phase[(c * 3 + ch) * 4 + lane] = sp[ch];
-      }
-    }
-    skyview_four_texels(row, atm, transmittance_lut, multiscattering_lut, cos_phi + k,
-                        phase.data(), cos_theta_s, sin_theta_s, out + k);
-  }
-  return k;
-}
-#endif
 
 }  // namespace
+
+// Every texel of the row, the linear sun mapping only.
+void SkyviewRowLuminance(const SkyviewRowMarch& row, const Atmosphere& atm,
+                         const Texture& transmittance_lut, const Texture& multiscattering_lut,
+                         const double* cos_phi, const double* nu, int n, double cos_theta_s,
+                         double sin_theta_s, glm::dvec3* out) {
+  const hn::ScalableTag<double> d;
+  const size_t lanes = hn::Lanes(d), nc = row.components.size();
+  std::vector<double> phase(nc * 3 * lanes);
+  for (size_t k = 0; k < size_t(n); k += lanes) {
+    const size_t count = std::min(lanes, size_t(n) - k);
+    for (size_t c = 0; c < nc; ++c) {
+      const MediumComponent& m = *row.components[c];
+      for (size_t lane = 0; lane < lanes; ++lane) {
+        const double nu_lane = nu[k + std::min(lane, count - 1)];
+        const glm::dvec3 sp = m.scattering_per_m * phase_function(m.phase, m.g, nu_lane);
+        for (int ch = 0; ch < 3; ++ch) phase[(c * 3 + ch) * lanes + lane] = sp[ch];
+      }
+    }
+    GroupLuminance(d, row, atm, transmittance_lut, multiscattering_lut,
+                   LoadGroup(d, cos_phi, k, count), phase.data(), cos_theta_s, sin_theta_s, count,
+                   out + k);
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace skybake
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace skybake {
+
+HWY_EXPORT(SkyviewRowLuminance);
 
 void skyview_row_luminance(const SkyviewRowMarch& row, const Atmosphere& atm,
                            const Texture& transmittance_lut, const Texture& multiscattering_lut,
                            const double* cos_phi, const double* nu, int n, double cos_theta_s,
                            double sin_theta_s, glm::dvec3* out) {
-  int first = 0;
-#if SKYBAKE_HAS_AVX2
-  if (avx2_enabled())
-    first = skyview_row_avx2(row, atm, transmittance_lut, multiscattering_lut, cos_phi, nu, n,
-                             cos_theta_s, sin_theta_s, out);
-#endif
+  if (!row.segments.empty() &&
+      row.segments.front().multiscattering.mapping.sun == SunMapping::linear) {
+    HWY_DYNAMIC_DISPATCH(SkyviewRowLuminance)
+    (row, atm, transmittance_lut, multiscattering_lut, cos_phi, nu, n, cos_theta_s, sin_theta_s,
+     out);
+    return;
+  }
+  // The terminator mapping reads Psi_ms through an arctangent per lookup.
   std::vector<glm::dvec3> scratch;
-  for (int k = first; k < n; ++k)
+  for (int k = 0; k < n; ++k)
     out[k] = skyview_texel_luminance(row, atm, transmittance_lut, multiscattering_lut, cos_phi[k],
                                      cos_theta_s, sin_theta_s, nu[k], scratch);
 }
 
 }  // namespace skybake
+#endif  // HWY_ONCE

@@ -1,14 +1,9 @@
 // The two table reads of the sky references' block march (sky_integrator.cpp:
 // the sky-view and aerial records' references), a whole ray's points at
 // once: the sun's transmittance (lookup_sun_transmittance, Vis of Hillaire
-// 2020 eq. 4 included) and Psi_ms (lookup_multiscattering, eq. 11). Where
-// AVX2 runs (core/simd_switches.hpp) four points share one group: their
-// texel coordinates in the lanes (the same operations as the one-value
-// functions, without FMA), then each point's bilinear read with its own rows,
-// its three channels in one vector (atmosphere/kernels/table_read_lanes.hpp's
-// bilinear_rgb_texels). The same bits either way (tests/atmosphere/
-// sun_and_psi_ms_reads_test.cpp); the terminator mapping's arctangents stay libm's, per
-// lane.
+// 2020 eq. 4 included) and Psi_ms (lookup_multiscattering, eq. 11), several
+// points in the lanes of one group (table_lanes-inl.h): the same bits as one
+// point at a time (tests/atmosphere/sun_and_psi_ms_reads_test.cpp).
 #pragma once
 
 #include <cstddef>

@@ -126,7 +126,7 @@ HWY_INLINE TexelQuad<D> TableQuad(D d, const Texture& tex, Lanes<D> u, Lanes<D> 
   const AxisLanes<D> ay = AxisAt(d, tex.height, tex.width * channels, v);
   return {hn::Add(ay.o0, ax.o0), hn::Add(ay.o0, ax.o1), hn::Add(ay.o1, ax.o0),
           hn::Add(ay.o1, ax.o1), ax.f,                  ay.f,
-          hn::MaskFalse(d)};
+          hn::FirstN(d, 0)};
 }
 
 // The quad of a read along u of one row pair of `tex` (a lookup at one
@@ -139,7 +139,7 @@ HWY_INLINE TexelQuad<D> RowQuad(D d, const Texture& tex, const BilinearRow& row,
   const AxisLanes<D> ax = AxisAt(d, tex.width, row.channels, u);
   return {hn::Add(row0, ax.o0), hn::Add(row0, ax.o1), hn::Add(row1, ax.o0),
           hn::Add(row1, ax.o1), ax.f,                 hn::Set(d, row.fy),
-          hn::MaskFalse(d)};
+          hn::FirstN(d, 0)};
 }
 
 // transmittance_at_radius in each lane: the radius clamped to the shell,

@@ -1,8 +1,8 @@
-// The multiple-scattering record's ring sums four samples at a time
-// (verify/ring_sun_sums.hpp) against lit_ring's one-value loop
-// (transmittance_at_radius, then lookup_sun_transmittance per azimuth): the
-// same bits.
-#include "verify/ring_sun_sums.hpp"
+// The kernels of the error records' references on every SIMD target
+// against the one-value functions, bit for bit: the multiple-scattering
+// record's ring sums (verify/kernels/ring_sun_sums.hpp) against
+// transmittance_at_radius, then lookup_sun_transmittance per azimuth.
+#include "verify/kernels/ring_sun_sums.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -12,16 +12,15 @@
 
 #include "atmosphere/sky_integrator.hpp"
 #include "atmosphere/transmittance_lut.hpp"
-#include "core/simd_switches.hpp"
+#include "support/simd_targets.hpp"
 #include "support/test_atmospheres.hpp"
-#include "support/wide_vectors_as.hpp"
 
 namespace skybake {
 namespace {
 
-TEST(RingSunSums, FourSamplesAtATimeAreTheOneValueSumsBitForBit) {
-  const test::WideVectorsAs wide(true);
-  if (!avx2_enabled()) GTEST_SKIP() << "this CPU has no AVX2: only the one-value loop runs";
+using test::KernelsOnEachTarget;
+
+TEST_P(KernelsOnEachTarget, RingSunSumsAreTheOneValueSums) {
   Atmosphere dense = fixtures::earth_atmosphere();  // the stiff extreme case: reads underflow
   for (MediumComponent& c : dense.components)
     if (c.name == "rayleigh") c.scattering_per_m *= 1000.0;
@@ -30,7 +29,7 @@ TEST(RingSunSums, FourSamplesAtATimeAreTheOneValueSumsBitForBit) {
     const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
     // Samples from the ground to past the top (clamped), at distances along
     // rays from points at several heights, suns on both sides of the
-    // horizon; 4 k + 3 samples, so the last group is short.
+    // horizon; 4 k + 3 samples, so the last group of 2 or 4 lanes is short.
     const size_t n = 203;
     std::vector<double> radii(n), distances(n), inverse(n);
     for (size_t i = 0; i < n; ++i) {
@@ -44,8 +43,8 @@ TEST(RingSunSums, FourSamplesAtATimeAreTheOneValueSumsBitForBit) {
         const double cosines[4] = {0.92 * mu_s - 0.3, 0.38 * mu_s + 0.1, -0.38 * mu_s, -0.92 * mu_s};
         const double height = r0 * mu_s;
         std::vector<glm::dvec3> wide_sums(n, glm::dvec3(-1.0)), one(n);
-        ASSERT_TRUE(ring_sun_sums(lut, atm, radii.data(), distances.data(), inverse.data(), n,
-                                       height, cosines, wide_sums.data()));
+        ring_sun_sums(lut, atm, radii.data(), distances.data(), inverse.data(), n, height,
+                      cosines, 4, wide_sums.data());
         for (size_t i = 0; i < n; ++i) {
           const TransmittanceAtRadius at = transmittance_at_radius(lut, atm, radii[i]);
           glm::dvec3 sum(0.0);
@@ -63,13 +62,9 @@ TEST(RingSunSums, FourSamplesAtATimeAreTheOneValueSumsBitForBit) {
     EXPECT_GT(lit, 1000u);  // both sides of the horizon are summed
     EXPECT_GT(dark, 100u);
   }
-  const test::WideVectorsAs off(false);
-  const Atmosphere atm = fixtures::earth_atmosphere();
-  const Texture lut = bake_transmittance_lut(atm, {64, 32, 16}, {});
-  const double r = atm.bottom_radius_m, d = 0.0, inv = 1.0 / r, c[4] = {0.1, 0.2, 0.3, 0.4};
-  glm::dvec3 s;
-  EXPECT_FALSE(ring_sun_sums(lut, atm, &r, &d, &inv, 1, 0.0, c, &s));
 }
+
+SKYBAKE_INSTANTIATE_KERNELS_ON_EACH_TARGET();
 
 }  // namespace
 }  // namespace skybake

@@ -1,0 +1,150 @@
+// Every kernel of the bakers on every SIMD target this CPU runs against the
+// one-value functions it stands for, bit for bit (docs/architecture.md
+// "Kernels"): the sky-view rows against skyview_texel_luminance, the
+// multiple-scattering table against compute_multiscattering at its texels,
+// the sky references' reads against lookup_sun_transmittance and
+// lookup_multiscattering.
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "atmosphere/kernels/skyview_row_luminance.hpp"
+#include "atmosphere/kernels/sun_and_psi_ms_reads.hpp"
+#include "atmosphere/multiscattering_lut.hpp"
+#include "atmosphere/skyview_lut.hpp"
+#include "atmosphere/transmittance_lut.hpp"
+#include "core/math.hpp"
+#include "support/simd_targets.hpp"
+#include "support/test_atmospheres.hpp"
+
+namespace skybake {
+namespace {
+
+using test::KernelsOnEachTarget;
+
+bool same_bits(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
+}
+
+// Earth, the tiny planet and Earth under 1000x Rayleigh (the stiff extreme
+// case, whose tables underflow near the ground).
+std::vector<Atmosphere> atmospheres() {
+  Atmosphere dense = fixtures::earth_atmosphere();
+  for (MediumComponent& c : dense.components)
+    if (c.name == "rayleigh") c.scattering_per_m *= 1000.0;
+  return {fixtures::earth_atmosphere(), fixtures::tiny_planet_atmosphere(), dense};
+}
+
+TEST_P(KernelsOnEachTarget, SkyviewRowsAreOneTexelAtATime) {
+  for (const Atmosphere& atm : atmospheres()) {
+    const fixtures::SkyLutInputs l = fixtures::bake_sky_lut_inputs(atm);
+    const MultiscatteringMapping mapping = multiscattering_mapping_of(l.multiscattering);
+    ASSERT_EQ(mapping.sun, SunMapping::linear);  // the kernel's mapping
+    const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+    // Ground, mid-air and space viewers, rays to the ground and to space,
+    // suns on both sides of the horizon; 11 texels: every group size.
+    for (double r : {rb + 1.0, rb + 0.4 * (rt - rb), rt + 20e3})
+      for (double mu : {-0.7, -0.05, 0.1, 0.9})
+        for (double sun_zenith : {0.3, 1.5, 1.75}) {
+          const SkyviewRowMarch row = march_skyview_row(atm, l.transmittance, l.multiscattering,
+                                                        mapping, r, mu, 12,
+                                                        StepDistribution::quadratic);
+          const int n = 11;
+          std::vector<double> cos_phi(n), nu(n);
+          for (int x = 0; x < n; ++x) {
+            cos_phi[x] = std::cos(kPi * x / (n - 1));
+            nu[x] = clamp_cosine(std::cos(sun_zenith) * mu +
+                                 std::sin(sun_zenith) * safe_sqrt(1.0 - mu * mu) * cos_phi[x]);
+          }
+          const double cos_s = std::cos(sun_zenith), sin_s = std::sin(sun_zenith);
+          std::vector<glm::dvec3> lanes(n), one(n), scratch;
+          skyview_row_luminance(row, atm, l.transmittance, l.multiscattering, cos_phi.data(),
+                                nu.data(), n, cos_s, sin_s, lanes.data());
+          for (int x = 0; x < n; ++x)
+            one[x] = skyview_texel_luminance(row, atm, l.transmittance, l.multiscattering,
+                                             cos_phi[x], cos_s, sin_s, nu[x], scratch);
+          EXPECT_TRUE(same_bits(lanes, one)) << r << " " << mu << " " << sun_zenith;
+        }
+  }
+}
+
+TEST_P(KernelsOnEachTarget, MultiscatteringTexelsAreComputeMultiscattering) {
+  // Both direction rules (unweighted and weighted), both sun mappings, a
+  // planet whose rays mostly end on its ground; rows of 11 suns.
+  for (const Atmosphere& atm : {fixtures::earth_atmosphere(), fixtures::tiny_planet_atmosphere()}) {
+    const Texture lut = bake_transmittance_lut(atm, {64, 16, 40}, BakeContext{});
+    for (DirectionQuadrature q : {DirectionQuadrature::fibonacci, DirectionQuadrature::symmetric_gauss})
+      for (SunMapping sun : {SunMapping::linear, SunMapping::terminator}) {
+        MultiscatteringLutSpec spec{11, 6, 24, 8};
+        spec.quadrature = q;
+        spec.sun_mapping = sun;
+        const Texture table = bake_multiscattering_lut(atm, lut, spec, {});
+        const MultiscatteringMapping mapping = multiscattering_mapping_of(table);
+        for (int y = 0; y < spec.height; ++y) {
+          const double v = texel_center(y, spec.height);
+          const double r =
+              r_mu_s_from_multiscattering_uv(atm, {0.5, v}, spec.width, spec.height, mapping).r;
+          const SphereRule rule = multiscattering_rule(q, spec.directions, atm, r);
+          for (int x = 0; x < spec.width; ++x) {
+            const double mu_s = clamp_cosine(
+                r_mu_s_from_multiscattering_uv(atm, {texel_center(x, spec.width), v}, spec.width,
+                                               spec.height, mapping)
+                    .mu_s);
+            const glm::dvec3 psi =
+                compute_multiscattering(atm, lut, r, mu_s, rule, spec.steps).psi_ms;
+            for (int c = 0; c < 3; ++c)
+              ASSERT_EQ(table.at(x, y, 0, 0, c), float(psi[c]))
+                  << int(q) << " " << int(sun) << " " << x << " " << y;
+          }
+        }
+      }
+  }
+}
+
+TEST_P(KernelsOnEachTarget, SunAndPsiMsReadsAreTheOneValueLookups) {
+  for (const Atmosphere& atm : atmospheres()) {
+    const Texture t = bake_transmittance_lut(atm, {64, 32, 16}, {});
+    MultiscatteringLutSpec terminator{12, 10, 16, 12};
+    terminator.sun_mapping = SunMapping::terminator;
+    terminator.altitude_mapping = AltitudeMapping::quadratic;
+    for (const MultiscatteringLutSpec& spec : {MultiscatteringLutSpec{12, 10, 16, 12}, terminator}) {
+      const Texture ms = bake_multiscattering_lut(atm, t, spec, {});
+      const MultiscatteringMapping mapping = multiscattering_mapping_of(ms);
+      // Radii below the ground to above the top, sun cosines past [-1, 1],
+      // dense around the horizon; 4 k + 3 points, so the last group of 2 or
+      // 4 lanes is short.
+      const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+      std::vector<double> r, mu_s;
+      for (int i = 0; i < 23; ++i)
+        for (int j = 0; j < 41; ++j) {
+          r.push_back(rb - 10.0 + (rt - rb + 30.0) * std::pow(i / 22.0, 2.0));
+          const double x = -1.0 + 2.0 * j / 40.0;
+          mu_s.push_back(1.1 * x * std::abs(x));
+        }
+      const size_t n = r.size();
+      for (const Texture* msp : {&ms, static_cast<const Texture*>(nullptr)}) {
+        std::vector<glm::dvec3> sun_lanes(n), ms_lanes(n, glm::dvec3(-1.0)), sun_one(n),
+            ms_one(n, glm::dvec3(-1.0));
+        read_sun_and_psi_ms(atm, t, msp, mapping, r.data(), mu_s.data(), n, sun_lanes.data(),
+                            ms_lanes.data());
+        size_t lit = 0, shadowed = 0;
+        for (size_t k = 0; k < n; ++k) {
+          sun_one[k] = lookup_sun_transmittance(t, atm, r[k], mu_s[k]);
+          if (msp) ms_one[k] = lookup_multiscattering(ms, mapping, atm, r[k], mu_s[k]);
+          (sun_one[k] == glm::dvec3(0.0) ? shadowed : lit) += 1;
+        }
+        EXPECT_TRUE(same_bits(sun_lanes, sun_one));
+        EXPECT_TRUE(same_bits(ms_lanes, ms_one));  // untouched (-1) without a table
+        EXPECT_GT(lit, n / 4);  // both sides of the horizon are read
+        EXPECT_GT(shadowed, n / 20);
+      }
+    }
+  }
+}
+
+SKYBAKE_INSTANTIATE_KERNELS_ON_EACH_TARGET();
+
+}  // namespace
+}  // namespace skybake
