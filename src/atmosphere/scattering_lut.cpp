@@ -326,11 +326,7 @@ void ray_quadrature(double r, double mu, double d, int nodes, std::vector<RayNod
 // ---- Transmittance reader ----
 
 void MuSAxis::taps(const double* mu_s, int n, int* i0, double* w) const {
-  for (int k = mu_s_taps(constants(), mu_s, n, i0, w); k < n; ++k) {
-    const AxisTap t = tap(mu_s[k]);
-    i0[k] = t.i0;
-    w[k] = t.w;
-  }
+  mu_s_taps(constants(), mu_s, n, i0, w);
 }
 
 TransmittanceReader::TransmittanceReader(const Texture& lut, const Atmosphere& atm)
@@ -425,31 +421,18 @@ void SingleScatteringRay::at_sun2(const TransmittanceReader& reader, const doubl
 void SingleScatteringRay::at_suns(const TransmittanceReader& reader, const double* mu_s,
                                   const double* nu, int n, glm::dvec3 sun, SingleScattering* out,
                                   Scratch& scratch) const {
-  for (auto* v : {&scratch.mu_s, &scratch.w, &scratch.visible}) v->resize(n);
-  scratch.i0.resize(n);
+  scratch.mu_s.resize(n);
   scratch.sums.assign(6 * size_t(n), 0.0);
   double* const sums[6] = {&scratch.sums[0],     &scratch.sums[n],     &scratch.sums[2 * n],
                            &scratch.sums[3 * n], &scratch.sums[4 * n], &scratch.sums[5 * n]};
-  for (int k = 0; k < n; ++k) out[k] = SingleScattering{};
-  int wide = 0;  // the suns [0, wide) are summed in `sums`, the others in `out`
   for (const Node& node : nodes) {
     // clamp_cosine as min / max: the same value, no branch.
     for (int k = 0; k < n; ++k)
       scratch.mu_s[k] = std::min(std::max((r * mu_s[k] + node.s * nu[k]) * node.inv_r, -1.0), 1.0);
-    wide = reader.add_sun_products(node.sun_row, scratch.mu_s.data(), n, node.a_rayleigh,
-                                   node.a_mie, sums, scratch.i0.data(), scratch.w.data(),
-                                   scratch.visible.data());
-    const int rest = n - wide;
-    reader.sun_taps(node.sun_row, scratch.mu_s.data() + wide, rest, scratch.i0.data(),
-                    scratch.w.data(), scratch.visible.data());
-    for (int k = 0; k < rest; ++k) {
-      const glm::dvec3 T_sun =
-          reader.to_sun_at(node.sun_row, scratch.i0[k], scratch.w[k], scratch.visible[k]);
-      out[wide + k].rayleigh += node.a_rayleigh * T_sun;
-      out[wide + k].mie += node.a_mie * T_sun;
-    }
+    reader.add_sun_products(node.sun_row, scratch.mu_s.data(), n, node.a_rayleigh, node.a_mie,
+                            sums);
   }
-  for (int k = 0; k < wide; ++k) {
+  for (int k = 0; k < n; ++k) {
     out[k].rayleigh = {sums[0][k], sums[1][k], sums[2][k]};
     out[k].mie = {sums[3][k], sums[4][k], sums[5][k]};
   }
@@ -572,26 +555,10 @@ glm::dvec3 ScatteringOrder::radiance_at(const Atmosphere& atm, const ScatteringS
   return L;
 }
 
-void TransmittanceReader::sun_taps(const Row& row, const double* mu_s, int n, int* i0, double* w,
-                                   double* visible) const {
-  for (int k = skybake::sun_taps({rt_, lut_.width, stride_}, row, mu_s, n, i0, w, visible); k < n;
-       ++k) {
-    const double mu = clamp_cosine(mu_s[k]);
-    const double d = distance_to_top_boundary(rt_, row.r, mu);
-    const double t = std::clamp((d - row.d_min) * row.inv_span, 0.0, 1.0) * (lut_.width - 1);
-    i0[k] = std::min(int(t), lut_.width - 2);
-    w[k] = t - i0[k];
-    const double s = (mu_s[k] - row.sun_edge) * row.inv_sun_width;
-    visible[k] = s >= 1.0 ? 1.0 : s <= 0.0 ? 0.0 : s * s * (3.0 - 2.0 * s);
-  }
-}
-
-int TransmittanceReader::add_sun_products(const Row& row, const double* mu_s, int n,
-                                          const glm::dvec3& a_rayleigh, const glm::dvec3& a_mie,
-                                          double* const sums[6], int* i0, double* w,
-                                          double* visible) const {
-  return skybake::add_sun_products({rt_, lut_.width, stride_}, row, mu_s, n, a_rayleigh, a_mie,
-                                   sums, i0, w, visible);
+void TransmittanceReader::add_sun_products(const Row& row, const double* mu_s, int n,
+                                           const glm::dvec3& a_rayleigh, const glm::dvec3& a_mie,
+                                           double* const sums[6]) const {
+  skybake::add_sun_products({rt_, lut_.width, stride_}, row, mu_s, n, a_rayleigh, a_mie, sums);
 }
 
 }  // namespace skybake

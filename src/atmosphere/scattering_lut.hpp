@@ -138,10 +138,8 @@ class MuSAxis {
     return {i, i + 1, t - i};
   }
   // tap() of n cosines at once (i0 and w; i1 = i0 + 1), the same values
-  // (SSE2, two at a time, or AVX2, four: core/simd_switches.hpp): the hottest
-  // loop of the orders >= 2 (multiple_scattering.cpp), where one tap at a
-  // time mispredicted its clamps and could not be vectorized (std::sqrt sets
-  // errno).
+  // (kernels/sun_taps.hpp): one tap at a time mispredicted its clamps and
+  // could not be vectorized (std::sqrt sets errno).
   void taps(const double* mu_s, int n, int* i0, double* w) const;
   // The constants of x(mu_s), for loops that inline taps() (kernels/node_slice_reads.cpp).
   struct Constants {
@@ -271,31 +269,11 @@ class TransmittanceReader {
     return out;
   }
   glm::dvec3 to_top(double r, double mu) const { return to_top(row(r), mu); }
-  // to_sun of n cosines at once, in two passes that give the same values:
-  // sun_taps (SSE2, two at a time, no branch) the LUT's mu column i0 and
-  // weight w and the sun's visible fraction, then to_sun_at each texel.
-  void sun_taps(const Row& row, const double* mu_s, int n, int* i0, double* w,
-                double* visible) const;
-  glm::dvec3 to_sun_at(const Row& row, int i0, double w, double visible) const {
-    const float* t00 = row.row0 + stride_ * i0;
-    const float* t01 = row.row1 + stride_ * i0;
-    glm::dvec3 out;
-    for (int c = 0; c < 3; ++c) {
-      const double bottom = t00[c] + (t00[stride_ + c] - double(t00[c])) * w;
-      const double top = t01[c] + (t01[stride_ + c] - double(t01[c])) * w;
-      out[c] = visible * (bottom + (top - bottom) * row.wy);
-    }
-    return out;
-  }
-  // sums[c][k] += a_rayleigh[c] T_k, sums[3 + c][k] += a_mie[c] T_k, with
-  // T_k = to_sun_at of sun_taps(row, mu_s[k]) (the same values, the same
-  // operations per lane), for the first cosines in AVX2 (four at a time,
-  // kernels/sun_taps.cpp); returns how many it did: a multiple of 4, 0 without
-  // AVX2. Single scattering's hottest loop (SingleScatteringRay::at_suns).
-  // i0, w and visible: work arrays of at least n (the taps of a first pass).
-  int add_sun_products(const Row& row, const double* mu_s, int n, const glm::dvec3& a_rayleigh,
-                       const glm::dvec3& a_mie, double* const sums[6], int* i0, double* w,
-                       double* visible) const;
+  // sums[c][k] += a_rayleigh[c] T_k and sums[3 + c][k] += a_mie[c] T_k with
+  // T_k = to_sun(row, mu_s[k]) (the same values: kernels/sun_taps.hpp), for
+  // k < n: single scattering's hottest loop (SingleScatteringRay::at_suns).
+  void add_sun_products(const Row& row, const double* mu_s, int n, const glm::dvec3& a_rayleigh,
+                        const glm::dvec3& a_mie, double* const sums[6]) const;
   // Between (r, mu) and the point at distance d along the ray.
   glm::dvec3 between(double r, double mu, double d, bool ray_hits_ground) const;
   // To the sun of zenith cosine mu_s, with the fraction of the sun's disk
@@ -348,12 +326,11 @@ struct SingleScatteringRay {
   // overlap); out[k] equals at_sun(mu_s[k], nu[k]).
   void at_sun2(const TransmittanceReader& reader, const double mu_s[2], const double nu[2],
                glm::dvec3 sun, SingleScattering out[2]) const;
-  // n suns in one pass over the nodes, each node's transmittance taps for
-  // all of them at once (TransmittanceReader::sun_taps): out[k] equals
+  // n suns in one pass over the nodes, each node's transmittance to all of
+  // them at once (TransmittanceReader::add_sun_products): out[k] equals
   // at_sun(mu_s[k], nu[k]). The work arrays are the caller's, reused.
   struct Scratch {
-    std::vector<double> mu_s, w, visible, sums;
-    std::vector<int> i0;
+    std::vector<double> mu_s, sums;
   };
   void at_suns(const TransmittanceReader& reader, const double* mu_s, const double* nu, int n,
                glm::dvec3 sun, SingleScattering* out, Scratch& scratch) const;

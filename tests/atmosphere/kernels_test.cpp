@@ -1,6 +1,8 @@
 // Every kernel of the bakers on every SIMD target this CPU runs against the
 // one-value functions it stands for, bit for bit (docs/architecture.md
-// "Kernels"): the sky-view rows against skyview_texel_luminance, the
+// "Kernels"): the mu_s taps against MuSAxis::tap, single scattering's many
+// suns against one sun at a time, the sky-view rows against
+// skyview_texel_luminance, the
 // multiple-scattering table against compute_multiscattering at its texels,
 // the sky references' reads against lookup_sun_transmittance and
 // lookup_multiscattering.
@@ -13,6 +15,7 @@
 #include "atmosphere/kernels/skyview_row_luminance.hpp"
 #include "atmosphere/kernels/sun_and_psi_ms_reads.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
+#include "atmosphere/scattering_lut.hpp"
 #include "atmosphere/skyview_lut.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/math.hpp"
@@ -139,6 +142,59 @@ TEST_P(KernelsOnEachTarget, SunAndPsiMsReadsAreTheOneValueLookups) {
         EXPECT_TRUE(same_bits(ms_lanes, ms_one));  // untouched (-1) without a table
         EXPECT_GT(lit, n / 4);  // both sides of the horizon are read
         EXPECT_GT(shadowed, n / 20);
+      }
+    }
+  }
+}
+
+// Cosines across [-1, 1] with the edges, values past them and an odd count
+// (a short last group of 2 or 4 lanes).
+std::vector<double> batch_cosines(double lowest) {
+  std::vector<double> mu = {-1.5, -1.0, -0.0, 0.0, 1.0, 1.5, lowest, std::nextafter(lowest, 0.0)};
+  for (int i = 0; i < 301; ++i) mu.push_back(-1.0 + 2.0 * i / 300.0);
+  return mu;
+}
+
+TEST_P(KernelsOnEachTarget, MuSTapsAreOneAtATime) {
+  for (const Atmosphere& atm : {fixtures::earth_atmosphere(), fixtures::tiny_planet_atmosphere()})
+    for (const ScatteringShape& shape :
+         {ScatteringShape{16, 64, 16, 4, kBrunetonMuSMin}, ScatteringShape{}, ScatteringShape{4, 8, 7, 2, 0.0}}) {
+      const MuSAxis axis(atm, shape);
+      const std::vector<double> mu_s = batch_cosines(shape.mu_s_min);
+      std::vector<int> i0(mu_s.size());
+      std::vector<double> w(mu_s.size());
+      axis.taps(mu_s.data(), int(mu_s.size()), i0.data(), w.data());
+      for (size_t k = 0; k < mu_s.size(); ++k) {
+        const AxisTap t = axis.tap(mu_s[k]);
+        ASSERT_EQ(i0[k], t.i0) << mu_s[k];
+        ASSERT_EQ(w[k], t.w) << mu_s[k];  // bit for bit
+      }
+    }
+}
+
+TEST_P(KernelsOnEachTarget, ManySunsAreOneSunAtATime) {
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const Texture lut = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{});
+  const TransmittanceReader reader(lut, atm);
+  const double rb = atm.bottom_radius_m;
+  std::vector<double> mu_s, nu;
+  for (int i = 0; i < 37; ++i) {
+    mu_s.push_back(-0.3 + 1.3 * i / 36.0);
+    nu.push_back(std::cos(0.17 * i));
+  }
+  SingleScatteringRay ray;
+  SingleScatteringRay::Scratch scratch;
+  std::vector<SingleScattering> many(mu_s.size());
+  for (double h : {0.0, 2e3, 30e3}) {
+    for (double mu : {0.9, 0.05, -0.05, -0.8}) {
+      const double r = rb + h;
+      ray.prepare(atm, reader, r, mu, ray_intersects_ground(rb, r, mu), 30);
+      ray.at_suns(reader, mu_s.data(), nu.data(), int(mu_s.size()), atm.sun_illuminance,
+                  many.data(), scratch);
+      for (size_t k = 0; k < mu_s.size(); ++k) {
+        const SingleScattering one = ray.at_sun(reader, mu_s[k], nu[k], atm.sun_illuminance);
+        ASSERT_EQ(many[k].rayleigh, one.rayleigh) << h << " " << mu << " " << k;
+        ASSERT_EQ(many[k].mie, one.mie) << h << " " << mu << " " << k;
       }
     }
   }

@@ -1,9 +1,10 @@
 // The sun-angle taps of a whole texel row at once, for the bakers' hottest
 // loops: the orders' mu_s taps (MuSAxis::taps, the mu_s mapping of Bruneton
 // 2017 GetScatteringTextureUvwzFromRMuMuSNu) and single scattering's
-// transmittance to the sun (TransmittanceReader::sun_taps and
-// add_sun_products, Bruneton 2017 GetTransmittanceToSun). Every value equals
-// the one-at-a-time function's (tests/atmosphere/scattering_lut_test.cpp).
+// transmittance to the sun (TransmittanceReader::add_sun_products, Bruneton
+// 2017 GetTransmittanceToSun), several cosines in the lanes of one group.
+// Every value equals the one-at-a-time function's (tests/atmosphere/
+// kernels_test.cpp).
 #pragma once
 
 #include "atmosphere/scattering_lut.hpp"
@@ -17,21 +18,13 @@ struct SunTapTable {
   int width, stride;
 };
 
-// MuSAxis::tap(mu_s[k]) for the first k < n: i0[k] and w[k] (i1 = i0 + 1);
-// returns how many it did (the caller taps the rest one at a time).
-int mu_s_taps(const MuSAxis::Constants& c, const double* mu_s, int n, int* i0, double* w);
+// MuSAxis::tap(mu_s[k]) for k < n: i0[k] and w[k] (i1 = i0 + 1).
+void mu_s_taps(const MuSAxis::Constants& c, const double* mu_s, int n, int* i0, double* w);
 
-// TransmittanceReader::sun_taps for the first cosines: the table's mu
-// column i0 and weight w of each sun at the row's radius and the sun's
-// visible fraction; returns how many it did (the rest: one at a time).
-int sun_taps(const SunTapTable& table, const TransmittanceReader::Row& row, const double* mu_s,
-              int n, int* i0, double* w, double* visible);
-
-// TransmittanceReader::add_sun_products: sums[c][k] += a_rayleigh[c] T_k and
-// sums[3 + c][k] += a_mie[c] T_k for the first cosines; returns how many.
-int add_sun_products(const SunTapTable& table, const TransmittanceReader::Row& row,
-                     const double* mu_s, int n, const glm::dvec3& a_rayleigh,
-                     const glm::dvec3& a_mie, double* const sums[6], int* i0, double* w,
-                     double* visible);
+// sums[c][k] += a_rayleigh[c] T_k and sums[3 + c][k] += a_mie[c] T_k for
+// k < n, T_k = TransmittanceReader::to_sun(row, mu_s[k]).
+void add_sun_products(const SunTapTable& table, const TransmittanceReader::Row& row,
+                      const double* mu_s, int n, const glm::dvec3& a_rayleigh,
+                      const glm::dvec3& a_mie, double* const sums[6]);
 
 }  // namespace skybake
