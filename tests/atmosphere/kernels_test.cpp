@@ -1,7 +1,8 @@
 // Every kernel of the bakers on every SIMD target this CPU runs against the
 // one-value functions it stands for, bit for bit (docs/architecture.md
 // "Kernels"): the mu_s taps against MuSAxis::tap, single scattering's many
-// suns against one sun at a time, the sky-view rows against
+// suns against one sun at a time, the orders' node reads and row blends
+// against one texel at a time, the sky-view rows against
 // skyview_texel_luminance, the
 // multiple-scattering table against compute_multiscattering at its texels,
 // the sky references' reads against lookup_sun_transmittance and
@@ -12,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include "atmosphere/kernels/node_slice_reads.hpp"
+#include "atmosphere/kernels/row_blend.hpp"
 #include "atmosphere/kernels/skyview_row_luminance.hpp"
 #include "atmosphere/kernels/sun_and_psi_ms_reads.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
@@ -197,6 +200,90 @@ TEST_P(KernelsOnEachTarget, ManySunsAreOneSunAtATime) {
         ASSERT_EQ(many[k].mie, one.mie) << h << " " << mu << " " << k;
       }
     }
+  }
+}
+
+// A row of 13 texels (the loops' groups of 4 and 8 both padded), read from
+// a slice of made-up values: every texel's sum equals SunCosineTapsFloat::tap and
+// the bilinear read of both nu slices one texel at a time, bit for bit, the
+// one-slice texels' read included.
+struct Row {
+  static constexpr int kN = 13, kPadded = 16, kSingle = 8, kMuS = 9, kNu = 3;
+  std::vector<double> mu_s, nu;
+  std::vector<int> nu_i0, nu_i1, at0, at1;
+  std::vector<float> nu_w, lw;
+  std::vector<Rgb4> slice;
+  Row()
+      : mu_s(kPadded), nu(kPadded), nu_i0(kPadded), nu_i1(kPadded), at0(kPadded), at1(kPadded),
+        nu_w(kPadded), lw(kPadded), slice(kMuS * kNu) {
+    // Texels 0-7 read one nu slice (NodeRow::single), 8-12 two.
+    for (int x = 0; x < kN; ++x) {
+      mu_s[x] = -0.3 + 1.3 * x / (kN - 1);
+      nu[x] = std::sin(0.7 * x);
+      nu_i0[x] = (x % (kNu - 1)) * kMuS;
+      nu_i1[x] = x < kSingle ? nu_i0[x] : nu_i0[x] + kMuS;
+      nu_w[x] = x < kSingle ? 0.0f : float(0.1 + 0.06 * x);
+    }
+    for (size_t t = 0; t < slice.size(); ++t)
+      slice[t] = Rgb4{{float(1.0 + t), float(std::sqrt(1.0 + t)), float(1.0 / (1.0 + t)), 0.0f}};
+  }
+  NodeRow node(double s) {
+    return NodeRow{6.37e6,       s,          1.0 / 6.372e6, kSingle,    mu_s.data(), nu.data(),
+                   nu_i0.data(), nu_i1.data(), nu_w.data(), at0.data(), at1.data(), lw.data()};
+  }
+};
+
+std::vector<Rgb4> node_sums(Row& row, const SunCosineTapsFloat& taps) {
+  std::vector<Rgb4> sum(Row::kPadded);
+  const Rgb4 wS{{0.5f, 0.25f, 0.125f, 0.0f}};
+  for (double s : {0.0, 3e4, 2e5})
+    add_node_slice_reads(row.node(s), taps, row.slice.data(), wS, Row::kPadded, sum.data());
+  return sum;
+}
+
+TEST_P(KernelsOnEachTarget, NodeSliceReadsAreOneTexelAtATime) {
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const SunCosineTapsFloat taps(MuSAxis(atm, ScatteringShape{4, 8, Row::kMuS, Row::kNu, -0.2}).constants());
+  Row row;
+  std::vector<Rgb4> expected(Row::kN);
+  for (double s : {0.0, 3e4, 2e5})
+    for (int x = 0; x < Row::kN; ++x) {
+      const NodeRow q = row.node(s);
+      int i0 = 0;
+      float lw = 0.0f;
+      taps.tap((q.r * q.mu_s[x] + q.s * q.nu[x]) * q.inv_r_i, i0, lw);
+      const Rgb4* s0 = &row.slice[size_t(i0 + q.nu_i0[x])];
+      const Rgb4* s1 = &row.slice[size_t(i0 + q.nu_i1[x])];
+      const float nw = q.nu_w[x], wS[3] = {0.5f, 0.25f, 0.125f};
+      for (int c = 0; c < 3; ++c) {
+        const float a = (1.0f - lw) * s0[0].v[c] + lw * s0[1].v[c];
+        const float b = (1.0f - lw) * s1[0].v[c] + lw * s1[1].v[c];
+        expected[size_t(x)].v[c] += wS[c] * ((1.0f - nw) * a + nw * b);
+      }
+    }
+  const std::vector<Rgb4> sum = node_sums(row, taps);
+  for (int x = 0; x < Row::kN; ++x)
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(sum[size_t(x)].v[c], expected[size_t(x)].v[c]) << x;
+}
+
+// Rows of 1, 2 and 5 texels (a last texel after whole vectors of 8 lanes)
+// blended with weights that round: every float as the one-texel sum.
+TEST_P(KernelsOnEachTarget, RowBlendIsOneTexelAtATime) {
+  for (int n : {1, 2, 5}) {
+    std::vector<Rgb4> rows[4];
+    std::vector<Rgb4> out(static_cast<size_t>(n));
+    for (int k = 0; k < 4; ++k)
+      for (int i = 0; i < n; ++i)
+        rows[k].push_back(Rgb4{{float(std::sin(1.0 + i + k)), float(1.0 / (3.0 + i * k)),
+                                float(std::sqrt(2.0 + i)), 0.0f}});
+    const Rgb4* const r[4] = {rows[0].data(), rows[1].data(), rows[2].data(), rows[3].data()};
+    const float w[4] = {0.1f, 0.7f / 3.0f, 0.3f, 1.0f / 7.0f};
+    blend_rows(r, w, n, out.data());
+    for (int i = 0; i < n; ++i)
+      for (int c = 0; c < 4; ++c)
+        ASSERT_EQ(out[size_t(i)].v[c], (w[0] * r[0][i].v[c] + w[1] * r[1][i].v[c]) +
+                                           (w[2] * r[2][i].v[c] + w[3] * r[3][i].v[c]))
+            << n << " " << i << " " << c;
   }
 }
 

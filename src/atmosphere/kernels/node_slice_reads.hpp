@@ -3,11 +3,11 @@
 // taps and the bilinear read of the node's blended slice (row_blend.hpp).
 // The cosine is taken in double; the mu_s mapping of Bruneton 2017
 // (GetTextureCoordFromUnitRange of GetScatteringTextureUvwzFromRMuMuSNu, at
-// r = bottom) in single precision, sixteen texels per AVX-512 instruction,
-// eight per AVX2 one or four per SSE2 one: the square root and the division
-// of the mapping are the loop's limit (the divider), and in float they cost
-// about a third of the double ones. The three loops do the same IEEE
-// operations per lane (core/simd_switches.hpp), so the same bits.
+// r = bottom) in single precision, as many texels as the target has float
+// lanes: the square root and the division of the mapping are the loop's
+// limit (the divider), and in float they cost about a third of the double
+// ones. Every target does the same IEEE operations per lane, so the same
+// bits (tests/atmosphere/kernels_test.cpp).
 #pragma once
 
 #include "atmosphere/kernels/row_blend.hpp"

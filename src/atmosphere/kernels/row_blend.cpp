@@ -1,54 +1,56 @@
-// The row blend in SSE2, its AVX2 twin and plain C++ for CPUs without SSE2.
-// See the header.
+// The row blend over lanes (Highway, every target from one source): the
+// floats of the rows (R, G, B and the pad of each texel alike) in the lanes,
+// each (w0 a + w1 b) + (w2 c + w3 d), so the same bits on every target
+// (tests/atmosphere/kernels_test.cpp). See the header.
 #include "atmosphere/kernels/row_blend.hpp"
 
-#include "core/wide_intrinsics.hpp"
+#include <algorithm>
 
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "atmosphere/kernels/row_blend.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
 namespace skybake {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
 
-namespace {
-
-#if SKYBAKE_HAS_AVX2
-// blend_rows two texels at a time; returns how many texels it did.
-SKYBAKE_AVX2 int blend_rows_avx2(const Rgb4* const rows[4], const float w[4], int n, Rgb4* out) {
-  const __m256 w0 = _mm256_set1_ps(w[0]), w1 = _mm256_set1_ps(w[1]), w2 = _mm256_set1_ps(w[2]),
-               w3 = _mm256_set1_ps(w[3]);
-  int i = 0;
-  for (; i + 2 <= n; i += 2) {
-    const __m256 a = _mm256_mul_ps(w0, _mm256_loadu_ps(rows[0][i].v));
-    const __m256 b = _mm256_mul_ps(w1, _mm256_loadu_ps(rows[1][i].v));
-    const __m256 c = _mm256_mul_ps(w2, _mm256_loadu_ps(rows[2][i].v));
-    const __m256 d = _mm256_mul_ps(w3, _mm256_loadu_ps(rows[3][i].v));
-    _mm256_storeu_ps(out[i].v, _mm256_add_ps(_mm256_add_ps(a, b), _mm256_add_ps(c, d)));
-  }
-  return i;
+// Floats [i, i + Lanes(d)) of the blend.
+template <class D>
+HWY_INLINE void Blend(D d, const float* const rows[4], const float w[4], size_t i, float* out) {
+  const hn::Vec<D> ab = hn::Add(hn::Mul(hn::Set(d, w[0]), hn::LoadU(d, rows[0] + i)),
+                                hn::Mul(hn::Set(d, w[1]), hn::LoadU(d, rows[1] + i)));
+  const hn::Vec<D> cd = hn::Add(hn::Mul(hn::Set(d, w[2]), hn::LoadU(d, rows[2] + i)),
+                                hn::Mul(hn::Set(d, w[3]), hn::LoadU(d, rows[3] + i)));
+  hn::StoreU(hn::Add(ab, cd), d, out + i);
 }
 
-#endif
+void BlendRows(const Rgb4* const rows[4], const float w[4], int n, Rgb4* out) {
+  const float* const r[4] = {rows[0][0].v, rows[1][0].v, rows[2][0].v, rows[3][0].v};
+  const size_t floats = 4 * size_t(n);
+  // Whole vectors, then (8 lanes, an odd n) the last texel: a texel is four
+  // floats.
+  const hn::ScalableTag<float> d;
+  const hn::CappedTag<float, 4> d4;
+  size_t i = 0;
+  for (; i + hn::Lanes(d) <= floats; i += hn::Lanes(d)) Blend(d, r, w, i, out[0].v);
+  for (; i < floats; i += hn::Lanes(d4)) Blend(d4, r, w, i, out[0].v);
+}
 
-}  // namespace
+}  // namespace HWY_NAMESPACE
+}  // namespace skybake
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace skybake {
+
+HWY_EXPORT(BlendRows);
 
 void blend_rows(const Rgb4* const rows[4], const float w[4], int n, Rgb4* out) {
-  int first = 0;
-#if SKYBAKE_HAS_AVX2
-  if (avx2_enabled()) first = blend_rows_avx2(rows, w, n, out);
-#endif
-#if defined(__SSE2__)
-  const __m128 w0 = _mm_set1_ps(w[0]), w1 = _mm_set1_ps(w[1]), w2 = _mm_set1_ps(w[2]),
-               w3 = _mm_set1_ps(w[3]);
-  for (int i = first; i < n; ++i) {
-    const __m128 s = _mm_add_ps(_mm_add_ps(_mm_mul_ps(w0, _mm_load_ps(rows[0][i].v)),
-                                           _mm_mul_ps(w1, _mm_load_ps(rows[1][i].v))),
-                                _mm_add_ps(_mm_mul_ps(w2, _mm_load_ps(rows[2][i].v)),
-                                           _mm_mul_ps(w3, _mm_load_ps(rows[3][i].v))));
-    _mm_store_ps(out[i].v, s);
-  }
-#else
-  for (int i = first; i < n; ++i)
-    for (int c = 0; c < 4; ++c)
-      out[i].v[c] = (w[0] * rows[0][i].v[c] + w[1] * rows[1][i].v[c]) +
-                    (w[2] * rows[2][i].v[c] + w[3] * rows[3][i].v[c]);
-#endif
+  HWY_DYNAMIC_DISPATCH(BlendRows)(rows, w, n, out);
 }
 
 }  // namespace skybake
+#endif  // HWY_ONCE
