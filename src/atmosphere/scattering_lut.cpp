@@ -430,7 +430,7 @@ void SingleScatteringRay::at_suns(const TransmittanceReader& reader, const doubl
     for (int k = 0; k < n; ++k)
       scratch.mu_s[k] = std::min(std::max((r * mu_s[k] + node.s * nu[k]) * node.inv_r, -1.0), 1.0);
     reader.add_sun_products(node.sun_row, scratch.mu_s.data(), n, node.a_rayleigh, node.a_mie,
-                            sums);
+                            sums, scratch.taps);
   }
   for (int k = 0; k < n; ++k) {
     out[k].rayleigh = {sums[0][k], sums[1][k], sums[2][k]};
@@ -557,8 +557,9 @@ glm::dvec3 ScatteringOrder::radiance_at(const Atmosphere& atm, const ScatteringS
 
 void TransmittanceReader::add_sun_products(const Row& row, const double* mu_s, int n,
                                            const glm::dvec3& a_rayleigh, const glm::dvec3& a_mie,
-                                           double* const sums[6]) const {
-  skybake::add_sun_products({rt_, lut_.width, stride_}, row, mu_s, n, a_rayleigh, a_mie, sums);
+                                           double* const sums[6], SunTapScratch& scratch) const {
+  skybake::add_sun_products({rt_, lut_.width, stride_}, row, mu_s, n, a_rayleigh, a_mie, sums,
+                            scratch);
 }
 
 }  // namespace skybake

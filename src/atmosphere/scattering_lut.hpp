@@ -40,6 +40,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -233,6 +234,13 @@ constexpr double kGauss3Weights[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
 
 // ---- Transmittance ----------------------------------------------------------
 
+// The work arrays of TransmittanceReader::add_sun_products: each sun's
+// column, weight and visible fraction.
+struct SunTapScratch {
+  std::vector<int32_t> i0;
+  std::vector<double> w, visible;
+};
+
 // lookup_transmittance_to_top and lookup_transmittance (transmittance_lut.hpp)
 // with the work that depends on r alone hoisted into a Row, for inner loops
 // that read many mu at one r. The same values up to rounding (tests).
@@ -273,7 +281,8 @@ class TransmittanceReader {
   // T_k = to_sun(row, mu_s[k]) (the same values: kernels/sun_taps.hpp), for
   // k < n: single scattering's hottest loop (SingleScatteringRay::at_suns).
   void add_sun_products(const Row& row, const double* mu_s, int n, const glm::dvec3& a_rayleigh,
-                        const glm::dvec3& a_mie, double* const sums[6]) const;
+                        const glm::dvec3& a_mie, double* const sums[6],
+                        SunTapScratch& scratch) const;
   // Between (r, mu) and the point at distance d along the ray.
   glm::dvec3 between(double r, double mu, double d, bool ray_hits_ground) const;
   // To the sun of zenith cosine mu_s, with the fraction of the sun's disk
@@ -331,6 +340,7 @@ struct SingleScatteringRay {
   // at_sun(mu_s[k], nu[k]). The work arrays are the caller's, reused.
   struct Scratch {
     std::vector<double> mu_s, sums;
+    SunTapScratch taps;
   };
   void at_suns(const TransmittanceReader& reader, const double* mu_s, const double* nu, int n,
                glm::dvec3 sun, SingleScattering* out, Scratch& scratch) const;

@@ -1,8 +1,9 @@
 // Every kernel of the bakers on every SIMD target this CPU runs against the
 // one-value functions it stands for, bit for bit (docs/architecture.md
 // "Kernels"): the mu_s taps against MuSAxis::tap, single scattering's many
-// suns against one sun at a time, the orders' node reads and row blends
-// against one texel at a time, the sky-view rows against
+// suns against one sun at a time, the density's Mie sums against one pair
+// at a time, the orders' node reads and row blends against one texel at a
+// time, the sky-view rows against
 // skyview_texel_luminance, the
 // multiple-scattering table against compute_multiscattering at its texels,
 // the sky references' reads against lookup_sun_transmittance and
@@ -13,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include "atmosphere/kernels/mie_batch.hpp"
 #include "atmosphere/kernels/node_slice_reads.hpp"
 #include "atmosphere/kernels/row_blend.hpp"
 #include "atmosphere/kernels/skyview_row_luminance.hpp"
@@ -285,6 +287,48 @@ TEST_P(KernelsOnEachTarget, RowBlendIsOneTexelAtATime) {
                                            (w[2] * r[2][i].v[c] + w[3] * r[3][i].v[c]))
             << n << " " << i << " " << c;
   }
+}
+
+// The density's Mie loop against one pair at a time (pair j into lane j % 8
+// of each sum, the lanes added in double): 5 and 6 zenith bands (25 and 36
+// pairs, padded to 32 and 40), both phase functions, forward and backward
+// views.
+TEST_P(KernelsOnEachTarget, MieSumsAreOnePairAtATime) {
+  for (int bands : {5, 6})
+    for (PhaseKind kind : {PhaseKind::cornette_shanks, PhaseKind::henyey_greenstein}) {
+      const SphereGrid grid = sphere_grid(bands);
+      MieBatch batch(grid);
+      std::vector<glm::dvec3> L(grid.directions.size());
+      for (size_t i = 0; i < L.size(); ++i)
+        L[i] = glm::dvec3(1.0 + std::sin(0.3 * i), 0.5, 1.0 / (1.0 + i));
+      batch.set_field(L);
+      ScatteringPhases phases;
+      phases.mie_g = 0.8;
+      phases.mie_phase = kind;
+      const MieKernel k(phases);
+      for (const glm::dvec3 v : {glm::dvec3(0.0, 0.0, 1.0), glm::dvec3(0.6, 0.0, -0.8),
+                                 glm::normalize(glm::dvec3(0.3, 0.5, 0.2))}) {
+        double out[4];
+        batch.sums(k, v, out);
+        float lanes[4][MieBatch::kLanes] = {};
+        const float vx = float(v.x), vy = float(v.y), vz = float(v.z);
+        const float a = float(k.a), b = float(k.b), cs = k.cornette_shanks ? 1.0f : 0.0f;
+        for (size_t j = 0; j < batch.n; ++j) {
+          const float in_plane = vx * batch.x[j] + vz * batch.z[j], across = vy * batch.y[j];
+          const float cp = in_plane + across, cm = in_plane - across;
+          const float wp = a + b * std::max(1.0f - cp, 0.0f), wm = a + b * std::max(1.0f - cm, 0.0f);
+          const float qp = wp * std::sqrt(wp), qm = wm * std::sqrt(wm);
+          const float p = ((1.0f + cs * (cp * cp)) * qm + (1.0f + cs * (cm * cm)) * qp) / (qp * qm);
+          for (int c = 0; c < 4; ++c) lanes[c][j % 8] += p * batch.blocks[MieBatch::field(c, j)];
+        }
+        for (int c = 0; c < 4; ++c) {
+          const float* s = lanes[c];
+          const double expected = ((double(s[0]) + s[1]) + (double(s[2]) + s[3])) +
+                                  ((double(s[4]) + s[5]) + (double(s[6]) + s[7]));
+          ASSERT_EQ(out[c], expected) << bands << " " << int(kind) << " " << c;
+        }
+      }
+    }
 }
 
 SKYBAKE_INSTANTIATE_KERNELS_ON_EACH_TARGET();

@@ -3,8 +3,8 @@
 // for one view v, the one loop of the bake that runs (texels x directions)
 // times, 0.27 G direction pairs per order at default sizes. It runs in single
 // precision, eight pairs per step (lanes accumulate ~32 terms each: relative
-// rounding ~1e-6, well below the quadrature's error), in AVX2 where the CPU
-// has it and in SSE2 otherwise, with the same bits (core/simd_switches.hpp).
+// rounding ~1e-6, well below the quadrature's error), over lanes (Highway):
+// the same bits on every target (tests/atmosphere/kernels_test.cpp).
 #pragma once
 
 #include <cstddef>
@@ -41,8 +41,7 @@ struct MieKernel {
 // Pairs padded to a multiple of 8 with zero weights; pair j adds into lane
 // j % 8 of each sum, and the lanes are added in double at the end. The
 // field and weights are stored by blocks of 8 pairs, R G B and dw of one
-// block together (field()), so that the AVX-512 loop adds R and G (B and
-// dw) of eight pairs in one instruction.
+// block together (field()).
 struct MieBatch {
   static constexpr size_t kLanes = 8;
   size_t n = 0;

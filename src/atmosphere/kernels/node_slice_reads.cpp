@@ -81,6 +81,33 @@ HWY_INLINE void NodeRead(D4 d4, const Rgb4* slice, const NodeRow& q, const Rgb4&
   }
 }
 
+#if HWY_TARGET == HWY_AVX2
+// NodeRead of texels x and x + 1 in eight lanes: a 256-bit load takes a
+// texel's s00 and s01 (or s10 and s11) together, regrouped into (s00 of x,
+// s00 of x + 1) and (s01 of x, s01 of x + 1).
+HWY_INLINE void NodeReadPair(const Rgb4* slice, const NodeRow& q, const Rgb4& wS, int x,
+                             bool one_slice, Rgb4* sum) {
+  const hn::Full256<float> d8;
+  const hn::Full128<float> d4;
+  using V = hn::Vec<decltype(d8)>;
+  auto pair = [&](float a, float b) { return hn::Combine(d8, hn::Set(d4, b), hn::Set(d4, a)); };
+  const V one = hn::Set(d8, 1.0f);
+  const V a0 = hn::LoadU(d8, slice[q.at0[x]].v), a1 = hn::LoadU(d8, slice[q.at0[x + 1]].v);
+  const V l1 = pair(q.lw[x], q.lw[x + 1]), l0 = hn::Sub(one, l1);
+  V L = hn::Add(hn::Mul(l0, hn::ConcatLowerLower(d8, a1, a0)),
+                hn::Mul(l1, hn::ConcatUpperUpper(d8, a1, a0)));
+  if (!one_slice) {
+    const V b0 = hn::LoadU(d8, slice[q.at1[x]].v), b1 = hn::LoadU(d8, slice[q.at1[x + 1]].v);
+    const V b = hn::Add(hn::Mul(l0, hn::ConcatLowerLower(d8, b1, b0)),
+                        hn::Mul(l1, hn::ConcatUpperUpper(d8, b1, b0)));
+    const V n1 = pair(q.nu_w[x], q.nu_w[x + 1]), n0 = hn::Sub(one, n1);
+    L = hn::Add(hn::Mul(n0, L), hn::Mul(n1, b));
+  }
+  const V ws = hn::Combine(d8, hn::LoadU(d4, wS.v), hn::LoadU(d4, wS.v));
+  hn::StoreU(hn::Add(hn::LoadU(d8, sum[x].v), hn::Mul(ws, L)), d8, sum[x].v);
+}
+#endif
+
 }  // namespace
 
 // The taps run kAhead texels ahead of the reads, so that the reads do not
@@ -94,7 +121,11 @@ void AddNodeSliceReads(const NodeRow& row, const SunCosineTapsFloat& taps, const
   for (int x = 0; x < std::min(kAhead, end); x += step) NodeTaps(df, taps, row, x);
   for (int x = 0; x < end; x += step) {
     if (x + kAhead < end) NodeTaps(df, taps, row, x + kAhead);
+#if HWY_TARGET == HWY_AVX2  // two texels a vector
+    for (int j = x; j < x + step; j += 2) NodeReadPair(slice, row, wS, j, j < row.single, sum);
+#else
     for (int j = x; j < x + step; ++j) NodeRead(d4, slice, row, wS, j, j < row.single, sum[j]);
+#endif
   }
 }
 

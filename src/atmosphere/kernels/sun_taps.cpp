@@ -45,11 +45,13 @@ HWY_INLINE void StoreFirst(D d, hn::Vec<D> v, size_t count, T* out) {
   std::copy(lanes, lanes + count, out);
 }
 
-// TransmittanceReader::to_sun of the lanes' cosines at the row; false
-// (and nothing read) where the sun is below the horizon in every lane.
+// The first pass of TransmittanceReader::to_sun for the lanes' cosines at
+// the row: the table's column i0, the weight w and the sun's visible
+// fraction.
 template <class D>
-HWY_INLINE bool ToSun(D d, const SunTapTable& table, const TransmittanceReader::Row& row,
-                      Lanes<D> raw, RgbLanes<D>& out) {
+HWY_INLINE void SunTaps(D d, const SunTapTable& table, const TransmittanceReader::Row& row,
+                        Lanes<D> raw, int32_t* i0, double* w, double* visible) {
+  const hn::Rebind<int32_t, D> di;
   const Lanes<D> zero = hn::Zero(d), one = hn::Set(d, 1.0);
   const Lanes<D> mu = ClampLanes(d, raw, -1.0, 1.0);
   // distance_to_top_boundary, then to_top's x_mu.
@@ -60,25 +62,72 @@ HWY_INLINE bool ToSun(D d, const SunTapTable& table, const TransmittanceReader::
   const Lanes<D> x =
       ClampLanes(d, hn::Mul(hn::Sub(d_top, hn::Set(d, row.d_min)), hn::Set(d, row.inv_span)), 0.0, 1.0);
   const TapLanes<D> tap = Taps(d, x, table.width);
+  hn::StoreU(tap.i0, di, i0);
+  hn::StoreU(tap.w, d, w);
   // The sun's smoothstep: 1 at s >= 1, 0 at s <= 0.
   const Lanes<D> s = hn::Mul(hn::Sub(raw, hn::Set(d, row.sun_edge)), hn::Set(d, row.inv_sun_width));
   const Lanes<D> smooth =
       hn::Mul(hn::Mul(s, s), hn::Sub(hn::Set(d, 3.0), hn::Mul(hn::Set(d, 2.0), s)));
-  const Lanes<D> visible =
-      hn::IfThenElse(hn::Ge(s, one), one, hn::IfThenZeroElse(hn::Le(s, zero), smooth));
-  // Below the horizon in every lane: T = 0 would add +0 to sums >= +0.
-  if (hn::AllTrue(d, hn::Eq(visible, zero))) return false;
+  hn::StoreU(hn::IfThenElse(hn::Ge(s, one), one, hn::IfThenZeroElse(hn::Le(s, zero), smooth)), d,
+             visible);
+}
+
+// R, G, B of the texels i0 and i0 + 1 of `row`, one lane each, widened to
+// double. With four lanes (AVX2) a lane's two texels
+// are two 128-bit loads, R G B at positions 0-2 of a load at the first and
+// 1-3 of a load ending at the second's blue (any stride >= 3, never past
+// the row), transposed into lanes: gathers were slower. Otherwise gathers.
+template <class D>
+HWY_INLINE void TexelPairs(D d, int stride, const float* row, const int32_t* i0,
+                           Lanes<D> out[2][3]) {
+#if HWY_TARGET == HWY_AVX2
+  const hn::Full128<float> d4;
+  auto transpose = [&](int shift, hn::Vec<decltype(d4)> c[4]) {
+    hn::Vec<decltype(d4)> r[4];
+    for (int l = 0; l < 4; ++l) r[l] = hn::LoadU(d4, row + stride * i0[l] + shift);
+    const auto t0 = hn::InterleaveLower(d4, r[0], r[1]), t1 = hn::InterleaveLower(d4, r[2], r[3]);
+    const auto t2 = hn::InterleaveUpper(d4, r[0], r[1]), t3 = hn::InterleaveUpper(d4, r[2], r[3]);
+    c[0] = hn::ConcatLowerLower(d4, t1, t0);
+    c[1] = hn::ConcatUpperUpper(d4, t1, t0);
+    c[2] = hn::ConcatLowerLower(d4, t3, t2);
+    c[3] = hn::ConcatUpperUpper(d4, t3, t2);
+    
+  };
+  hn::Vec<decltype(d4)> lo[4], hi[4];
+  transpose(0, lo);
+  transpose(stride - 1, hi);
+  for (int c = 0; c < 3; ++c) {
+    out[0][c] = hn::PromoteTo(d, lo[c]);
+    out[1][c] = hn::PromoteTo(d, hi[c + 1]);
+  }
+#else
   const hn::Rebind<float, D> df;
   const hn::Rebind<int32_t, D> di;
-  const Offsets<D> o0 = hn::Mul(tap.i0, hn::Set(di, table.stride));
-  const Lanes<D> wy = hn::Set(d, row.wy);
+  const Offsets<D> o = hn::Mul(hn::LoadU(di, i0), hn::Set(di, stride));
   for (int c = 0; c < 3; ++c) {
-    const Lanes<D> t00 = hn::PromoteTo(d, hn::GatherIndex(df, row.row0 + c, o0));
-    const Lanes<D> t10 = hn::PromoteTo(d, hn::GatherIndex(df, row.row0 + table.stride + c, o0));
-    const Lanes<D> t01 = hn::PromoteTo(d, hn::GatherIndex(df, row.row1 + c, o0));
-    const Lanes<D> t11 = hn::PromoteTo(d, hn::GatherIndex(df, row.row1 + table.stride + c, o0));
-    const Lanes<D> bottom = hn::Add(t00, hn::Mul(hn::Sub(t10, t00), tap.w));
-    const Lanes<D> top = hn::Add(t01, hn::Mul(hn::Sub(t11, t01), tap.w));
+    out[0][c] = hn::PromoteTo(d, hn::GatherIndex(df, row + c, o));
+    out[1][c] = hn::PromoteTo(d, hn::GatherIndex(df, row + stride + c, o));
+  }
+#endif
+}
+
+// The second pass: T = visible (bottom + (top - bottom) wy), the reads of
+// to_top; false (and nothing read) where the sun is below the horizon in
+// every lane.
+template <class D>
+HWY_INLINE bool SunReads(D d, const SunTapTable& table, const TransmittanceReader::Row& row,
+                         const int32_t* i0_lanes, const double* w_lanes,
+                         const double* visible_lanes, RgbLanes<D>& out) {
+  const Lanes<D> visible = hn::LoadU(d, visible_lanes);
+  // Below the horizon in every lane: T = 0 would add +0 to sums >= +0.
+  if (hn::AllTrue(d, hn::Eq(visible, hn::Zero(d)))) return false;
+  const Lanes<D> w = hn::LoadU(d, w_lanes), wy = hn::Set(d, row.wy);
+  Lanes<D> t[2][2][3];  // [row][texel i0, i0 + 1][channel]
+  TexelPairs(d, table.stride, row.row0, i0_lanes, t[0]);
+  TexelPairs(d, table.stride, row.row1, i0_lanes, t[1]);
+  for (int c = 0; c < 3; ++c) {
+    const Lanes<D> bottom = hn::Add(t[0][0][c], hn::Mul(hn::Sub(t[0][1][c], t[0][0][c]), w));
+    const Lanes<D> top = hn::Add(t[1][0][c], hn::Mul(hn::Sub(t[1][1][c], t[1][0][c]), w));
     out.c[c] = hn::Mul(visible, hn::Add(bottom, hn::Mul(hn::Sub(top, bottom), wy)));
   }
   return true;
@@ -107,20 +156,31 @@ void MuSTaps(const MuSAxis::Constants& c, const double* mu_s, int n, int* i0, do
   }
 }
 
+// Every sun's taps and visible fraction first (the square roots), then the
+// reads: in one loop each read waited on its square root's latency. The
+// work arrays hold n rounded up to whole groups.
 void AddSunProducts(const SunTapTable& table, const TransmittanceReader::Row& row,
                     const double* mu_s, int n, const glm::dvec3& a_rayleigh,
-                    const glm::dvec3& a_mie, double* const sums[6]) {
+                    const glm::dvec3& a_mie, double* const sums[6], SunTapScratch& scratch) {
   using D = hn::ScalableTag<double>;
   const D d;
-  const size_t lanes = hn::Lanes(d);
+  const size_t lanes = hn::Lanes(d), padded = (size_t(n) + lanes - 1) / lanes * lanes;
+  scratch.i0.resize(padded);
+  scratch.w.resize(padded);
+  scratch.visible.resize(padded);
+  for (size_t k = 0; k < size_t(n); k += lanes)
+    SunTaps(d, table, row, LoadGroup(d, mu_s, k, std::min(lanes, size_t(n) - k)),
+            &scratch.i0[k], &scratch.w[k], &scratch.visible[k]);
   const double a[6] = {a_rayleigh.r, a_rayleigh.g, a_rayleigh.b, a_mie.r, a_mie.g, a_mie.b};
   for (size_t k = 0; k < size_t(n); k += lanes) {
-    const size_t count = std::min(lanes, size_t(n) - k);
     RgbLanes<D> T;
-    if (!ToSun(d, table, row, LoadGroup(d, mu_s, k, count), T)) continue;
-    for (int g = 0; g < 6; ++g) {
-      const Lanes<D> sum = LoadGroup(d, sums[g], k, count);
-      StoreFirst(d, hn::Add(sum, hn::Mul(hn::Set(d, a[g]), T.c[g % 3])), count, sums[g] + k);
+    if (!SunReads(d, table, row, &scratch.i0[k], &scratch.w[k], &scratch.visible[k], T)) continue;
+    const size_t count = std::min(lanes, size_t(n) - k);
+    for (int c = 0; c < 3; ++c) {
+      const Lanes<D> rayleigh = LoadGroup(d, sums[c], k, count);
+      StoreFirst(d, hn::Add(rayleigh, hn::Mul(hn::Set(d, a[c]), T.c[c])), count, sums[c] + k);
+      const Lanes<D> mie = LoadGroup(d, sums[3 + c], k, count);
+      StoreFirst(d, hn::Add(mie, hn::Mul(hn::Set(d, a[3 + c]), T.c[c])), count, sums[3 + c] + k);
     }
   }
 }
@@ -141,8 +201,8 @@ void mu_s_taps(const MuSAxis::Constants& c, const double* mu_s, int n, int* i0, 
 
 void add_sun_products(const SunTapTable& table, const TransmittanceReader::Row& row,
                       const double* mu_s, int n, const glm::dvec3& a_rayleigh,
-                      const glm::dvec3& a_mie, double* const sums[6]) {
-  HWY_DYNAMIC_DISPATCH(AddSunProducts)(table, row, mu_s, n, a_rayleigh, a_mie, sums);
+                      const glm::dvec3& a_mie, double* const sums[6], SunTapScratch& scratch) {
+  HWY_DYNAMIC_DISPATCH(AddSunProducts)(table, row, mu_s, n, a_rayleigh, a_mie, sums, scratch);
 }
 
 }  // namespace skybake
