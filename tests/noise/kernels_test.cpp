@@ -1,9 +1,9 @@
-// The row evaluator of the Worley volumes (src/noise/volume_rows.hpp)
-// against the pure function worley3_inverted at every voxel of whole rows:
-// the same bits, with the AVX2 loop and with the SSE2 one
-// (core/simd_switches.hpp). Sizes that are no multiple of the period or of
-// 8 leave cells of uneven voxel counts, lanes past the row and groups of 8
-// voxels that straddle up to 8 cells.
+// The noise layer's kernels on every SIMD target against the pure
+// functions, bit for bit: the row evaluator of the Worley volumes
+// (noise/volume_rows.hpp, noise/kernels/worley_nearest.hpp) against
+// worley3_inverted at every voxel of whole rows. Sizes that are no multiple
+// of the period or of 8 leave cells of uneven voxel counts, lanes past the
+// row and groups of 8 voxels that straddle up to 8 cells.
 #include "noise/volume_rows.hpp"
 
 #include <cstring>
@@ -11,20 +11,18 @@
 
 #include <gtest/gtest.h>
 
-#include "core/simd_switches.hpp"
 #include "noise/lattice_hash.hpp"
 #include "noise/worley.hpp"
-#include "support/wide_vectors_as.hpp"
+#include "support/simd_targets.hpp"
 
 namespace skybake {
 namespace {
 
-using test::WideVectorsAs;
+using test::KernelsOnEachTarget;
 
 // Counts the voxels of rows (y, z) whose value differs in any bit from
 // worley3_inverted at the voxel's texel centre.
-int mismatches(int size, int period, bool wide) {
-  const WideVectorsAs as(wide);
+int mismatches(int size, int period) {
   const uint32_t seed = field_seed(7, NoiseKind::worley, glm::ivec3(period));
   const WorleyRows rows(size, period, seed);
   RowScratch scratch;
@@ -44,16 +42,16 @@ int mismatches(int size, int period, bool wide) {
   return bad;
 }
 
-TEST(WorleyRows, EveryVoxelIsThePureFunctionWithEitherLoop) {
+TEST_P(KernelsOnEachTarget, WorleyRowsAreThePureFunction) {
   struct Case {
     int size, period;
   };
   for (const Case c : {Case{32, 2}, Case{32, 16}, Case{37, 5}, Case{21, 8}, Case{16, 8},
                        Case{40, 20}, Case{13, 1}, Case{64, 32}, Case{11, 3}})
-    for (const bool wide : {true, false})
-      EXPECT_EQ(mismatches(c.size, c.period, wide), 0)
-          << "size " << c.size << " period " << c.period << (wide ? " AVX2" : " SSE2");
+    EXPECT_EQ(mismatches(c.size, c.period), 0) << "size " << c.size << " period " << c.period;
 }
+
+SKYBAKE_INSTANTIATE_KERNELS_ON_EACH_TARGET();
 
 }  // namespace
 }  // namespace skybake
