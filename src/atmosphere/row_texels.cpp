@@ -12,8 +12,9 @@ int round_up8(int n) { return (n + 7) / 8 * 8; }
 }  // namespace
 
 RowTexels::RowTexels(const ScatteringShape& shape) {
-  // Two groups, each padded to 8 (kernels/node_slice_reads.hpp).
-  const int W = shape.texture_width(), size = round_up8(W) + 8;
+  // Two groups, each padded to 8, and 16 more for the taps of sixteen lanes
+  // (kernels/node_slice_reads.cpp).
+  const int W = shape.texture_width(), size = round_up8(W) + 24;
   mu_s.assign(size, 0.0);
   nu.assign(size, 0.0);
   for (auto* v : {&nu_i0, &nu_i1, &at0, &at1}) v->assign(size, 0);

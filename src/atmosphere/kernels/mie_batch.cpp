@@ -18,38 +18,67 @@ namespace skybake {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
+// The kernel's lanes: eight pairs (one block), or sixteen (two blocks) where
+// the vectors hold sixteen floats, so that the square roots and the division
+// run at the full width.
+#if HWY_TARGET == HWY_AVX3
+using KernelTag = hn::ScalableTag<float>;
+#else
+using KernelTag = hn::CappedTag<float, MieBatch::kLanes>;
+#endif
+// The sums' lanes: at most eight, so that pair j adds into lane j % 8.
+using SumTag = hn::CappedTag<float, MieBatch::kLanes>;
+
+// Part i of the kernel's lanes as the sums' lanes.
+HWY_INLINE hn::Vec<SumTag> SumLanes(hn::Vec<KernelTag> p, size_t i) {
+#if HWY_TARGET == HWY_AVX3
+  return i == 0 ? hn::LowerHalf(p) : hn::UpperHalf(SumTag(), p);
+#else
+  (void)i;
+  return p;
+#endif
+}
+
 // lanes[c][l]: the sum of channel c (R, G, B, weight) in lane l.
 void MieLaneSums(const MieKernel& k, const glm::dvec3& v, const float* x, const float* y,
                  const float* z, const float* blocks, size_t n,
                  float lanes[4][MieBatch::kLanes]) {
-  const hn::CappedTag<float, MieBatch::kLanes> d;
-  using V = hn::Vec<decltype(d)>;
+  const KernelTag d;
+  const SumTag ds;
+  using V = hn::Vec<KernelTag>;
+  using S = hn::Vec<SumTag>;
   constexpr size_t kMax = MieBatch::kLanes;
-  const size_t N = hn::Lanes(d), groups = kMax / N;
+  const size_t N = hn::Lanes(d), NS = hn::Lanes(ds);
   const V one = hn::Set(d, 1.0f), zero = hn::Zero(d);
   const V a = hn::Set(d, float(k.a)), b = hn::Set(d, float(k.b));
   const V cs = hn::Set(d, k.cornette_shanks ? 1.0f : 0.0f);
   const V vx = hn::Set(d, float(v.x)), vy = hn::Set(d, float(v.y)), vz = hn::Set(d, float(v.z));
-  V acc[4][kMax];
+  S acc[4][kMax];
   for (auto& c : acc)
-    for (size_t h = 0; h < groups; ++h) c[h] = zero;
-  for (size_t j = 0; j < n; j += kMax)
-    for (size_t h = 0; h < groups; ++h) {
-      const size_t at = j + h * N;
-      const V in_plane = hn::Add(hn::Mul(vx, hn::LoadU(d, x + at)), hn::Mul(vz, hn::LoadU(d, z + at)));
-      const V across = hn::Mul(vy, hn::LoadU(d, y + at));
-      const V cp = hn::Add(in_plane, across), cm = hn::Sub(in_plane, across);
-      const V wp = hn::Add(a, hn::Mul(b, hn::Max(hn::Sub(one, cp), zero)));
-      const V wm = hn::Add(a, hn::Mul(b, hn::Max(hn::Sub(one, cm), zero)));
-      const V qp = hn::Mul(wp, hn::Sqrt(wp)), qm = hn::Mul(wm, hn::Sqrt(wm));
-      const V np = hn::Add(one, hn::Mul(cs, hn::Mul(cp, cp)));
-      const V nm = hn::Add(one, hn::Mul(cs, hn::Mul(cm, cm)));
-      const V p = hn::Div(hn::Add(hn::Mul(np, qm), hn::Mul(nm, qp)), hn::Mul(qp, qm));
+    for (size_t h = 0; h < kMax / NS; ++h) c[h] = hn::Zero(ds);
+  // Past the last pair (n is a multiple of 8): lanes of weight 0, not added.
+  auto load = [&](const float* p, size_t j) {
+    return j + N <= n ? hn::LoadU(d, p + j) : hn::MaskedLoad(hn::FirstN(d, n - j), d, p + j);
+  };
+  for (size_t j = 0; j < n; j += N) {
+    const V in_plane = hn::Add(hn::Mul(vx, load(x, j)), hn::Mul(vz, load(z, j)));
+    const V across = hn::Mul(vy, load(y, j));
+    const V cp = hn::Add(in_plane, across), cm = hn::Sub(in_plane, across);
+    const V wp = hn::Add(a, hn::Mul(b, hn::Max(hn::Sub(one, cp), zero)));
+    const V wm = hn::Add(a, hn::Mul(b, hn::Max(hn::Sub(one, cm), zero)));
+    const V qp = hn::Mul(wp, hn::Sqrt(wp)), qm = hn::Mul(wm, hn::Sqrt(wm));
+    const V np = hn::Add(one, hn::Mul(cs, hn::Mul(cp, cp)));
+    const V nm = hn::Add(one, hn::Mul(cs, hn::Mul(cm, cm)));
+    const V p = hn::Div(hn::Add(hn::Mul(np, qm), hn::Mul(nm, qp)), hn::Mul(qp, qm));
+    for (size_t i = 0; i < N / NS && j + i * NS < n; ++i) {
+      const size_t at = j + i * NS, h = at % kMax / NS;
+      const S part = SumLanes(p, i);
       for (int c = 0; c < 4; ++c)
-        acc[c][h] = hn::Add(acc[c][h], hn::Mul(p, hn::LoadU(d, blocks + MieBatch::field(c, at))));
+        acc[c][h] = hn::Add(acc[c][h], hn::Mul(part, hn::LoadU(ds, blocks + MieBatch::field(c, at))));
     }
+  }
   for (int c = 0; c < 4; ++c)
-    for (size_t h = 0; h < groups; ++h) hn::StoreU(acc[c][h], d, lanes[c] + h * N);
+    for (size_t h = 0; h < kMax / NS; ++h) hn::StoreU(acc[c][h], ds, lanes[c] + h * NS);
 }
 
 }  // namespace HWY_NAMESPACE

@@ -81,7 +81,7 @@ HWY_INLINE void NodeRead(D4 d4, const Rgb4* slice, const NodeRow& q, const Rgb4&
   }
 }
 
-#if HWY_TARGET == HWY_AVX2
+#if HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_AVX3
 // NodeRead of texels x and x + 1 in eight lanes: a 256-bit load takes a
 // texel's s00 and s01 (or s10 and s11) together, regrouped into (s00 of x,
 // s00 of x + 1) and (s01 of x, s01 of x + 1).
@@ -121,10 +121,13 @@ void AddNodeSliceReads(const NodeRow& row, const SunCosineTapsFloat& taps, const
   for (int x = 0; x < std::min(kAhead, end); x += step) NodeTaps(df, taps, row, x);
   for (int x = 0; x < end; x += step) {
     if (x + kAhead < end) NodeTaps(df, taps, row, x + kAhead);
-#if HWY_TARGET == HWY_AVX2  // two texels a vector
-    for (int j = x; j < x + step; j += 2) NodeReadPair(slice, row, wS, j, j < row.single, sum);
+    // Sixteen lanes: the taps of a last group may run past `end` (RowTexels'
+    // arrays hold 16 more texels) on valid texels; their reads do not.
+    const int x_end = std::min(x + step, end);
+#if HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_AVX3  // two texels a vector
+    for (int j = x; j < x_end; j += 2) NodeReadPair(slice, row, wS, j, j < row.single, sum);
 #else
-    for (int j = x; j < x + step; ++j) NodeRead(d4, slice, row, wS, j, j < row.single, sum[j]);
+    for (int j = x; j < x_end; ++j) NodeRead(d4, slice, row, wS, j, j < row.single, sum[j]);
 #endif
   }
 }
