@@ -80,7 +80,7 @@ HWY_INLINE void SunTaps(D d, const SunTapTable& table, const TransmittanceReader
 template <class D>
 HWY_INLINE void TexelPairs(D d, int stride, const float* row, const int32_t* i0,
                            Lanes<D> out[2][3]) {
-#if HWY_TARGET == HWY_AVX2
+#if HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_AVX3
   const hn::Full128<float> d4;
   auto transpose = [&](int shift, hn::Vec<decltype(d4)> c[4]) {
     hn::Vec<decltype(d4)> r[4];
@@ -96,6 +96,7 @@ HWY_INLINE void TexelPairs(D d, int stride, const float* row, const int32_t* i0,
   hn::Vec<decltype(d4)> lo[4], hi[4];
   transpose(0, lo);
   transpose(stride - 1, hi);
+  HWY_UNROLL(3)
   for (int c = 0; c < 3; ++c) {
     out[0][c] = hn::PromoteTo(d, lo[c]);
     out[1][c] = hn::PromoteTo(d, hi[c + 1]);
@@ -125,6 +126,7 @@ HWY_INLINE bool SunReads(D d, const SunTapTable& table, const TransmittanceReade
   Lanes<D> t[2][2][3];  // [row][texel i0, i0 + 1][channel]
   TexelPairs(d, table.stride, row.row0, i0_lanes, t[0]);
   TexelPairs(d, table.stride, row.row1, i0_lanes, t[1]);
+  HWY_UNROLL(3)
   for (int c = 0; c < 3; ++c) {
     const Lanes<D> bottom = hn::Add(t[0][0][c], hn::Mul(hn::Sub(t[0][1][c], t[0][0][c]), w));
     const Lanes<D> top = hn::Add(t[1][0][c], hn::Mul(hn::Sub(t[1][1][c], t[1][0][c]), w));
@@ -162,7 +164,9 @@ void MuSTaps(const MuSAxis::Constants& c, const double* mu_s, int n, int* i0, do
 void AddSunProducts(const SunTapTable& table, const TransmittanceReader::Row& row,
                     const double* mu_s, int n, const glm::dvec3& a_rayleigh,
                     const glm::dvec3& a_mie, double* const sums[6], SunTapScratch& scratch) {
-  using D = hn::ScalableTag<double>;
+  // At most four lanes: the texels' loads and transpose (TexelPairs) were
+  // faster than gathers of eight.
+  using D = hn::CappedTag<double, 4>;
   const D d;
   const size_t lanes = hn::Lanes(d), padded = (size_t(n) + lanes - 1) / lanes * lanes;
   scratch.i0.resize(padded);
@@ -176,6 +180,7 @@ void AddSunProducts(const SunTapTable& table, const TransmittanceReader::Row& ro
     RgbLanes<D> T;
     if (!SunReads(d, table, row, &scratch.i0[k], &scratch.w[k], &scratch.visible[k], T)) continue;
     const size_t count = std::min(lanes, size_t(n) - k);
+    HWY_UNROLL(3)
     for (int c = 0; c < 3; ++c) {
       const Lanes<D> rayleigh = LoadGroup(d, sums[c], k, count);
       StoreFirst(d, hn::Add(rayleigh, hn::Mul(hn::Set(d, a[c]), T.c[c])), count, sums[c] + k);
