@@ -5,8 +5,7 @@
 //   BM_BakeBrunetonEarth     4D scattering 32x128x32x8 + irradiance 64x16
 //   BM_BakeScattering3dEarth azimuth-free 32x128x32 + gathering 32x32
 //   BM_Bruneton*Stage        one stage at default sizes (where the time goes),
-//                            with the AVX2 loops (wide:1, where the CPU has
-//                            them) and without (wide:0, SSE2)
+//                            on the best SIMD target of the CPU
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 

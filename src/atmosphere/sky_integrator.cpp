@@ -215,10 +215,11 @@ class RayMarcher {
   }
 
   // segment()'s sums over media_block's segments, the sources read at the
-  // midpoints: every segment's two reads first, four at a time where AVX2
-  // runs (kernels/sun_and_psi_ms_reads.hpp, the same bits), then the sums in order. The sums,
-  // the sun and the arrays' starts are locals: stores to `st` could alias
-  // them (doubles all), which would reload them at every segment.
+  // midpoints: every segment's two reads first, several in the lanes of a
+  // group (kernels/sun_and_psi_ms_reads.hpp, the same bits), then the sums
+  // in order. The sums, the sun and the arrays' starts are locals: stores to
+  // `st` could alias them (doubles all), which would reload them at every
+  // segment.
   void light_at_midpoints(const std::vector<double>& ends, BlockScratch& b,
                           const DarkSegments& dark, MarchState& st) const {
     const size_t n = dark.lit;
