@@ -29,12 +29,12 @@
 
 #include "atmosphere/aerial_perspective_lut.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
-#include "atmosphere/query_points.hpp"
 #include "core/error_stats.hpp"
 #include "pipeline/atmosphere_specs.hpp"
-#include "pipeline/error_references.hpp"
 #include "pipeline/preset_loader.hpp"
 #include "pipeline/product_graph.hpp"
+#include "verify/error_references.hpp"
+#include "verify/query_points.hpp"
 
 using namespace skybake;
 

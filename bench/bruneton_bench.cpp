@@ -5,16 +5,14 @@
 //   BM_BakeBrunetonEarth     4D scattering 32x128x32x8 + irradiance 64x16
 //   BM_BakeScattering3dEarth azimuth-free 32x128x32 + gathering 32x32
 //   BM_Bruneton*Stage        one stage at default sizes (where the time goes),
-//                            with the AVX2 loops (wide:1, where the CPU has
-//                            them) and without (wide:0, SSE2)
+//                            on the best SIMD target of the CPU
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
-#include "support/test_atmospheres.hpp"
 #include "atmosphere/scattering3d_lut.hpp"
 #include "atmosphere/scattering_orders.hpp"
 #include "atmosphere/transmittance_lut.hpp"
-#include "core/wide_vectors.hpp"
+#include "support/test_atmospheres.hpp"
 
 namespace skybake {
 namespace {
@@ -65,9 +63,6 @@ BENCHMARK(BM_BakeScattering3dEarth)
 // bake), then per order the density and the multiple-scattering pass.
 void BM_BrunetonStage(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
-  const bool wide_before = wide_vectors(), widest_before = widest_vectors();
-  set_wide_vectors(state.range(1) != 0);
-  set_widest_vectors(state.range(1) == 2);
   const Atmosphere atm = fixtures::earth_atmosphere();
   const Texture& lut = earth_transmittance();
   const ScatteringShape shape;
@@ -90,14 +85,11 @@ void BM_BrunetonStage(benchmark::State& state) {
         break;
     }
   }
-  set_wide_vectors(wide_before);
-  set_widest_vectors(widest_before);
 }
 BENCHMARK(BM_BrunetonStage)
-    // stage 0 single, 1 density, 2 multiple; wide 2 AVX-512 where the CPU
-    // has it, 1 AVX2, 0 SSE2 (core/wide_vectors.hpp)
-    ->ArgNames({"stage", "wide"})
-    ->ArgsProduct({{0, 1, 2}, {2, 1, 0}})
+    // stage 0 single, 1 density, 2 multiple, on the best SIMD target
+    ->ArgNames({"stage"})
+    ->DenseRange(0, 2)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(2);

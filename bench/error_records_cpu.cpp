@@ -9,7 +9,7 @@
 // others read it from the cache: compare the scene's totals).
 //
 //   build/bench/error_records_cpu [--repeat N] [--no-avx2] PRESET...
-//        --no-avx2: the one-value loops only (core/wide_vectors.hpp)
+//        --no-avx2: the one-value loops only (core/simd_switches.hpp)
 #include <algorithm>
 #include <cstdio>
 #include <ctime>
@@ -20,7 +20,7 @@
 
 #include <tbb/global_control.h>
 
-#include "core/wide_vectors.hpp"
+#include "core/simd_switches.hpp"
 #include "pipeline/bruneton_families.hpp"
 #include "pipeline/preset_loader.hpp"
 #include "pipeline/product_graph.hpp"
@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
     if (a == "--repeat" && i + 1 < argc)
       repeat = std::max(1, std::stoi(argv[++i]));
     else if (a == "--no-avx2")
-      set_wide_vectors(false);
+      set_avx2_enabled(false);
     else
       presets.push_back(a);
   }

@@ -1,6 +1,6 @@
 // One direction's march of the multiple-scattering integral (Hillaire 2020
 // eq. 5-8) from a point, everything but the sun, and the sum over directions
-// under many suns at once (multiscattering_lut.cpp, multiscattering_wide.cpp).
+// under many suns at once (multiscattering_lut.cpp, kernels/sunlit_sums.hpp).
 #pragma once
 
 #include <vector>
@@ -28,14 +28,4 @@ struct DirectionMarch {
   glm::dvec3 ground_up{0.0};          // the ground's normal there
   glm::dvec3 ground_transmittance{1.0};  // T from the point to the ground
 };
-
-// The sum over the rule's directions of w_k L'_k (eq. 5-6 before the
-// division by the direction count of an unweighted rule) for suns of zenith
-// cosines mu_s[j] (clamped) in the x-z plane, into l2[j], four suns at a time
-// where AVX2 runs: the same bits as one sun at a time. Returns how many it
-// did: a multiple of four, the rest for the caller.
-int sunlit_sums_wide(const Atmosphere& atm, const Texture& transmittance_lut,
-                     const std::vector<DirectionMarch>& marches, const SphereRule& rule,
-                     const double* mu_s, int n, glm::dvec3* l2);
-
 }  // namespace skybake

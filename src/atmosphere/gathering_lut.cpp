@@ -18,8 +18,8 @@
 
 namespace skybake {
 
-glm::dvec3 GroundLight3d::at(const Atmosphere& atm, const Texture& transmittance_lut,
-                             double mu_s) const {
+glm::dvec3 GroundLight3d::irradiance(const Atmosphere& atm, const Texture& transmittance_lut,
+                                     double mu_s) const {
   if (!per_sun_texel)
     return compute_direct_irradiance(atm, transmittance_lut, atm.bottom_radius_m, mu_s);
   const std::vector<glm::dvec3>& E = *per_sun_texel;
@@ -102,7 +102,7 @@ Gathering gather(const Atmosphere& atm, const Texture& transmittance_lut,
         const double nu = mu * mu_s + sin_t * sin_s * std::cos((m + 0.5) * d_phi);
         const double mu_s_ground = clamp_cosine((r * mu_s + p.d * nu) / rb);
         out.gathered += p.share * cell * p.T_ground * albedo_over_pi *
-                        ground.at(atm, transmittance_lut, mu_s_ground);
+                        ground.irradiance(atm, transmittance_lut, mu_s_ground);
       }
     }
   }

@@ -53,7 +53,7 @@ struct Scattering3dOrder {
 // per sun texel (linear between them along u_s, clamped at the ends).
 struct GroundLight3d {
   const std::vector<glm::dvec3>* per_sun_texel = nullptr;  // nullptr: direct sunlight
-  glm::dvec3 at(const Atmosphere& atm, const Texture& transmittance_lut, double mu_s) const;
+  glm::dvec3 irradiance(const Atmosphere& atm, const Texture& transmittance_lut, double mu_s) const;
 };
 
 struct Gathering {

@@ -24,8 +24,8 @@ glm::dvec3 sun_direction(double mu_s) {
 
 }  // namespace
 
-glm::dvec3 GroundIrradiance::at(const Atmosphere& atm, const Texture& transmittance_lut,
-                                double mu_s) const {
+glm::dvec3 GroundIrradiance::irradiance(const Atmosphere& atm, const Texture& transmittance_lut,
+                                        double mu_s) const {
   if (table) return lookup_irradiance(*table, atm, atm.bottom_radius_m, mu_s);
   return compute_direct_irradiance(atm, transmittance_lut, atm.bottom_radius_m, mu_s);
 }
@@ -168,11 +168,12 @@ std::vector<glm::dvec3> compute_incident_radiance(
       for (int m = 0; m < half; ++m) {
         const glm::dvec3 w(sin_t * cos_phi[m], sin_t * sin_phi[m], mu);
         const double nu = glm::dot(w, sun);
-        glm::dvec3 part = slices.at(previous, shape, nu);
+        glm::dvec3 part = slices.radiance_at_nu(previous, shape, nu);
         if (p.hits && previous.ground_rows_per_opacity) part *= 1.0 - p.T_ground;
         if (p.hits && ground_reflects) {
           const double mu_s_ground = clamp_cosine((r * mu_s + p.d * nu) / rb);
-          part += p.T_ground * albedo_over_pi * ground.at(atm, transmittance_lut, mu_s_ground);
+          part +=
+              p.T_ground * albedo_over_pi * ground.irradiance(atm, transmittance_lut, mu_s_ground);
         }
         radiance[m] += p.share * part;
       }

@@ -19,7 +19,7 @@ namespace skybake {
 // of irradiance_lut.hpp.
 struct GroundIrradiance {
   const Texture* table = nullptr;  // nullptr: direct sunlight
-  glm::dvec3 at(const Atmosphere& atm, const Texture& transmittance_lut, double mu_s) const;
+  glm::dvec3 irradiance(const Atmosphere& atm, const Texture& transmittance_lut, double mu_s) const;
 };
 
 // Direction grid of the density: `bands` zenith bands x 2 bands azimuths,

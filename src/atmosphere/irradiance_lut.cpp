@@ -104,7 +104,7 @@ glm::dvec3 compute_indirect_irradiance(const Atmosphere& atm, const ScatteringSh
     for (int m = 0; m < azimuths; ++m) {
       const double phi = (m + 0.5) * d_phi;
       const double nu = sin_theta * std::cos(phi) * sun_x + mu * mu_s;
-      E += weight * slices.at(order, shape, nu);
+      E += weight * slices.radiance_at_nu(order, shape, nu);
     }
   }
   return E;

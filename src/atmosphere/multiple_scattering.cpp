@@ -10,9 +10,9 @@
 #include <tbb/parallel_for.h>
 
 #include "atmosphere/geometry.hpp"
+#include "atmosphere/kernels/node_slice_reads.hpp"
+#include "atmosphere/kernels/row_blend.hpp"
 #include "atmosphere/ray_transfer.hpp"
-#include "atmosphere/row_blend.hpp"
-#include "atmosphere/row_node.hpp"
 #include "atmosphere/row_texels.hpp"
 #include "core/math.hpp"
 
@@ -82,7 +82,7 @@ glm::dvec3 compute_multiple_scattering(const Atmosphere& atm, const ScatteringSh
 // In single precision, three channels (and a pad) at a time: the table is
 // float32 and a texel sums ~51 terms of one sign (relative rounding ~1e-6,
 // far below the quadrature's error); the ray's geometry stays in double, the
-// mu_s taps of each node are single precision (row_node.hpp: within 2.5e-5
+// mu_s taps of each node are single precision (kernels/node_slice_reads.hpp: within 2.5e-5
 // of a texel of the double ones).
 Texture bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shape,
                                  const Texture& density, int nodes, const BakeContext& ctx) {
@@ -137,7 +137,7 @@ void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shap
                               Texture& out, MultipleScatteringWork& work) {
   const ScatteringTexelGrid texels = scattering_texel_grid(atm, shape);
   std::vector<Rgb4>& radiance = work.radiance;
-  const FloatMuSTaps mu_s_taps(MuSAxis(atm, shape).constants());
+  const SunCosineTapsFloat mu_s_taps(MuSAxis(atm, shape).constants());
   radiance.resize(density.texel_count());  // every texel's R, G, B written below, pads 0
   for_each_density_per_scattering(atm, shape, density,
                                   [&](size_t t, int c, float v) { radiance[t].v[c] = v; });
@@ -154,7 +154,7 @@ void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shap
     std::vector<Rgb4> slice(W), sum(row_texels.mu_s.size());
     for (int row = range.begin(); row != range.end(); ++row) {
       const int z = row / shape.mu_size, y = row % shape.mu_size;
-      const ScatteringParams p0 = texels.at(0, y, z);
+      const ScatteringParams p0 = texels.params(0, y, z);
       row_texels.make(texels, shape, p0.mu);
       if (make_nodes) make_row_nodes(atm, shape, p0, nodes, transfer, work.nodes[size_t(row)]);
       std::fill(sum.begin(), sum.begin() + row_texels.end, Rgb4{});
@@ -162,8 +162,8 @@ void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shap
         const Rgb4* rows4[4];
         for (int i = 0; i < 4; ++i) rows4[i] = &radiance[size_t(a.rows[i]) * W];
         blend_rows(rows4, a.w, W, slice.data());
-        add_node_row(row_texels.node(p0.r, a.s, a.inv_r_i), mu_s_taps, slice.data(), a.wS,
-                     row_texels.end, sum.data());
+        add_node_slice_reads(row_texels.node(p0.r, a.s, a.inv_r_i), mu_s_taps, slice.data(), a.wS,
+                             row_texels.end, sum.data());
       }
       float* texels_out = out.texel(0, y, z);
       for (int x = 0; x < W; ++x)

@@ -7,8 +7,8 @@
 
 #include <glm/glm.hpp>
 
+#include "atmosphere/kernels/row_blend.hpp"
 #include "atmosphere/medium.hpp"
-#include "atmosphere/row_blend.hpp"
 #include "atmosphere/scattering_lut.hpp"
 #include "core/bake_context.hpp"
 #include "core/texture.hpp"

@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "atmosphere/direction_march.hpp"
+#include "atmosphere/kernels/sunlit_sums.hpp"
 #include "atmosphere/phase.hpp"
 #include "atmosphere/sky_integrator.hpp"
 #include "atmosphere/transmittance_lut.hpp"
@@ -335,10 +336,7 @@ Texture bake_multiscattering_lut(const Atmosphere& atm, const Texture& transmitt
                                  mapping)
                                  .mu_s);
     std::vector<glm::dvec3> l2(size_t(spec.width), glm::dvec3(0.0));
-    const int wide = sunlit_sums_wide(atm, transmittance_lut, marches, rule, mu_s.data(),
-                                      spec.width, l2.data());
-    for (int x = wide; x < spec.width; ++x)
-      l2[x] = sunlit_sum(atm, transmittance_lut, marches, rule, mu_s[x]);
+    sunlit_sums(atm, transmittance_lut, marches, rule, mu_s.data(), spec.width, l2.data());
     const glm::dvec3 f_ms = transfer_sum(marches, rule);
     for (int x = 0; x < spec.width; ++x) {
       const MultiscatteringSample s = multiscattering_from_sums(marches, rule, l2[x], f_ms);

@@ -50,7 +50,8 @@ struct NuSlices {
     if (order.phases->has_mie) blend(*order.mie, shape, t, second);
   }
   // ScatteringOrder::radiance_at at nu.
-  glm::dvec3 at(const ScatteringOrder& order, const ScatteringShape& shape, double nu) const {
+  glm::dvec3 radiance_at_nu(const ScatteringOrder& order, const ScatteringShape& shape,
+                            double nu) const {
     // scattering_taps' nu tap of the mapping's u_nu.
     const AxisTap tn = nu_slice_tap(0.5 * (clamp_cosine(nu) + 1.0), shape.nu_size);
     auto lerp = [&](const std::vector<glm::dvec3>& s) {

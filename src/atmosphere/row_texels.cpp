@@ -12,7 +12,8 @@ int round_up8(int n) { return (n + 7) / 8 * 8; }
 }  // namespace
 
 RowTexels::RowTexels(const ScatteringShape& shape) {
-  // Two groups, each padded to 8, and 16 more for the AVX-512 taps (row_node.cpp).
+  // Two groups, each padded to 8, and 16 more for the taps of sixteen lanes
+  // (kernels/node_slice_reads.cpp).
   const int W = shape.texture_width(), size = round_up8(W) + 24;
   mu_s.assign(size, 0.0);
   nu.assign(size, 0.0);

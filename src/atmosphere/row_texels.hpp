@@ -1,11 +1,11 @@
 // The texels of one row (r, mu) of the multiple-scattering pass as its node
-// loop reads them (row_node.hpp): each texel's mu_s and nu, which are the
+// loop reads them (kernels/node_slice_reads.hpp): each texel's mu_s and nu, which are the
 // same at every node of the ray, and its nu slices.
 #pragma once
 
 #include <vector>
 
-#include "atmosphere/row_node.hpp"
+#include "atmosphere/kernels/node_slice_reads.hpp"
 #include "atmosphere/scattering_lut.hpp"
 
 namespace skybake {
@@ -23,7 +23,7 @@ struct RowTexels {
   int single = 0, end = 0;
 
   explicit RowTexels(const ScatteringShape& shape);
-  // The row's texels at view cosine mu: texels.at(x, y, z) for every x,
+  // The row's texels at view cosine mu: texels.params(x, y, z) for every x,
   // with the spread of nu once per mu_s texel.
   void make(const ScatteringTexelGrid& texels, const ScatteringShape& shape, double mu);
   NodeRow node(double r, double s, double inv_r_i);

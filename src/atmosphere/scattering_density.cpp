@@ -11,7 +11,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "atmosphere/mie_batch.hpp"
+#include "atmosphere/kernels/mie_batch.hpp"
 #include "atmosphere/phase.hpp"
 #include "core/math.hpp"
 
@@ -132,7 +132,7 @@ void bake_scattering_density(const Atmosphere& atm, const Texture& transmittance
       }
       const double sin_sun = safe_sqrt(1.0 - mu_s * mu_s);
       for (int y = 0; y < shape.mu_size; ++y) {
-        // texels.at(x, y, z) of the row's nu slices, with what they share once.
+        // texels.params(x, y, z) of the row's nu slices, with what they share once.
         const double mu = texels.mu[size_t(z) * shape.mu_size + y];
         const double spread = ScatteringTexelGrid::spread(mu, mu_s);
         const double sin_view = safe_sqrt(1.0 - mu * mu);

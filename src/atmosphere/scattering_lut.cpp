@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include "atmosphere/geometry.hpp"
+#include "atmosphere/kernels/sun_taps.hpp"
 #include "atmosphere/phase.hpp"
 #include "core/error.hpp"
 
@@ -196,7 +197,7 @@ MuSAxis::MuSAxis(const Atmosphere& atm, const ScatteringShape& shape)
       mu_s_min_(shape.mu_s_min),
       size_(shape.mu_s_size) {}
 
-ScatteringParams ScatteringTexelGrid::at(int x, int y, int z) const {
+ScatteringParams ScatteringTexelGrid::params(int x, int y, int z) const {
   ScatteringParams p;
   const size_t row = size_t(z) * shape.mu_size + y;
   p.r = r[z];
@@ -324,6 +325,10 @@ void ray_quadrature(double r, double mu, double d, int nodes, std::vector<RayNod
 
 // ---- Transmittance reader ----
 
+void MuSAxis::taps(const double* mu_s, int n, int* i0, double* w) const {
+  mu_s_taps(constants(), mu_s, n, i0, w);
+}
+
 TransmittanceReader::TransmittanceReader(const Texture& lut, const Atmosphere& atm)
     : lut_(lut),
       rb_(atm.bottom_radius_m),
@@ -416,31 +421,18 @@ void SingleScatteringRay::at_sun2(const TransmittanceReader& reader, const doubl
 void SingleScatteringRay::at_suns(const TransmittanceReader& reader, const double* mu_s,
                                   const double* nu, int n, glm::dvec3 sun, SingleScattering* out,
                                   Scratch& scratch) const {
-  for (auto* v : {&scratch.mu_s, &scratch.w, &scratch.visible}) v->resize(n);
-  scratch.i0.resize(n);
+  scratch.mu_s.resize(n);
   scratch.sums.assign(6 * size_t(n), 0.0);
   double* const sums[6] = {&scratch.sums[0],     &scratch.sums[n],     &scratch.sums[2 * n],
                            &scratch.sums[3 * n], &scratch.sums[4 * n], &scratch.sums[5 * n]};
-  for (int k = 0; k < n; ++k) out[k] = SingleScattering{};
-  int wide = 0;  // the suns [0, wide) are summed in `sums`, the others in `out`
   for (const Node& node : nodes) {
     // clamp_cosine as min / max: the same value, no branch.
     for (int k = 0; k < n; ++k)
       scratch.mu_s[k] = std::min(std::max((r * mu_s[k] + node.s * nu[k]) * node.inv_r, -1.0), 1.0);
-    wide = reader.add_sun_products(node.sun_row, scratch.mu_s.data(), n, node.a_rayleigh,
-                                   node.a_mie, sums, scratch.i0.data(), scratch.w.data(),
-                                   scratch.visible.data());
-    const int rest = n - wide;
-    reader.sun_taps(node.sun_row, scratch.mu_s.data() + wide, rest, scratch.i0.data(),
-                    scratch.w.data(), scratch.visible.data());
-    for (int k = 0; k < rest; ++k) {
-      const glm::dvec3 T_sun =
-          reader.to_sun_at(node.sun_row, scratch.i0[k], scratch.w[k], scratch.visible[k]);
-      out[wide + k].rayleigh += node.a_rayleigh * T_sun;
-      out[wide + k].mie += node.a_mie * T_sun;
-    }
+    reader.add_sun_products(node.sun_row, scratch.mu_s.data(), n, node.a_rayleigh, node.a_mie,
+                            sums, scratch.taps);
   }
-  for (int k = 0; k < wide; ++k) {
+  for (int k = 0; k < n; ++k) {
     out[k].rayleigh = {sums[0][k], sums[1][k], sums[2][k]};
     out[k].mie = {sums[3][k], sums[4][k], sums[5][k]};
   }
@@ -480,10 +472,10 @@ SingleScatteringTables bake_single_scattering(const Atmosphere& atm,
     std::vector<SingleScattering> s(W);
     for (int row = range.begin(); row != range.end(); ++row) {
       const int z = row / shape.mu_size, y = row % shape.mu_size;
-      const ScatteringParams p0 = grid.at(0, y, z);
+      const ScatteringParams p0 = grid.params(0, y, z);
       ray.prepare(atm, reader, p0.r, p0.mu, p0.ray_hits_ground, nodes);
       for (int x = 0; x < W; ++x) {  // every texel (sun) of the row at once
-        const ScatteringParams p = grid.at(x, y, z);
+        const ScatteringParams p = grid.params(x, y, z);
         mu_s[x] = p.mu_s;
         nu[x] = p.nu;
       }
@@ -561,6 +553,13 @@ glm::dvec3 ScatteringOrder::radiance_at(const Atmosphere& atm, const ScatteringS
   if (phases->has_rayleigh) L += phases->rayleigh(nu) * read_scattering(*rayleigh, shape, taps);
   if (phases->has_mie) L += phases->mie(nu) * read_scattering(*mie, shape, taps);
   return L;
+}
+
+void TransmittanceReader::add_sun_products(const Row& row, const double* mu_s, int n,
+                                           const glm::dvec3& a_rayleigh, const glm::dvec3& a_mie,
+                                           double* const sums[6], SunTapScratch& scratch) const {
+  skybake::add_sun_products({rt_, lut_.width, stride_}, row, mu_s, n, a_rayleigh, a_mie, sums,
+                            scratch);
 }
 
 }  // namespace skybake

@@ -40,6 +40,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -138,12 +139,10 @@ class MuSAxis {
     return {i, i + 1, t - i};
   }
   // tap() of n cosines at once (i0 and w; i1 = i0 + 1), the same values
-  // (SSE2, two at a time, or AVX2, four: core/wide_vectors.hpp): the hottest
-  // loop of the orders >= 2 (multiple_scattering.cpp), where one tap at a
-  // time mispredicted its clamps and could not be vectorized (std::sqrt sets
-  // errno).
+  // (kernels/sun_taps.hpp): one tap at a time mispredicted its clamps and
+  // could not be vectorized (std::sqrt sets errno).
   void taps(const double* mu_s, int n, int* i0, double* w) const;
-  // The constants of x(mu_s), for loops that inline taps() (row_node.cpp).
+  // The constants of x(mu_s), for loops that inline taps() (kernels/node_slice_reads.cpp).
   struct Constants {
     double rb, rb2, H2, d_min, inv_span, inv_A, mu_s_min;
     int size;
@@ -168,14 +167,14 @@ class MuSAxis {
 
 // Every texel's parameters, from per-axis tables: r per z, mu and the ground
 // flag per (z, y), mu_s per mu_s index, nu per slice before its clamp.
-// at(x, y, z) equals scattering_texel_params(x, y, z) (tests).
+// params(x, y, z) equals scattering_texel_params(x, y, z) (tests).
 struct ScatteringTexelGrid {
   ScatteringShape shape;
   std::vector<double> r, mu, mu_s, nu;
   std::vector<char> ray_hits_ground;
 
-  ScatteringParams at(int x, int y, int z) const;
-  // The clamp of nu at (mu, mu_s): mu mu_s -+ spread(mu, mu_s), which at()
+  ScatteringParams params(int x, int y, int z) const;
+  // The clamp of nu at (mu, mu_s): mu mu_s -+ spread(mu, mu_s), which params()
   // applies; for loops over the nu slices of one (mu, mu_s).
   static double spread(double mu, double mu_s) {
     return std::sqrt((1.0 - mu * mu) * (1.0 - mu_s * mu_s));
@@ -235,6 +234,13 @@ constexpr double kGauss3Weights[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
 
 // ---- Transmittance ----------------------------------------------------------
 
+// The work arrays of TransmittanceReader::add_sun_products: each sun's
+// column, weight and visible fraction.
+struct SunTapScratch {
+  std::vector<int32_t> i0;
+  std::vector<double> w, visible;
+};
+
 // lookup_transmittance_to_top and lookup_transmittance (transmittance_lut.hpp)
 // with the work that depends on r alone hoisted into a Row, for inner loops
 // that read many mu at one r. The same values up to rounding (tests).
@@ -271,31 +277,12 @@ class TransmittanceReader {
     return out;
   }
   glm::dvec3 to_top(double r, double mu) const { return to_top(row(r), mu); }
-  // to_sun of n cosines at once, in two passes that give the same values:
-  // sun_taps (SSE2, two at a time, no branch) the LUT's mu column i0 and
-  // weight w and the sun's visible fraction, then to_sun_at each texel.
-  void sun_taps(const Row& row, const double* mu_s, int n, int* i0, double* w,
-                double* visible) const;
-  glm::dvec3 to_sun_at(const Row& row, int i0, double w, double visible) const {
-    const float* t00 = row.row0 + stride_ * i0;
-    const float* t01 = row.row1 + stride_ * i0;
-    glm::dvec3 out;
-    for (int c = 0; c < 3; ++c) {
-      const double bottom = t00[c] + (t00[stride_ + c] - double(t00[c])) * w;
-      const double top = t01[c] + (t01[stride_ + c] - double(t01[c])) * w;
-      out[c] = visible * (bottom + (top - bottom) * row.wy);
-    }
-    return out;
-  }
-  // sums[c][k] += a_rayleigh[c] T_k, sums[3 + c][k] += a_mie[c] T_k, with
-  // T_k = to_sun_at of sun_taps(row, mu_s[k]) (the same values, the same
-  // operations per lane), for the first cosines in AVX2 (four at a time,
-  // batch_taps.cpp); returns how many it did: a multiple of 4, 0 without
-  // AVX2. Single scattering's hottest loop (SingleScatteringRay::at_suns).
-  // i0, w and visible: work arrays of at least n (the taps of a first pass).
-  int add_sun_products(const Row& row, const double* mu_s, int n, const glm::dvec3& a_rayleigh,
-                       const glm::dvec3& a_mie, double* const sums[6], int* i0, double* w,
-                       double* visible) const;
+  // sums[c][k] += a_rayleigh[c] T_k and sums[3 + c][k] += a_mie[c] T_k with
+  // T_k = to_sun(row, mu_s[k]) (the same values: kernels/sun_taps.hpp), for
+  // k < n: single scattering's hottest loop (SingleScatteringRay::at_suns).
+  void add_sun_products(const Row& row, const double* mu_s, int n, const glm::dvec3& a_rayleigh,
+                        const glm::dvec3& a_mie, double* const sums[6],
+                        SunTapScratch& scratch) const;
   // Between (r, mu) and the point at distance d along the ray.
   glm::dvec3 between(double r, double mu, double d, bool ray_hits_ground) const;
   // To the sun of zenith cosine mu_s, with the fraction of the sun's disk
@@ -348,12 +335,12 @@ struct SingleScatteringRay {
   // overlap); out[k] equals at_sun(mu_s[k], nu[k]).
   void at_sun2(const TransmittanceReader& reader, const double mu_s[2], const double nu[2],
                glm::dvec3 sun, SingleScattering out[2]) const;
-  // n suns in one pass over the nodes, each node's transmittance taps for
-  // all of them at once (TransmittanceReader::sun_taps): out[k] equals
+  // n suns in one pass over the nodes, each node's transmittance to all of
+  // them at once (TransmittanceReader::add_sun_products): out[k] equals
   // at_sun(mu_s[k], nu[k]). The work arrays are the caller's, reused.
   struct Scratch {
-    std::vector<double> mu_s, w, visible, sums;
-    std::vector<int> i0;
+    std::vector<double> mu_s, sums;
+    SunTapScratch taps;
   };
   void at_suns(const TransmittanceReader& reader, const double* mu_s, const double* nu, int n,
                glm::dvec3 sun, SingleScattering* out, Scratch& scratch) const;

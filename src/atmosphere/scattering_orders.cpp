@@ -52,7 +52,7 @@ TexelPhases texel_phases(const Atmosphere& atm, const ScatteringShape& shape,
             for (int x = 0; x < shape.texture_width(); ++x) {
               const size_t t = table.index(x, y, z) / 3;
               out.rayleigh[t] = float(phases.rayleigh(texels.nu[x / shape.mu_s_size]));
-              out.mie[t] = float(phases.mie(texels.at(x, y, z).nu));
+              out.mie[t] = float(phases.mie(texels.params(x, y, z).nu));
             }
       });
   return out;

@@ -4,11 +4,11 @@
 #include <cmath>
 
 #include "atmosphere/geometry.hpp"
+#include "atmosphere/kernels/sun_and_psi_ms_reads.hpp"
 #include "atmosphere/medium_block.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/phase.hpp"
 #include "atmosphere/segment_sources.hpp"
-#include "atmosphere/sky_reads.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/exp_block.hpp"
 #include "core/math.hpp"
@@ -100,7 +100,7 @@ class RayMarcher {
   // reads no source that is multiplied by 0.
   void march(double t0, double t1, int n, StepDistribution dist, MarchState& st,
              const std::vector<double>& cuts = {}, bool block = false, bool at_ends = false,
-             const FiniteOnce* finite = nullptr) const {
+             const CachedFiniteCheck* finite = nullptr) const {
     block = block || at_ends;
     if (empty() || !(t1 > t0)) return;
     n = std::max(n, 1);
@@ -137,7 +137,7 @@ class RayMarcher {
   // (IntegrationOptions::block_exponentials); `at_ends`: the sources read at
   // the ends instead (IntegrationOptions::sources_at_ends).
   void segments_block(const std::vector<double>& ends, MarchState& st, bool at_ends,
-                      const FiniteOnce* finite) const {
+                      const CachedFiniteCheck* finite) const {
     // Scratch kept by each thread from march to march (no allocation per ray).
     thread_local BlockScratch b;
     media_block(ends, b);
@@ -215,10 +215,11 @@ class RayMarcher {
   }
 
   // segment()'s sums over media_block's segments, the sources read at the
-  // midpoints: every segment's two reads first, four at a time where AVX2
-  // runs (sky_reads.hpp, the same bits), then the sums in order. The sums,
-  // the sun and the arrays' starts are locals: stores to `st` could alias
-  // them (doubles all), which would reload them at every segment.
+  // midpoints: every segment's two reads first, several in the lanes of a
+  // group (kernels/sun_and_psi_ms_reads.hpp, the same bits), then the sums
+  // in order. The sums, the sun and the arrays' starts are locals: stores to
+  // `st` could alias them (doubles all), which would reload them at every
+  // segment.
   void light_at_midpoints(const std::vector<double>& ends, BlockScratch& b,
                           const DarkSegments& dark, MarchState& st) const {
     const size_t n = dark.lit;
@@ -230,7 +231,7 @@ class RayMarcher {
       std::fill(sun, sun + n, glm::dvec3(0.0));
       std::fill(ms, ms + n, glm::dvec3(0.0));
     } else {
-      sky_reads(atm_, tlut_, mslut_, msmap_, b.r.data(), b.mu_s.data(), n, sun, ms);
+      read_sun_and_psi_ms(atm_, tlut_, mslut_, msmap_, b.r.data(), b.mu_s.data(), n, sun, ms);
     }
     const glm::dvec3 sun_illuminance = atm_.sun_illuminance;
     const bool multiscattering = mslut_ != nullptr;
@@ -270,8 +271,8 @@ class RayMarcher {
       std::fill(end_sun, end_sun + n + 1, glm::dvec3(0.0));
       std::fill(end_ms, end_ms + n + 1, glm::dvec3(0.0));
     } else {
-      sky_reads(atm_, tlut_, mslut_, msmap_, b.end_r.data(), b.end_mu_s.data(), n + 1, end_sun,
-                end_ms);
+      read_sun_and_psi_ms(atm_, tlut_, mslut_, msmap_, b.end_r.data(), b.end_mu_s.data(), n + 1,
+                          end_sun, end_ms);
     }
     const double* em = b.em.data();
     const glm::dvec3 *sigma_s = b.sigma_s.data(), *sigma_t = b.sigma_t.data(),

@@ -36,7 +36,7 @@
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/medium.hpp"
 #include "atmosphere/transmittance_lut.hpp"
-#include "core/finite_once.hpp"
+#include "core/cached_finite_check.hpp"
 #include "core/texture.hpp"
 #include "core/texture_sampling.hpp"
 
@@ -86,7 +86,7 @@ struct IntegrationOptions {
   // NaN and infinity: each such term adds 0 times a finite source, so the
   // result has the same bits as with the reads (tests/atmosphere/
   // sky_integrator_test.cpp).
-  const FiniteOnce* finite_tables = nullptr;
+  const CachedFiniteCheck* finite_tables = nullptr;
   // The multiple-scattering table's mapping (multiscattering_mapping_of),
   // parsed once by a caller that marches many rays; null: parsed per ray.
   const MultiscatteringMapping* multiscattering_mapping = nullptr;

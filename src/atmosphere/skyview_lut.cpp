@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include "atmosphere/kernels/skyview_row_luminance.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/skyview_row_march.hpp"
 #include "core/error.hpp"

@@ -61,13 +61,4 @@ glm::dvec3 skyview_texel_luminance(const SkyviewRowMarch& row, const Atmosphere&
                                    const Texture& multiscattering_lut, double cos_phi,
                                    double cos_theta_s, double sin_theta_s, double nu,
                                    std::vector<glm::dvec3>& scattering_phase);
-
-// skyview_texel_luminance of n texels of the row, texel k at (cos_phi[k],
-// nu[k]), into out[k]: the same bits, four texels at a time where AVX2 runs
-// (skyview_row_wide.cpp).
-void skyview_row_luminance(const SkyviewRowMarch& row, const Atmosphere& atm,
-                           const Texture& transmittance_lut, const Texture& multiscattering_lut,
-                           const double* cos_phi, const double* nu, int n, double cos_theta_s,
-                           double sin_theta_s, glm::dvec3* out);
-
 }  // namespace skybake

@@ -32,7 +32,7 @@
 #include "atmosphere/linear_layer_depth.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
-#include "core/wide_vectors.hpp"
+#include "core/simd_switches.hpp"
 
 namespace skybake {
 
@@ -225,7 +225,7 @@ void node_altitudes_from_perigee(std::vector<double>& s, double r, double mu,
                                  double bottom_radius) {
   const double from_perigee = r * mu, p2 = r * r * std::max(0.0, (1.0 - mu) * (1.0 + mu));
 #if SKYBAKE_HAS_AVX2
-  if (wide_vectors())
+  if (avx2_enabled())
     return altitudes_from_perigee_avx2(s.data(), s.size(), from_perigee, p2, bottom_radius);
 #endif
   altitudes_from_perigee(s.data(), s.size(), from_perigee, p2, bottom_radius);

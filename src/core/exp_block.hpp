@@ -26,7 +26,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "core/wide_vectors.hpp"
+#include "core/simd_switches.hpp"
 
 namespace skybake {
 
@@ -77,7 +77,7 @@ inline void exp_in_place(double* x, size_t n) {
 
 #if SKYBAKE_HAS_AVX2
 // exp_in_place built for AVX2: the compiler vectorizes the same
-// operations four doubles at a time (no FMA, core/wide_vectors.hpp), so
+// operations four doubles at a time (no FMA, core/simd_switches.hpp), so
 // every element has the same bits (tests/core/exp_block_test.cpp).
 SKYBAKE_AVX2 inline void exp_in_place_avx2(double* x, size_t n) {
   for (size_t j = 0; j < n; ++j) x[j] = exp_one(x[j]);
@@ -87,7 +87,7 @@ SKYBAKE_AVX2 inline void exp_in_place_avx2(double* x, size_t n) {
 // exp_in_place, four doubles at a time where the AVX2 loops run.
 inline void exp_block(double* x, size_t n) {
 #if SKYBAKE_HAS_AVX2
-  if (wide_vectors()) return exp_in_place_avx2(x, n);
+  if (avx2_enabled()) return exp_in_place_avx2(x, n);
 #endif
   exp_in_place(x, n);
 }
@@ -120,7 +120,7 @@ SKYBAKE_AVX2 inline void expm1_in_place_avx2(double* x, size_t n) {
 // expm1_in_place, four doubles at a time where the AVX2 loops run.
 inline void expm1_block(double* x, size_t n) {
 #if SKYBAKE_HAS_AVX2
-  if (wide_vectors()) return expm1_in_place_avx2(x, n);
+  if (avx2_enabled()) return expm1_in_place_avx2(x, n);
 #endif
   expm1_in_place(x, n);
 }

@@ -1,6 +1,6 @@
 // Scratch arrays kept from call to call (per thread) by loops that run
 // thousands of times with varying lengths: the error records' marches
-// (atmosphere/sky_integrator.cpp, atmosphere/multiscattering_point.cpp).
+// (atmosphere/sky_integrator.cpp, verify/psi_ms_reference.cpp).
 #pragma once
 
 #include <cstddef>

@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstring>
 
-#include "core/wide_vectors.hpp"
+#include "core/simd_switches.hpp"
 
 namespace skybake {
 
@@ -14,7 +14,7 @@ namespace tiling_rgba {
 // Four doubles, a texel's channels. GCC's vector extension lowers each
 // operation to one AVX2 or two SSE2 instructions, the same IEEE operation
 // per lane either way (no FMA: the AVX2 target has none), so both builds
-// give the same bits (core/wide_vectors.hpp). Values of this type never
+// give the same bits (core/simd_switches.hpp). Values of this type never
 // cross a function boundary: the bodies below are inlined into the AVX2
 // and the SSE2 function that call them.
 typedef double v4d __attribute__((vector_size(32)));
@@ -221,7 +221,7 @@ SKYBAKE_AVX2 void add_plane_avx2(const PlaneLines& pl, int lines, const std::vec
 void add_plane(const PlaneLines& pl, int lines, const std::vector<int>& lags, Scratch& s,
                FaceSums& sums) {
 #if SKYBAKE_HAS_AVX2
-  if (wide_vectors()) return add_plane_avx2(pl, lines, lags, s, sums);
+  if (avx2_enabled()) return add_plane_avx2(pl, lines, lags, s, sums);
 #endif
   for (int u0 = 0; u0 < lines; u0 += kChunk)
     add_lines(pl, u0, std::min(kChunk, lines - u0), lags, s, sums);

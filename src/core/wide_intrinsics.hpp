@@ -1,13 +1,13 @@
 // The intrinsics of the hand-vectorized loops: SSE2's everywhere it exists,
-// AVX2's where its twins are built (core/wide_vectors.hpp). For the .cpp
-// files that hold such loops only; headers include wide_vectors.hpp, whose
+// AVX2's where its twins are built (core/simd_switches.hpp). For the .cpp
+// files that hold such loops only; headers include simd_switches.hpp, whose
 // switch is all their users need.
 #pragma once
 
 #include <algorithm>
 #include <cstddef>
 
-#include "core/wide_vectors.hpp"
+#include "core/simd_switches.hpp"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>

@@ -8,7 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/math.hpp"
-#include "core/wide_intrinsics.hpp"
+#include "noise/kernels/worley_nearest.hpp"
 #include "noise/perlin.hpp"
 #include "noise/worley.hpp"
 
@@ -29,146 +29,6 @@ void for_each_plane(int period, const F& f) {
                       for (int z = zs.begin(); z < zs.end(); ++z) f(z);
                     });
 }
-
-// value[l] = 1 - sqrt(min(1, min_k (f[l] - (shift_k + ox[k]))^2 + q[k])) for 4
-// voxels of one cell at cell-local positions f, where the candidates k of
-// the columns c - 1, c, c + 1 are [start[0], start[1]), [start[1], start[2]),
-// [start[2], start[3]) with shift_k = -1, 0, +1.
-// Explicit SSE where available: GCC vectorizes neither the 4 lanes nor (errno)
-// the square root by itself. Two accumulators halve the chain of dependent
-// minima; a minimum is exact, so the split changes no bit. Every lane
-// operation is an IEEE single-precision operation like the scalar fallback's
-// and worley3_f1's, so all give the same bits.
-void nearest4(const float* f, const float* ox, const float* q, const int* start, float* value) {
-#if defined(__SSE2__)
-  const __m128 fs = _mm_loadu_ps(f);
-  __m128 b0 = _mm_set1_ps(1.0f), b1 = b0;  // the clamp bound (worley.hpp)
-  auto d2 = [&](int k, float shift) {
-    const __m128 dx = _mm_sub_ps(fs, _mm_set1_ps(shift + ox[k]));
-    return _mm_add_ps(_mm_mul_ps(dx, dx), _mm_set1_ps(q[k]));
-  };
-  for (int j = 0; j < 3; ++j) {
-    const float shift = float(j - 1);
-    int k = start[j];
-    for (; k + 1 < start[j + 1]; k += 2) {
-      b0 = _mm_min_ps(d2(k, shift), b0);
-      b1 = _mm_min_ps(d2(k + 1, shift), b1);
-    }
-    if (k < start[j + 1]) b0 = _mm_min_ps(d2(k, shift), b0);
-  }
-  _mm_storeu_ps(value, _mm_sub_ps(_mm_set1_ps(1.0f), _mm_sqrt_ps(_mm_min_ps(b0, b1))));
-#else
-  float best[4] = {1.0f, 1.0f, 1.0f, 1.0f};
-  for (int j = 0; j < 3; ++j)
-    for (int k = start[j]; k < start[j + 1]; ++k)
-      for (int l = 0; l < 4; ++l) {
-        const float dx = f[l] - (float(j - 1) + ox[k]);
-        const float d2 = dx * dx + q[k];
-        best[l] = d2 < best[l] ? d2 : best[l];
-      }
-  for (int l = 0; l < 4; ++l) value[l] = 1.0f - std::sqrt(best[l]);
-#endif
-}
-
-#if SKYBAKE_HAS_AVX2
-// The whole row 8 voxels at a time, whatever cells they fall in: lane l
-// (voxel x0 + l, cell cell[x0 + l]) scans the candidates of every column
-// from cell[x0] - 1 to cell[x0 + 7] + 1, a contiguous range of the
-// compacted arrays, with its own shift col[k] - cell (an exact integer), so
-// the lanes of one cell compute nearest4's d2 bit for bit. A column two or
-// more cells away from a lane's cell gives that lane d2 >= 1 (|dx| >= 1:
-// f and ox are in [0, 1)), which cannot lower the bound: the same minimum.
-// Small cells (2 or 4 voxels, periods 64 and 32 of a 128 volume) then
-// fill all 8 lanes instead of 4 lanes of which half are dropped.
-// d2 of 8 voxels at cell-local positions fs in cells cs to a candidate of
-// column col: nearest4's expression with the shift col - cs per lane.
-// Always inlined: a 256-bit value passed to a call would change its ABI.
-SKYBAKE_AVX2 inline __attribute__((always_inline)) __m256 worley_d2_avx2(__m256 fs, __m256 cs,
-                                                                        float col, float ox,
-                                                                        float q) {
-  const __m256 shift = _mm256_sub_ps(_mm256_set1_ps(col), cs);
-  const __m256 dx = _mm256_sub_ps(fs, _mm256_add_ps(shift, _mm256_set1_ps(ox)));
-  return _mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_set1_ps(q));
-}
-
-// For every 8-bit mask, the lanes of its set bits in increasing order, then
-// the others: _mm256_permutevar8x32_ps with it moves the kept values to the
-// front, in order.
-struct LeftPack {
-  alignas(32) int lanes[256][8];
-  LeftPack() {
-    for (int m = 0; m < 256; ++m) {
-      int n = 0;
-      for (int l = 0; l < 8; ++l)
-        if (m & (1 << l)) lanes[m][n++] = l;
-      for (int l = 0; l < 8; ++l)
-        if (!(m & (1 << l))) lanes[m][n++] = l;
-    }
-  }
-};
-const LeftPack kLeftPack;
-
-// eval_row's compaction, column by column: the y-z neighbours j = 0 .. 7 of
-// a column gathered at once, those with q < 1 moved to the front in j
-// order, then j = 8: the same candidates in the same order as the scalar
-// loop. Writes up to 8 floats past the last candidate. Returns the count.
-SKYBAKE_AVX2 int compact_columns_avx2(const float* qj, const float* offset_x, const size_t* rows,
-                                      int p, float* ox, float* q, float* col_of, int* start) {
-  const __m256i q_index = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7),
-                                             _mm256_set1_epi32(p));
-  const __m256i x_index = _mm256_setr_epi32(int(rows[0]), int(rows[1]), int(rows[2]),
-                                            int(rows[3]), int(rows[4]), int(rows[5]),
-                                            int(rows[6]), int(rows[7]));
-  const __m256 one = _mm256_set1_ps(1.0f);
-  int count = 0;
-  for (int col = 0; col < p + 2; ++col) {
-    const int cx = col - 1, wx = cx < 0 ? cx + p : (cx >= p ? cx - p : cx);
-    start[col] = count;
-    const __m256 qv = _mm256_i32gather_ps(qj + wx, q_index, 4);
-    const __m256 xv = _mm256_i32gather_ps(offset_x + wx, x_index, 4);
-    const int mask = _mm256_movemask_ps(_mm256_cmp_ps(qv, one, _CMP_LT_OQ));
-    const __m256i lanes =
-        _mm256_load_si256(reinterpret_cast<const __m256i*>(kLeftPack.lanes[mask]));
-    _mm256_storeu_ps(q + count, _mm256_permutevar8x32_ps(qv, lanes));
-    _mm256_storeu_ps(ox + count, _mm256_permutevar8x32_ps(xv, lanes));
-    _mm256_storeu_ps(col_of + count, _mm256_set1_ps(float(cx)));
-    count += __builtin_popcount(unsigned(mask));
-    const float q8 = qj[size_t(8) * p + wx];
-    ox[count] = offset_x[rows[8] + wx];
-    q[count] = q8;
-    col_of[count] = float(cx);
-    count += q8 < 1.0f;
-  }
-  start[p + 2] = count;
-  return count;
-}
-
-SKYBAKE_AVX2 void nearest_row_avx2(const float* frac, const float* cell_f, const int* cell,
-                                   int size, const float* ox, const float* q, const float* col,
-                                   const int* start, float* out) {
-  const __m256 one = _mm256_set1_ps(1.0f);
-  for (int x0 = 0; x0 < size; x0 += 8) {
-    const int last = std::min(x0 + 7, size - 1);
-    const int k_end = start[cell[last] + 3];
-    const __m256 fs = _mm256_loadu_ps(frac + x0), cs = _mm256_loadu_ps(cell_f + x0);
-    __m256 b0 = one, b1 = one;
-    int k = start[cell[x0]];
-    for (; k + 1 < k_end; k += 2) {
-      b0 = _mm256_min_ps(worley_d2_avx2(fs, cs, col[k], ox[k], q[k]), b0);
-      b1 = _mm256_min_ps(worley_d2_avx2(fs, cs, col[k + 1], ox[k + 1], q[k + 1]), b1);
-    }
-    if (k < k_end) b0 = _mm256_min_ps(worley_d2_avx2(fs, cs, col[k], ox[k], q[k]), b0);
-    const __m256 value = _mm256_sub_ps(one, _mm256_sqrt_ps(_mm256_min_ps(b0, b1)));
-    if (x0 + 8 <= size) {
-      _mm256_storeu_ps(out + x0, value);
-    } else {
-      float lanes[8];
-      _mm256_storeu_ps(lanes, value);
-      std::copy(lanes, lanes + (size - x0), out + x0);
-    }
-  }
-}
-#endif
 
 }  // namespace
 
@@ -211,8 +71,9 @@ void WorleyRows::eval_row(int y, int z, RowScratch& s, float* out) const {
   const int cy = cell_[y], cz = cell_[z];
   // Candidates of x column cx (cx = -1 .. p, unwrapped) are ox/q[start[cx + 1],
   // start[cx + 2]): x offset in the cell and squared y-z distance. ox/q are
-  // sized for every candidate plus 8: the compactions below write past the last.
-  const size_t max_candidates = size_t(p + 2) * 9 + 8;  // + 8: compact_columns_avx2
+  // sized for every candidate and more: the branch-free compaction writes
+  // one past the last.
+  const size_t max_candidates = size_t(p + 2) * 9 + 8;
   if (s.a.size() < max_candidates) s.a.resize(max_candidates), s.b.resize(max_candidates);
   if (s.c.size() < size_t(p) * 9) s.c.resize(size_t(p) * 9);
   if (s.start.size() < size_t(p + 3)) s.start.resize(p + 3);
@@ -239,14 +100,6 @@ void WorleyRows::eval_row(int y, int z, RowScratch& s, float* out) const {
     }
   }
   // Then the compaction, column by column, of the points with q < 1.
-#if SKYBAKE_HAS_AVX2
-  if (wide_vectors()) {
-    compact_columns_avx2(qj, offset_x_.data(), rows, p, ox, q, col_of, s.start.data());
-    nearest_row_avx2(frac_.data(), cell_f_.data(), cell_.data(), size_, ox, q, col_of,
-                     s.start.data(), out);
-    return;
-  }
-#endif
   int count = 0;
   for (int col = 0; col < p + 2; ++col) {
     const int cx = col - 1, wx = cx < 0 ? cx + p : (cx >= p ? cx - p : cx);
@@ -261,16 +114,8 @@ void WorleyRows::eval_row(int y, int z, RowScratch& s, float* out) const {
     }
   }
   s.start[p + 2] = count;
-  // Voxels of one cell share their candidates: 4 voxels at a time (lanes past
-  // the cell are computed and dropped). Columns c - 1, c, c + 1 are shifted by
-  // -1, 0, +1 cell relative to the voxels' cell.
-  for (int c = 0; c < p; ++c) {
-    for (int x0 = cell_begin_[c], x_end = cell_begin_[c + 1]; x0 < x_end; x0 += 4) {
-      float value[4];
-      nearest4(&frac_[x0], ox, q, &s.start[c], value);
-      for (int l = 0, lanes = std::min(4, x_end - x0); l < lanes; ++l) out[x0 + l] = value[l];
-    }
-  }
+  worley_nearest_row(frac_.data(), cell_f_.data(), cell_.data(), size_, ox, q, col_of,
+                     s.start.data(), out);
 }
 
 PerlinRows::PerlinRows(int size, int period, uint32_t seed)

@@ -12,11 +12,11 @@
 //   every voxel of the row), so a voxel scans ~8 candidates instead of 27;
 //   for Perlin, the y-z interpolated gradient terms of each lattice column,
 //   leaving ~10 flops per voxel and octave.
-// - The voxels of one Worley cell share their candidates and are scanned 4 at
-//   a time with SSE, or 8 neighbouring voxels at a time with AVX2 (of one
-//   cell or several: core/wide_vectors.hpp); distances are cell-local with
+// - Neighbouring voxels of a row share their candidates and are scanned
+//   together in the lanes of one vector, of one cell or several
+//   (noise/kernels/worley_nearest.hpp); distances are cell-local with
 //   worley3_f1's expressions, so the baked Worley values equal the pure
-//   function's bit for bit either way.
+//   function's bit for bit on every SIMD target.
 // Voxel i of n sits at the texel centre (i + 0.5) / n of the unit domain, i.e.
 // at cell_coord_from_texel(i, n, period) in cells.
 #pragma once

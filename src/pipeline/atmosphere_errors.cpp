@@ -1,5 +1,5 @@
 // The measured error of Hillaire's tables (error_measures.hpp): the queries
-// of atmosphere/query_points.hpp, read with each table's lookup_*, against
+// of verify/query_points.hpp, read with each table's lookup_*, against
 // the same quantity integrated at those points with many more steps and, for
 // transmittance, no table at all. The sky tables' references read the same
 // input tables the bake read (transmittance, multiple scattering), as the
@@ -13,12 +13,12 @@
 
 #include <fmt/format.h>
 
-#include "atmosphere/multiscattering_point.hpp"
-#include "atmosphere/query_points.hpp"
 #include "atmosphere/sky_integrator.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/error_measures.hpp"
-#include "pipeline/error_references.hpp"
+#include "verify/error_references.hpp"
+#include "verify/psi_ms_reference.hpp"
+#include "verify/query_points.hpp"
 
 namespace skybake {
 
@@ -81,7 +81,7 @@ nlohmann::json measure_multiscattering_error(const Scene& scene, const OutputSpe
   const Atmosphere& atm = scene.atmosphere;
   const PointRule rule = point_rule(kMultiscatteringReference);
   const Texture& transmittance = *in.at("transmittance");
-  const FiniteOnce finite{&transmittance};
+  const CachedFiniteCheck finite{&transmittance};
   QueryReads reads(kMultiscatteringQueries);
   tbb::parallel_for(size_t(0), reads.size(), [&](size_t i) {
     const RadiusCosine q = multiscattering_query(atm, i);
@@ -115,7 +115,7 @@ QueryReads skyview_reads(
   IntegrationOptions options;
   options.distribution = baked.distribution;
   options.block_exponentials = true;
-  const FiniteOnce finite{&transmittance, multiscattering};
+  const CachedFiniteCheck finite{&transmittance, multiscattering};
   options.finite_tables = &finite;
   const MultiscatteringMapping mapping =
       multiscattering ? multiscattering_mapping_of(*multiscattering) : MultiscatteringMapping{};
@@ -181,7 +181,7 @@ nlohmann::json measure_aerial_perspective_error(const Scene& scene, const Output
   const glm::dvec3 sun = sun_direction(baked.sun_zenith_rad, baked.sun_azimuth_rad);
   IntegrationOptions options = aerial_reference_options();
   const Texture* multiscattering = in.at("multiscattering");
-  const FiniteOnce finite{in.at("transmittance"), multiscattering};
+  const CachedFiniteCheck finite{in.at("transmittance"), multiscattering};
   options.finite_tables = &finite;
   const MultiscatteringMapping mapping =
       multiscattering ? multiscattering_mapping_of(*multiscattering) : MultiscatteringMapping{};

@@ -11,15 +11,15 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
-#include "atmosphere/direct_single_scattering.hpp"
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/irradiance_lut.hpp"
-#include "atmosphere/query_points.hpp"
 #include "atmosphere/scattering_orders.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/bruneton_families.hpp"
 #include "pipeline/error_measures.hpp"
 #include "pipeline/product_graph.hpp"
+#include "verify/direct_single_scattering.hpp"
+#include "verify/query_points.hpp"
 
 namespace skybake {
 

@@ -2,7 +2,7 @@
 // docs/decisions.md "The bake measures what an engine reads"): each table is
 // read the way an engine reads it, its lookup_* function with the
 // interpolation, at deterministic off-texel query points
-// (atmosphere/query_points.hpp: the first n of the points `skybake report`
+// (verify/query_points.hpp: the first n of the points `skybake report`
 // uses), against a reference that does not use the table: a converged
 // integration of the same quantity at those points. These are the report's
 // ladders at their operating point with fewer queries and references that

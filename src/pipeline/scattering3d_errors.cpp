@@ -12,14 +12,14 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
-#include "atmosphere/direct_single_scattering.hpp"
 #include "atmosphere/gathering_lut.hpp"
-#include "atmosphere/query_points.hpp"
 #include "atmosphere/scattering3d_lut.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/bruneton_families.hpp"
 #include "pipeline/error_measures.hpp"
 #include "pipeline/product_graph.hpp"
+#include "verify/direct_single_scattering.hpp"
+#include "verify/query_points.hpp"
 
 namespace skybake {
 

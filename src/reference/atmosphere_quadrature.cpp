@@ -6,11 +6,11 @@
 #include <cmath>
 #include <vector>
 
-#include "atmosphere/direct_single_scattering.hpp"
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/phase.hpp"
 #include "core/math.hpp"
 #include "reference/density_bounds.hpp"
+#include "verify/direct_single_scattering.hpp"
 
 namespace skybake {
 namespace {

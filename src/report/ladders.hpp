@@ -42,8 +42,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "atmosphere/query_points.hpp"
 #include "report/setup.hpp"
+#include "verify/query_points.hpp"
 
 namespace skybake {
 

@@ -12,14 +12,14 @@
 
 #include <gtest/gtest.h>
 
-#include "support/test_atmospheres.hpp"
-#include "atmosphere/direct_single_scattering.hpp"
-#include "atmosphere/query_points.hpp"
-#include "core/error.hpp"
-#include "core/error_stats.hpp"
 #include "atmosphere/phase.hpp"
 #include "atmosphere/transmittance_lut.hpp"
+#include "core/error.hpp"
+#include "core/error_stats.hpp"
 #include "core/math.hpp"
+#include "support/test_atmospheres.hpp"
+#include "verify/direct_single_scattering.hpp"
+#include "verify/query_points.hpp"
 
 namespace skybake {
 namespace {

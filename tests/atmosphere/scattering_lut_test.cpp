@@ -110,7 +110,7 @@ TEST(ScatteringMapping, TexelCentresStayInTheDomain) {
   for (int z = 0; z < shape.r_size; ++z)
     for (int y = 0; y < shape.mu_size; ++y)
       for (int x = 0; x < shape.texture_width(); ++x) {
-        const ScatteringParams p = grid.at(x, y, z);
+        const ScatteringParams p = grid.params(x, y, z);
         ASSERT_GE(p.r, rb);
         ASSERT_LE(p.r, rt);
         ASSERT_LE(std::abs(p.mu), 1.0);
@@ -137,10 +137,11 @@ TEST(ScatteringMapping, TexelCentresStayInTheDomain) {
   EXPECT_EQ(grid.nu.front(), -1.0);
   EXPECT_EQ(grid.nu.back(), 1.0);
   const int z = 5, half = shape.mu_size / 2;
-  EXPECT_NEAR(grid.at(0, half, z).mu, 1.0, 1e-12);                     // zenith
-  EXPECT_NEAR(grid.at(0, half - 1, z).mu, -1.0, 1e-12);                // nadir
-  EXPECT_NEAR(grid.at(0, 0, z).mu, mu_horizon(atm, grid.r[z]), 1e-9);  // horizon, ground side
-  EXPECT_NEAR(grid.at(0, shape.mu_size - 1, z).mu, mu_horizon(atm, grid.r[z]), 1e-9);  // sky side
+  EXPECT_NEAR(grid.params(0, half, z).mu, 1.0, 1e-12);                     // zenith
+  EXPECT_NEAR(grid.params(0, half - 1, z).mu, -1.0, 1e-12);                // nadir
+  EXPECT_NEAR(grid.params(0, 0, z).mu, mu_horizon(atm, grid.r[z]), 1e-9);  // horizon, ground side
+  EXPECT_NEAR(grid.params(0, shape.mu_size - 1, z).mu, mu_horizon(atm, grid.r[z]),
+              1e-9);  // sky side
 }
 
 TEST(ScatteringMapping, TexelGridEqualsTexelParams) {
@@ -149,7 +150,7 @@ TEST(ScatteringMapping, TexelGridEqualsTexelParams) {
   for (int z = 0; z < kSmall.r_size; z += 3)
     for (int y = 0; y < kSmall.mu_size; y += 5)
       for (int x = 0; x < kSmall.texture_width(); ++x) {
-        const ScatteringParams a = grid.at(x, y, z),
+        const ScatteringParams a = grid.params(x, y, z),
                                b = scattering_texel_params(atm, kSmall, x, y, z);
         ASSERT_EQ(a.r, b.r);
         ASSERT_EQ(a.mu, b.mu);
@@ -303,83 +304,6 @@ TEST(TransmittanceReader, MatchesTheLutLookups) {
   EXPECT_NEAR(half.r, 0.5 * reader.to_top(row, mu_h).r, 1e-12);
 }
 
-// ---- Row-at-a-time taps (batch_taps.cpp) ------------------------------------------
-
-// Cosines across [-1, 1] with the edges, values past them and an odd count
-// (the scalar remainder after the pairs).
-std::vector<double> batch_cosines(double lowest) {
-  std::vector<double> mu = {-1.5, -1.0, -0.0, 0.0, 1.0, 1.5, lowest, std::nextafter(lowest, 0.0)};
-  for (int i = 0; i < 301; ++i) mu.push_back(-1.0 + 2.0 * i / 300.0);
-  return mu;
-}
-
-TEST(MuSAxis, BatchTapsEqualOneAtATime) {
-  for (const Atmosphere& atm : {fixtures::earth_atmosphere(), fixtures::tiny_planet_atmosphere()})
-    for (const ScatteringShape& shape : {kSmall, ScatteringShape{}, ScatteringShape{4, 8, 7, 2, 0.0}}) {
-      const MuSAxis axis(atm, shape);
-      const std::vector<double> mu_s = batch_cosines(shape.mu_s_min);
-      std::vector<int> i0(mu_s.size());
-      std::vector<double> w(mu_s.size());
-      axis.taps(mu_s.data(), int(mu_s.size()), i0.data(), w.data());
-      for (size_t k = 0; k < mu_s.size(); ++k) {
-        const AxisTap t = axis.tap(mu_s[k]);
-        ASSERT_EQ(i0[k], t.i0) << mu_s[k];
-        ASSERT_EQ(w[k], t.w) << mu_s[k];  // bit for bit
-      }
-    }
-}
-
-TEST(TransmittanceReader, BatchSunTapsEqualToSun) {
-  const Atmosphere atm = fixtures::earth_atmosphere();
-  const Texture lut = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{});
-  const TransmittanceReader reader(lut, atm);
-  std::vector<double> mu_s = batch_cosines(-0.2);
-  for (double h : {0.0, 300.0, 7e3, 45e3, 100e3}) {
-    const TransmittanceReader::Row row = reader.row(atm.bottom_radius_m + h);
-    // Through the sun's smoothstep at the horizon, in steps of its width.
-    const double mu_h = mu_horizon(atm, atm.bottom_radius_m + h);
-    for (int i = -3; i <= 3; ++i) mu_s.push_back(mu_h + i * 0.5 * atm.sun_angular_radius_rad);
-    std::vector<int> i0(mu_s.size());
-    std::vector<double> w(mu_s.size()), visible(mu_s.size());
-    // to_sun reads clamped cosines (SingleScatteringRay clamps first).
-    std::vector<double> clamped(mu_s.size());
-    for (size_t k = 0; k < mu_s.size(); ++k) clamped[k] = clamp_cosine(mu_s[k]);
-    reader.sun_taps(row, clamped.data(), int(clamped.size()), i0.data(), w.data(), visible.data());
-    for (size_t k = 0; k < clamped.size(); ++k) {
-      const glm::dvec3 a = reader.to_sun_at(row, i0[k], w[k], visible[k]);
-      const glm::dvec3 b = reader.to_sun(row, clamped[k]);
-      for (int c = 0; c < 3; ++c) ASSERT_EQ(a[c], b[c]) << h << " " << clamped[k];
-    }
-  }
-}
-
-TEST(SingleScatteringRay, ManySunsEqualOneAtATime) {
-  const Atmosphere atm = fixtures::earth_atmosphere();
-  const Texture lut = bake_transmittance_lut(atm, TransmittanceLutSpec{}, BakeContext{});
-  const TransmittanceReader reader(lut, atm);
-  const double rb = atm.bottom_radius_m;
-  std::vector<double> mu_s, nu;
-  for (int i = 0; i < 37; ++i) {
-    mu_s.push_back(-0.3 + 1.3 * i / 36.0);
-    nu.push_back(std::cos(0.17 * i));
-  }
-  SingleScatteringRay ray;
-  SingleScatteringRay::Scratch scratch;
-  std::vector<SingleScattering> many(mu_s.size());
-  for (double h : {0.0, 2e3, 30e3}) {
-    for (double mu : {0.9, 0.05, -0.05, -0.8}) {
-      const double r = rb + h;
-      ray.prepare(atm, reader, r, mu, ray_intersects_ground(rb, r, mu), 30);
-      ray.at_suns(reader, mu_s.data(), nu.data(), int(mu_s.size()), atm.sun_illuminance,
-                  many.data(), scratch);
-      for (size_t k = 0; k < mu_s.size(); ++k) {
-        const SingleScattering one = ray.at_sun(reader, mu_s[k], nu[k], atm.sun_illuminance);
-        ASSERT_EQ(many[k].rayleigh, one.rayleigh) << h << " " << mu << " " << k;
-        ASSERT_EQ(many[k].mie, one.mie) << h << " " << mu << " " << k;
-      }
-    }
-  }
-}
 
 // ---- Single scattering: closed forms ------------------------------------------------
 

@@ -214,7 +214,8 @@ std::vector<glm::dvec3> incident_one_read_at_a_time(const Orders& o, const Scatt
         if (p.hits) {
           const double mu_s_ground = std::clamp((r * mu_s + p.d * nu) / o.atm.bottom_radius_m,
                                                 -1.0, 1.0);
-          part += p.T_ground * o.atm.ground_albedo / kPi * ground.at(o.atm, o.lut, mu_s_ground);
+          part +=
+              p.T_ground * o.atm.ground_albedo / kPi * ground.irradiance(o.atm, o.lut, mu_s_ground);
         }
         L[size_t(l) * grid.azimuths + m] += p.share * part;
       }

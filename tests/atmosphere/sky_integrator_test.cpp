@@ -16,6 +16,7 @@
 #include "atmosphere/phase.hpp"
 #include "atmosphere/segment_sources.hpp"
 #include "atmosphere/transmittance_lut.hpp"
+#include "core/simd_switches.hpp"
 #include "support/test_atmospheres.hpp"
 #include "support/wide_vectors_as.hpp"
 
@@ -247,7 +248,7 @@ TEST(Integrator, BlockExponentialsAreTheMarchToRounding) {
 // transmittance bits of each pair compared.
 void expect_dark_reads_left_out_keep_bits(const Atmosphere& atm, const Texture& transmittance,
                                           const Texture& multiscattering) {
-  const FiniteOnce finite{&transmittance, &multiscattering};
+  const CachedFiniteCheck finite{&transmittance, &multiscattering};
   const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
   for (double r : {rb + 10.0, rb + 0.5 * (rt - rb), 1.5 * rt})
     for (double elevation : {-0.9, -0.05, 0.02, 0.4, 1.4})
@@ -443,6 +444,46 @@ TEST(Integrator, StiffMediaStayFinite) {
   tiny.bottom_radius_m = 1e3;
   tiny.top_radius_m = 101e3;
   expect_sane_everywhere(tiny);
+}
+
+TEST(Integrator, BlockMarchHasTheSameBitsWithAndWithoutAvx2) {
+  // The references' march (block exponentials, the sources read at the
+  // midpoints or at the ends) with the AVX2 exponentials and without: ground
+  // and space viewers, lit and shadowed, cut at the shadow and plain.
+  {
+    const test::WideVectorsAs probe(true);
+    if (!avx2_enabled()) GTEST_SKIP() << "this CPU has no AVX2: only the one-value loops run";
+  }
+  Atmosphere dense = fixtures::earth_atmosphere();
+  for (MediumComponent& c : dense.components)
+    if (c.name == "rayleigh") c.scattering_per_m *= 1000.0;
+  for (const Atmosphere& atm : {fixtures::earth_atmosphere(), fixtures::tiny_planet_atmosphere(), dense}) {
+    const fixtures::SkyLutInputs l = fixtures::bake_sky_lut_inputs(atm);
+    const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+    for (double r : {rb + 0.01 * (rt - rb), rb + 0.5 * (rt - rb), 1.5 * rt})
+      for (double elevation : {-0.9, -0.05, 0.02, 0.4, 1.4})
+        for (double sun_elevation : {-0.1, 0.05, 0.8})
+          for (bool at_ends : {false, true}) {
+            IntegrationOptions options;
+            options.cut_at_shadow = !at_ends;
+            options.distribution = at_ends ? StepDistribution::uniform : StepDistribution::quadratic;
+            options.block_exponentials = true;
+            options.sources_at_ends = at_ends;
+            options.lit_ground = true;
+            const glm::dvec3 p(0.0, 0.0, r);
+            const glm::dvec3 dir(std::cos(elevation), 0.0, std::sin(elevation));
+            const glm::dvec3 sun(std::cos(sun_elevation) * 0.6, std::cos(sun_elevation) * 0.8,
+                                 std::sin(sun_elevation));
+            const auto march = [&](bool wide) {
+              const test::WideVectorsAs as(wide);
+              return integrate_scattered_luminance(atm, l.transmittance, &l.multiscattering, p,
+                                                   dir, sun, INFINITY, 41, options);
+            };
+            const ScatteringResult one = march(false), avx2 = march(true);
+            ASSERT_EQ(avx2.luminance, one.luminance) << r << " " << elevation << " " << at_ends;
+            ASSERT_EQ(avx2.transmittance, one.transmittance);
+          }
+  }
 }
 
 }  // namespace

@@ -14,12 +14,12 @@
 
 #include <gtest/gtest.h>
 
-#include "support/test_atmospheres.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
-#include "atmosphere/query_points.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/error_stats.hpp"
 #include "core/math.hpp"
+#include "support/test_atmospheres.hpp"
+#include "verify/query_points.hpp"
 
 namespace skybake {
 namespace {

@@ -1,7 +1,7 @@
 // check_finite (core/texture.hpp): every finite float passes, including the
 // extremes (largest, denormal, negative zero); every NaN and infinity is
 // refused wherever it sits, and the message names the first one's texel
-// and channel. texture_is_finite and FiniteOnce (core/finite_once.hpp) give
+// and channel. texture_is_finite and CachedFiniteCheck (core/cached_finite_check.hpp) give
 // the same verdict without a message.
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <limits>
 #include <string>
 
+#include "core/cached_finite_check.hpp"
 #include "core/error.hpp"
-#include "core/finite_once.hpp"
 #include "core/texture.hpp"
 
 namespace skybake {
@@ -70,11 +70,11 @@ TEST(CheckFinite, TextureIsFiniteAndFiniteOnceAgree) {
   t.data[5] = -0.0f;
   Texture u = t;
   EXPECT_TRUE(texture_is_finite(t));
-  EXPECT_TRUE((FiniteOnce{&t, nullptr})());
+  EXPECT_TRUE((CachedFiniteCheck{&t, nullptr})());
   for (uint32_t bits : {0x7f800000u, 0xff800000u, 0x7fc00000u, 0x7f800001u}) {
     u.data[17] = from_bits(bits);
     EXPECT_FALSE(texture_is_finite(u)) << bits;
-    const FiniteOnce both{&t, &u};
+    const CachedFiniteCheck both{&t, &u};
     EXPECT_FALSE(both());
     EXPECT_FALSE(both());  // remembered
   }

@@ -21,7 +21,6 @@
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/irradiance_lut.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
-#include "atmosphere/query_points.hpp"
 #include "atmosphere/scattering3d_lut.hpp"
 #include "atmosphere/scattering_lut.hpp"
 #include "atmosphere/sky_integrator.hpp"
@@ -31,6 +30,7 @@
 #include "core/error_stats.hpp"
 #include "gl/baked_atmosphere.hpp"
 #include "gl/decode_case.hpp"
+#include "verify/query_points.hpp"
 
 namespace skybake::gltest {
 namespace {

@@ -14,7 +14,6 @@
 #include <fstream>
 
 #include "atmosphere/aerial_perspective_lut.hpp"
-#include "atmosphere/query_points.hpp"
 #include "atmosphere/sky_integrator.hpp"
 #include "atmosphere/sky_preview.hpp"
 #include "atmosphere/skyview_lut.hpp"
@@ -24,6 +23,7 @@
 #include "io/texture_file.hpp"
 #include "pipeline/preset_loader.hpp"
 #include "support/run.hpp"
+#include "verify/query_points.hpp"
 
 namespace skybake::gltest {
 namespace {

@@ -15,14 +15,15 @@ src="${1:?usage: check_layers.sh SRC_DIR}"
 declare -A allowed=(
   [core]=""
   [atmosphere]="core"
-  [reference]="core atmosphere"
+  [verify]="core atmosphere"
+  [reference]="core atmosphere verify"
   [noise]="core"
   [clouds]="core noise"
   [io]="core"
-  [pipeline]="core atmosphere noise clouds io"
-  [report]="core atmosphere reference noise clouds io pipeline"
-  [farm]="core atmosphere noise clouds io pipeline"
-  [cli]="core atmosphere reference noise clouds io pipeline report farm"
+  [pipeline]="core atmosphere verify noise clouds io"
+  [report]="core atmosphere verify reference noise clouds io pipeline"
+  [farm]="core atmosphere verify noise clouds io pipeline"
+  [cli]="core atmosphere verify reference noise clouds io pipeline report farm"
 )
 
 status=0

@@ -1,5 +1,5 @@
 // The error records of Hillaire's tables (pipeline/atmosphere_errors.cpp) with
-// the reference settings the bake uses (pipeline/error_references.hpp):
+// the reference settings the bake uses (verify/error_references.hpp):
 // - each record still sees a wrong table: the table scaled by 1.1 or 0.9 has
 //   a record within scale * e0 of 0.1 (e0 the table's own max_rel), whatever
 //   the reference, since |s v - ref| / d = |(s - 1) ref + s (v - ref)| / d
@@ -22,18 +22,18 @@
 
 #include "atmosphere/aerial_perspective_lut.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
-#include "atmosphere/multiscattering_point.hpp"
-#include "atmosphere/query_points.hpp"
 #include "atmosphere/sky_integrator.hpp"
 #include "atmosphere/skyview_lut.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/error_stats.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/error_measures.hpp"
-#include "pipeline/error_references.hpp"
 #include "pipeline/preset_loader.hpp"
 #include "pipeline/product_graph.hpp"
 #include "support/run.hpp"
+#include "verify/error_references.hpp"
+#include "verify/psi_ms_reference.hpp"
+#include "verify/query_points.hpp"
 
 namespace skybake {
 namespace {

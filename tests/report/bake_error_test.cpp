@@ -14,19 +14,19 @@
 
 #include <nlohmann/json.hpp>
 
-#include "atmosphere/direct_single_scattering.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
-#include "atmosphere/query_points.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/error_stats.hpp"
 #include "pipeline/atmosphere_specs.hpp"
-#include "pipeline/error_references.hpp"
 #include "pipeline/preset_loader.hpp"
 #include "reference/atmosphere_quadrature.hpp"
 #include "report/sections.hpp"
 #include "support/run.hpp"
 #include "support/test_atmospheres.hpp"
 #include "report/bake_error_checks.hpp"
+#include "verify/direct_single_scattering.hpp"
+#include "verify/error_references.hpp"
+#include "verify/query_points.hpp"
 
 namespace fs = std::filesystem;
 

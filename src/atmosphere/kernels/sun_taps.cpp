@@ -1,0 +1,214 @@
+// The sun-angle taps over lanes (Highway, every target from one source): per
+// lane the operations of MuSAxis::tap and of TransmittanceReader::to_sun in
+// the same order on the same operands, so the same bits as one cosine at a
+// time (tests/atmosphere/kernels_test.cpp). std::min(a, b) is Min(b, a) and
+// std::max(a, b) is Max(b, a), signed zeros included, and std::clamp(v, lo,
+// hi) is Min(hi, Max(lo, v)) for every non-NaN v.
+#include "atmosphere/kernels/sun_taps.hpp"
+
+#include <algorithm>
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "atmosphere/kernels/sun_taps.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+
+#include <hwy/highway.h>
+
+#include "atmosphere/kernels/table_lanes-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace skybake {
+namespace HWY_NAMESPACE {
+namespace {
+
+// Texel-centre taps of x in [0, 1] over n texels: i0 = min(int(t), n - 2),
+// w = t - i0, t = x (n - 1).
+template <class D>
+struct TapLanes {
+  Offsets<D> i0;
+  Lanes<D> w;
+};
+template <class D>
+HWY_INLINE TapLanes<D> Taps(D d, Lanes<D> x, int n_texels) {
+  const hn::Rebind<int32_t, D> di;
+  const Lanes<D> t = hn::Mul(x, hn::Set(d, double(n_texels - 1)));
+  const Lanes<D> i = hn::Min(hn::Set(d, double(n_texels - 2)), hn::PromoteTo(d, hn::DemoteTo(di, t)));
+  return {hn::DemoteTo(di, i), hn::Sub(t, i)};
+}
+
+// The first `count` lanes of v at out.
+template <class D, typename T>
+HWY_INLINE void StoreFirst(D d, hn::Vec<D> v, size_t count, T* out) {
+  if (count == hn::Lanes(d)) return hn::StoreU(v, d, out);
+  HWY_ALIGN T lanes[hn::MaxLanes(d)];
+  hn::Store(v, d, lanes);
+  std::copy(lanes, lanes + count, out);
+}
+
+// The first pass of TransmittanceReader::to_sun for the lanes' cosines at
+// the row: the table's column i0, the weight w and the sun's visible
+// fraction.
+template <class D>
+HWY_INLINE void SunTaps(D d, const SunTapTable& table, const TransmittanceReader::Row& row,
+                        Lanes<D> raw, int32_t* i0, double* w, double* visible) {
+  const hn::Rebind<int32_t, D> di;
+  const Lanes<D> zero = hn::Zero(d), one = hn::Set(d, 1.0);
+  const Lanes<D> mu = ClampLanes(d, raw, -1.0, 1.0);
+  // distance_to_top_boundary, then to_top's x_mu.
+  const Lanes<D> discriminant = hn::Add(
+      hn::Mul(hn::Set(d, row.r * row.r), hn::Sub(hn::Mul(mu, mu), one)), hn::Set(d, table.rt * table.rt));
+  const Lanes<D> d_top = hn::Max(
+      hn::Add(hn::Mul(hn::Set(d, -row.r), mu), hn::Sqrt(hn::Max(zero, discriminant))), zero);
+  const Lanes<D> x =
+      ClampLanes(d, hn::Mul(hn::Sub(d_top, hn::Set(d, row.d_min)), hn::Set(d, row.inv_span)), 0.0, 1.0);
+  const TapLanes<D> tap = Taps(d, x, table.width);
+  hn::StoreU(tap.i0, di, i0);
+  hn::StoreU(tap.w, d, w);
+  // The sun's smoothstep: 1 at s >= 1, 0 at s <= 0.
+  const Lanes<D> s = hn::Mul(hn::Sub(raw, hn::Set(d, row.sun_edge)), hn::Set(d, row.inv_sun_width));
+  const Lanes<D> smooth =
+      hn::Mul(hn::Mul(s, s), hn::Sub(hn::Set(d, 3.0), hn::Mul(hn::Set(d, 2.0), s)));
+  hn::StoreU(hn::IfThenElse(hn::Ge(s, one), one, hn::IfThenZeroElse(hn::Le(s, zero), smooth)), d,
+             visible);
+}
+
+// R, G, B of the texels i0 and i0 + 1 of `row`, one lane each, widened to
+// double. With four lanes (AVX2) a lane's two texels
+// are two 128-bit loads, R G B at positions 0-2 of a load at the first and
+// 1-3 of a load ending at the second's blue (any stride >= 3, never past
+// the row), transposed into lanes: gathers were slower. Otherwise gathers.
+template <class D>
+HWY_INLINE void TexelPairs(D d, int stride, const float* row, const int32_t* i0,
+                           Lanes<D> out[2][3]) {
+#if HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_AVX3
+  const hn::Full128<float> d4;
+  auto transpose = [&](int shift, hn::Vec<decltype(d4)> c[4]) {
+    hn::Vec<decltype(d4)> r[4];
+    for (int l = 0; l < 4; ++l) r[l] = hn::LoadU(d4, row + stride * i0[l] + shift);
+    const auto t0 = hn::InterleaveLower(d4, r[0], r[1]), t1 = hn::InterleaveLower(d4, r[2], r[3]);
+    const auto t2 = hn::InterleaveUpper(d4, r[0], r[1]), t3 = hn::InterleaveUpper(d4, r[2], r[3]);
+    c[0] = hn::ConcatLowerLower(d4, t1, t0);
+    c[1] = hn::ConcatUpperUpper(d4, t1, t0);
+    c[2] = hn::ConcatLowerLower(d4, t3, t2);
+    c[3] = hn::ConcatUpperUpper(d4, t3, t2);
+    
+  };
+  hn::Vec<decltype(d4)> lo[4], hi[4];
+  transpose(0, lo);
+  transpose(stride - 1, hi);
+  HWY_UNROLL(3)
+  for (int c = 0; c < 3; ++c) {
+    out[0][c] = hn::PromoteTo(d, lo[c]);
+    out[1][c] = hn::PromoteTo(d, hi[c + 1]);
+  }
+#else
+  const hn::Rebind<float, D> df;
+  const hn::Rebind<int32_t, D> di;
+  const Offsets<D> o = hn::Mul(hn::LoadU(di, i0), hn::Set(di, stride));
+  for (int c = 0; c < 3; ++c) {
+    out[0][c] = hn::PromoteTo(d, hn::GatherIndex(df, row + c, o));
+    out[1][c] = hn::PromoteTo(d, hn::GatherIndex(df, row + stride + c, o));
+  }
+#endif
+}
+
+// The second pass: T = visible (bottom + (top - bottom) wy), the reads of
+// to_top; false (and nothing read) where the sun is below the horizon in
+// every lane.
+template <class D>
+HWY_INLINE bool SunReads(D d, const SunTapTable& table, const TransmittanceReader::Row& row,
+                         const int32_t* i0_lanes, const double* w_lanes,
+                         const double* visible_lanes, RgbLanes<D>& out) {
+  const Lanes<D> visible = hn::LoadU(d, visible_lanes);
+  // Below the horizon in every lane: T = 0 would add +0 to sums >= +0.
+  if (hn::AllTrue(d, hn::Eq(visible, hn::Zero(d)))) return false;
+  const Lanes<D> w = hn::LoadU(d, w_lanes), wy = hn::Set(d, row.wy);
+  Lanes<D> t[2][2][3];  // [row][texel i0, i0 + 1][channel]
+  TexelPairs(d, table.stride, row.row0, i0_lanes, t[0]);
+  TexelPairs(d, table.stride, row.row1, i0_lanes, t[1]);
+  HWY_UNROLL(3)
+  for (int c = 0; c < 3; ++c) {
+    const Lanes<D> bottom = hn::Add(t[0][0][c], hn::Mul(hn::Sub(t[0][1][c], t[0][0][c]), w));
+    const Lanes<D> top = hn::Add(t[1][0][c], hn::Mul(hn::Sub(t[1][1][c], t[1][0][c]), w));
+    out.c[c] = hn::Mul(visible, hn::Add(bottom, hn::Mul(hn::Sub(top, bottom), wy)));
+  }
+  return true;
+}
+
+}  // namespace
+
+void MuSTaps(const MuSAxis::Constants& c, const double* mu_s, int n, int* i0, double* w) {
+  using D = hn::ScalableTag<double>;
+  const D d;
+  const hn::Rebind<int32_t, D> di;
+  const size_t lanes = hn::Lanes(d);
+  const Lanes<D> one = hn::Set(d, 1.0), zero = hn::Zero(d);
+  for (size_t k = 0; k < size_t(n); k += lanes) {
+    const size_t count = std::min(lanes, size_t(n) - k);
+    const Lanes<D> m = ClampLanes(d, LoadGroup(d, mu_s, k, count), c.mu_s_min, 1.0);
+    const Lanes<D> root = hn::Sqrt(
+        hn::Max(zero, hn::Add(hn::Mul(hn::Mul(hn::Set(d, c.rb2), m), m), hn::Set(d, c.H2))));
+    const Lanes<D> dist = hn::Add(hn::Mul(hn::Set(d, -c.rb), m), root);
+    const Lanes<D> a = hn::Mul(hn::Sub(dist, hn::Set(d, c.d_min)), hn::Set(d, c.inv_span));
+    const Lanes<D> x = hn::Div(hn::Max(zero, hn::Sub(one, hn::Mul(a, hn::Set(d, c.inv_A)))),
+                               hn::Add(one, a));
+    const TapLanes<D> t = Taps(d, ClampLanes(d, x, 0.0, 1.0), c.size);
+    StoreFirst(di, t.i0, count, i0 + k);
+    StoreFirst(d, t.w, count, w + k);
+  }
+}
+
+// Every sun's taps and visible fraction first (the square roots), then the
+// reads: in one loop each read waited on its square root's latency. The
+// work arrays hold n rounded up to whole groups.
+void AddSunProducts(const SunTapTable& table, const TransmittanceReader::Row& row,
+                    const double* mu_s, int n, const glm::dvec3& a_rayleigh,
+                    const glm::dvec3& a_mie, double* const sums[6], SunTapScratch& scratch) {
+  // At most four lanes: the texels' loads and transpose (TexelPairs) were
+  // faster than gathers of eight.
+  using D = hn::CappedTag<double, 4>;
+  const D d;
+  const size_t lanes = hn::Lanes(d), padded = (size_t(n) + lanes - 1) / lanes * lanes;
+  scratch.i0.resize(padded);
+  scratch.w.resize(padded);
+  scratch.visible.resize(padded);
+  for (size_t k = 0; k < size_t(n); k += lanes)
+    SunTaps(d, table, row, LoadGroup(d, mu_s, k, std::min(lanes, size_t(n) - k)),
+            &scratch.i0[k], &scratch.w[k], &scratch.visible[k]);
+  const double a[6] = {a_rayleigh.r, a_rayleigh.g, a_rayleigh.b, a_mie.r, a_mie.g, a_mie.b};
+  for (size_t k = 0; k < size_t(n); k += lanes) {
+    RgbLanes<D> T;
+    if (!SunReads(d, table, row, &scratch.i0[k], &scratch.w[k], &scratch.visible[k], T)) continue;
+    const size_t count = std::min(lanes, size_t(n) - k);
+    HWY_UNROLL(3)
+    for (int c = 0; c < 3; ++c) {
+      const Lanes<D> rayleigh = LoadGroup(d, sums[c], k, count);
+      StoreFirst(d, hn::Add(rayleigh, hn::Mul(hn::Set(d, a[c]), T.c[c])), count, sums[c] + k);
+      const Lanes<D> mie = LoadGroup(d, sums[3 + c], k, count);
+      StoreFirst(d, hn::Add(mie, hn::Mul(hn::Set(d, a[3 + c]), T.c[c])), count, sums[3 + c] + k);
+    }
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace skybake
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace skybake {
+
+HWY_EXPORT(MuSTaps);
+HWY_EXPORT(AddSunProducts);
+
+void mu_s_taps(const MuSAxis::Constants& c, const double* mu_s, int n, int* i0, double* w) {
+  HWY_DYNAMIC_DISPATCH(MuSTaps)(c, mu_s, n, i0, w);
+}
+
+void add_sun_products(const SunTapTable& table, const TransmittanceReader::Row& row,
+                      const double* mu_s, int n, const glm::dvec3& a_rayleigh,
+                      const glm::dvec3& a_mie, double* const sums[6], SunTapScratch& scratch) {
+  HWY_DYNAMIC_DISPATCH(AddSunProducts)(table, row, mu_s, n, a_rayleigh, a_mie, sums, scratch);
+}
+
+}  // namespace skybake
+#endif  // HWY_ONCE
