@@ -17,10 +17,11 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
-#include "io/file_bytes.hpp"
-#include "core/metadata_json.hpp"
 #include "core/half.hpp"
+#include "core/json_input.hpp"
+#include "core/metadata_json.hpp"
 #include "core/mip_chain.hpp"
+#include "io/file_bytes.hpp"
 #include "io/block_compression.hpp"
 #include "io/ktx2.hpp"
 #include "io/le_bytes.hpp"
@@ -248,11 +249,13 @@ std::string text_of(const std::string& path, const std::string& key, const std::
 
 nlohmann::json json_of(const std::string& path, const std::string& key, const std::string& value) {
   const std::string text = text_of(path, key, value);
-  nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded())
+  ParsedJson parsed = parse_json_text(text);
+  if (!parsed.value && parsed.why != "invalid JSON")
+    throw IoError(fmt::format("{}: expected {} to hold JSON: it {}", path, key, parsed.why));
+  if (!parsed.value)
     throw IoError(
         fmt::format("{}: expected {} to hold JSON, got '{}'", path, key, text.substr(0, 64)));
-  return j;
+  return std::move(*parsed.value);
 }
 
 std::vector<std::string> channels_of(const std::string& path, const nlohmann::json& j,
@@ -269,7 +272,7 @@ std::vector<std::string> channels_of(const std::string& path, const nlohmann::js
     throw IoError(
         fmt::format("{}: expected skybake.channels to be an array of 1 to {} distinct "
                     "non-empty names, got {}",
-                    path, components, j.dump().substr(0, 120)));
+                    path, components, json_excerpt(j, 120)));
   return names;
 }
 
