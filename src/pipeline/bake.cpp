@@ -77,6 +77,7 @@ class SceneBake {
       } catch (...) {
         failure = std::current_exception();
       }
+    if (!failure) tidy_manifest();
     record_log();
     if (failure) std::rethrow_exception(failure);
     summary_.seconds = seconds_since(t0);
@@ -245,13 +246,41 @@ class SceneBake {
     {
       DirectoryLock lock(summary_.scene_dir);
       Manifest m = read_manifest(manifest_path());
-      m.scene = scene_.name;
-      m.preset = scene_.file.string();
-      m.tool_version = SKYBAKE_VERSION;
       m.entries[entry.name] = entry;
-      write_manifest(manifest_path(), m);
+      write_scene_manifest(m);
     }
     if (options_.on_recorded) options_.on_recorded(summary_.scene_dir, entry.name, entry.input_hash);
+  }
+
+  // The manifest describes this scene's outputs: entries of names the scene
+  // does not write go (a clean bake would not list them).
+  void write_scene_manifest(Manifest& m) const {
+    m.scene = scene_.name;
+    m.preset = scene_.file.string();
+    m.tool_version = SKYBAKE_VERSION;
+    for (auto it = m.entries.begin(); it != m.entries.end();)
+      it = is_scene_output(it->first) ? std::next(it) : m.entries.erase(it);
+    write_manifest(manifest_path(), m);
+  }
+
+  bool is_scene_output(const std::string& name) const {
+    return std::any_of(scene_.outputs.begin(), scene_.outputs.end(),
+                       [&](const OutputSpec& o) { return o.name == name; });
+  }
+
+  // A manifest read with damaged records, or with entries of outputs the
+  // scene no longer has, is rewritten without them even when nothing was
+  // baked, so that after any bake it lists what a clean bake would.
+  void tidy_manifest() {
+    const auto foreign = [&](const Manifest& m) {
+      return std::any_of(m.entries.begin(), m.entries.end(),
+                         [&](const auto& e) { return !is_scene_output(e.first); });
+    };
+    if (before_.damaged.empty() && !foreign(before_)) return;
+    DirectoryLock lock(summary_.scene_dir);
+    Manifest m = read_manifest(manifest_path());
+    if (m.damaged.empty() && !foreign(m)) return;  // another bake rewrote it meanwhile
+    write_scene_manifest(m);
   }
 
   // The times of this run's outputs and of the files it found current, merged
