@@ -31,6 +31,7 @@ nlohmann::json to_json(const ManifestEntry& e) {
                       {"metadata", e.metadata}, {"input_hash", e.input_hash},
                       {"error", e.error},       {"tiling", e.tiling},
                       {"warnings", e.warnings}};
+  j["entry_hash"] = manifest_entry_hash(j);
   return j;
 }
 

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "core/hash.hpp"
 #include "core/metadata_json.hpp"
 
 namespace skybake {
@@ -85,8 +86,9 @@ Problem metadata_problem(const json& meta, const std::string& at) {
   return std::nullopt;
 }
 
+// Every field but the hash.
 Problem field_problem(const json& e, const std::string& at) {
-  if (auto bad = string_fields(e, at, {"product", "name", "input_hash"}, {}))
+  if (auto bad = string_fields(e, at, {"product", "name", "input_hash", "entry_hash"}, {}))
     return bad;
   if (!e.contains("files")) return fmt::format("{}: missing required key 'files'", at);
   if (auto bad = files_problem(e["files"], at + "/files")) return bad;
@@ -107,9 +109,23 @@ Problem field_problem(const json& e, const std::string& at) {
 
 }  // namespace
 
+std::string manifest_entry_hash(const json& entry) {
+  const auto text = [](const json& j) {
+    return j.dump(-1, ' ', false, json::error_handler_t::replace);
+  };
+  if (!entry.is_object() || !entry.contains("entry_hash")) return hash_hex(text(entry));
+  json without = entry;
+  without.erase("entry_hash");
+  return hash_hex(text(without));
+}
+
 std::optional<std::string> manifest_entry_problem(const json& entry, const std::string& at) {
   if (!entry.is_object()) return expected(at, "an object");
-  return field_problem(entry, at);
+  if (auto bad = field_problem(entry, at)) return bad;
+  if (entry["entry_hash"].get_ref<const std::string&>() != manifest_entry_hash(entry))
+    return fmt::format("{}: the entry does not match its entry_hash (edited since it was written)",
+                       at);
+  return std::nullopt;
 }
 
 }  // namespace skybake

@@ -84,23 +84,32 @@ class DamagedManifest : public testing::Test {
   // info read it without an internal error, and that a bake notes the
   // damaged record, bakes `rebaked` again and leaves the clean manifest.
   void expect_repaired(const std::string& pointer, const json& value,
-                       const std::string& rebaked, const std::string& note) {
-    SCOPED_TRACE(pointer + " = " + value.dump());
+                       const std::string& rebaked, const std::string& note,
+                       const std::vector<std::string>& flags = {}) {
     json m = json::parse(clean_);
     m[json::json_pointer(pointer)] = value;
+    expect_repaired(m, rebaked, note, flags);
+  }
+
+  // As above for a whole edited manifest `m`; `rebaked` empty: nothing is.
+  void expect_repaired(const json& m, const std::string& rebaked, const std::string& note,
+                       const std::vector<std::string>& flags = {}) {
+    SCOPED_TRACE(m.dump().substr(0, 200));
     write(folder_.manifest, m.dump(2));
     const auto plan = run_skybake({"plan", folder_.scene.string(), "-o", folder_.out.string()});
     EXPECT_EQ(plan.exit_code, 0) << plan.err;
     const fs::path table = folder_.manifest.parent_path() / "transmittance.exr";
     const auto info = run_skybake({"info", table.string()});
     EXPECT_EQ(info.exit_code, 0) << info.err;
-    const auto r = bake(folder_);
+    const auto r = bake(folder_, flags);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_THAT(r.err, HasSubstr(folder_.manifest.string() + ": 1 damaged record set aside (" +
                                  note));
     EXPECT_EQ(r.err.find("damaged record", r.err.find("damaged record") + 1), std::string::npos)
         << "one note: " << r.err;
-    EXPECT_EQ(statuses(r.out)[rebaked], "baked") << r.out;
+    if (!rebaked.empty()) EXPECT_EQ(statuses(r.out)[rebaked], "baked") << r.out;
+    for (const auto& [name, status] : statuses(r.out))
+      if (name != rebaked && flags.empty()) EXPECT_EQ(status, "up to date") << name;
     EXPECT_EQ(read_file(folder_.manifest), clean_);
     const auto again = bake(folder_);
     EXPECT_EQ(again.err.find("damaged record"), std::string::npos) << again.err;
@@ -119,6 +128,47 @@ TEST_F(DamagedManifest, WronglyTypedWarningsAreRebuilt) {
                   "transmittance", "/outputs/1/warnings/0/message: expected a string");
   expect_repaired("/outputs/0/warnings", json::array({{{"code", "c"}}}), "multiscattering",
                   "/outputs/0/warnings/0/message: expected a string");
+}
+
+TEST_F(DamagedManifest, AnEditedValueIsCaughtByTheEntryHashAndRebaked) {
+  const json clean = json::parse(clean_);
+  ASSERT_EQ(clean["outputs"][1]["metadata"]["top_radius_m"], 6460000.0);
+  expect_repaired("/outputs/1/metadata/top_radius_m", 6460001.0, "transmittance",
+                  "/outputs/1: the entry does not match its entry_hash");
+  expect_repaired("/outputs/0/warnings", json::array({{{"code", "c"}, {"message", "m"}}}),
+                  "multiscattering", "/outputs/0: the entry does not match its entry_hash");
+  expect_repaired("/outputs/0/extra", 1, "multiscattering",
+                  "/outputs/0: the entry does not match its entry_hash");
+  expect_repaired("/outputs/1/entry_hash", "0000000000000000", "transmittance",
+                  "/outputs/1: the entry does not match its entry_hash");
+}
+
+TEST_F(DamagedManifest, JunkAndRepeatedEntriesAreDroppedEvenUnderForce) {
+  json junk = json::parse(clean_);
+  junk["outputs"].push_back(json::object());
+  expect_repaired(junk, "", "/outputs/2: missing required key 'product'");
+  expect_repaired(junk, "", "/outputs/2: missing required key 'product'", {"--force"});
+  json twice = json::parse(clean_);
+  twice["outputs"].push_back(twice["outputs"][0]);
+  expect_repaired(twice, "", "/outputs/2: a second entry named 'multiscattering'");
+  json nameless = json::parse(clean_);
+  nameless["outputs"][0]["name"] = "";
+  expect_repaired(nameless, "multiscattering",
+                  "/outputs/0/name: expected a non-empty string");
+}
+
+// An output dropped from the scene leaves the manifest with the next bake:
+// it lists what a clean bake of the scene lists.
+TEST_F(DamagedManifest, AnOutputTheSceneNoLongerHasLeavesTheManifest) {
+  json scene = json::parse(read_file(folder_.scene));
+  scene["outputs"].erase(1);
+  write(folder_.scene, scene.dump(2));
+  const auto r = bake(folder_);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_file(folder_.manifest), clean_manifest(folder_));
+  const json m = json::parse(read_file(folder_.manifest));
+  ASSERT_EQ(m["outputs"].size(), 1u);
+  EXPECT_EQ(m["outputs"][0]["name"], "transmittance");
 }
 
 }  // namespace
