@@ -100,8 +100,9 @@ constexpr uint64_t kMaxExrExpansion = 4096;
 constexpr uint64_t kExrExpansionFloor = uint64_t(64) << 20;
 constexpr uint64_t kMaxExrDecodedBytes = uint64_t(16) << 30;
 
-void check_decoded_size(const std::string& path, const std::vector<PartInfo>& specs) {
-  uint64_t decoded = 0;
+void check_decoded_size(const std::string& path, const std::vector<PartInfo>& specs,
+                        uint64_t budget) {
+  uint64_t decoded = 0, largest_part = 0;
   for (size_t i = 0; i < specs.size(); ++i) {
     const PartInfo& s = specs[i];
     if (s.width < 1 || s.height < 1 || s.width > std::numeric_limits<int>::max() ||
@@ -117,6 +118,7 @@ void check_decoded_size(const std::string& path, const std::vector<PartInfo>& sp
         mul_saturated(mul_saturated(uint64_t(s.width), uint64_t(s.height)), uint64_t(s.channels)),
         sizeof(float));
     decoded = sizes::add_saturated(decoded, part);
+    largest_part = std::max(largest_part, part);
   }
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0)
@@ -131,6 +133,13 @@ void check_decoded_size(const std::string& path, const std::vector<PartInfo>& sp
         "is {} times the file size (at least {} MiB, at most {} GiB)",
         path, decoded == kU64Max ? std::string("more than 2^64") : std::to_string(decoded),
         file_size, kMaxExrExpansion, kExrExpansionFloor >> 20, kMaxExrDecodedBytes >> 30));
+  // The texture, and one part at a time decoded beside it (read_part).
+  const PartInfo& first = specs.front();
+  check_read_budget(path, sizes::add_saturated(decoded, largest_part), budget,
+                    fmt::format("{} part{} of {}x{} float32 pixels with {} channel{}, and one "
+                                "part's copy",
+                                specs.size(), specs.size() == 1 ? "" : "s", first.width,
+                                first.height, first.channels, first.channels == 1 ? "" : "s"));
 }
 
 // Reads one part as float32 with the channels in `channels` order.
@@ -229,7 +238,7 @@ void check_header_sizes(const std::string& path) {
   }
 }
 
-Texture read_exr_file(const std::string& path, ExrShape shape_from) {
+Texture read_exr_file(const std::string& path, ExrShape shape_from, uint64_t budget) {
   check_header_sizes(path);
   Imf::MultiPartInputFile in(path.c_str(), exr_threads());
   std::vector<PartInfo> specs;
@@ -237,7 +246,7 @@ Texture read_exr_file(const std::string& path, ExrShape shape_from) {
   if (specs.empty()) throw IoError(fmt::format("{}: expected at least one part, got none", path));
   // Every skybake:* attribute is checked against the parts' real sizes, and
   // those against the file size, before the texture is allocated.
-  check_decoded_size(path, specs);
+  check_decoded_size(path, specs, budget);
   const PartInfo& head_info = specs.at(0);
   const Imf::Header& head = *head_info.header;
 
@@ -327,9 +336,9 @@ ExrLayout read_exr_layout(const std::string& path) {
   }
 }
 
-Texture read_exr(const std::string& path, ExrShape shape) {
+Texture read_exr(const std::string& path, ExrShape shape, uint64_t budget) {
   try {
-    return read_exr_file(path, shape);
+    return read_exr_file(path, shape, budget);
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {  // OpenEXR's Iex exceptions, bad_alloc

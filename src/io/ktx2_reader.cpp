@@ -124,6 +124,7 @@ struct Layout {
   uint64_t kvd_end;                  // where the key/value data (or the descriptor) ends
   std::vector<Ktx2LevelIndex> want;  // the level index a writer must produce
   uint64_t file_bytes;               // and the file's length
+  uint64_t decoded_bytes;            // float32 texels of every level and layer
 };
 
 // The one layout a writer may produce for this header, index and descriptor size.
@@ -170,6 +171,7 @@ Layout expected_layout(const std::string& path, const Ktx2Header& h, const Ktx2F
         "layers), got {} bytes for {}x{}x{} with {} layers and {} levels",
         path, kMaxDecodedBytes >> 30, decoded, l.width, l.height, l.depth, l.layers, l.levels));
   l.file_bytes = offset;
+  l.decoded_bytes = decoded;
   return l;
 }
 
@@ -356,7 +358,7 @@ void decode_levels(const std::vector<uint8_t>& b, const Layout& l, const Ktx2For
 
 }  // namespace
 
-Ktx2Image read_ktx2(const std::string& path) {
+Ktx2Image read_ktx2(const std::string& path, uint64_t budget) {
   const uint64_t size = file_size_of(path);
   Ktx2Image image;
   Ktx2Header& h = image.header;
@@ -370,6 +372,11 @@ Ktx2Image read_ktx2(const std::string& path) {
         "got {}{}",
         path, l.file_bytes, l.levels, size,
         size < l.file_bytes ? " (truncated file)" : " (trailing bytes)"));
+  // The whole file is read, then decoded into textures of every level.
+  check_read_budget(path, l.decoded_bytes + size, budget,
+                    fmt::format("{}x{}x{} with {} layers and {} levels as float32 with {} "
+                                "channels, and the file's bytes",
+                                l.width, l.height, l.depth, l.layers, l.levels, f.components));
   const std::vector<uint8_t> b = read_bytes(path, size);
   if (b.size() != size)
     throw IoError(fmt::format("{}: expected {} bytes, got {} (file changed while reading)", path,
