@@ -197,6 +197,11 @@ void check_zero(const std::string& path, const std::vector<uint8_t>& b, uint64_t
                                 what, from, to, b[size_t(i)], i));
 }
 
+// A key as messages quote it: a forged key may be as long as the key/value data.
+std::string key_text(const std::string& key) {
+  return key.size() > 64 ? key.substr(0, 64) + "..." : key;
+}
+
 // Key/value pairs in file order (KTX2 "Key/Value Data"): lengths, sorting,
 // uniqueness and zero padding checked.
 std::vector<std::pair<std::string, std::string>> parse_key_values(const std::string& path,
@@ -230,11 +235,11 @@ std::vector<std::pair<std::string, std::string>> parse_key_values(const std::str
       throw IoError(
           fmt::format("{}: key/value data: expected keys sorted and unique, got \"{}\" "
                       "after \"{}\"",
-                      path, key, kv.back().first));
+                      path, key_text(key), key_text(kv.back().first)));
     const uint64_t next = align_up(at + 4 + n, 4);
     if (next > end)
       throw IoError(fmt::format("{}: key/value data: the padding of \"{}\" runs past kvdByteLength",
-                                path, key));
+                                path, key_text(key)));
     check_zero(path, b, at + 4 + n, next, "valuePadding");
     kv.emplace_back(std::move(key), std::move(value));
     at = next;
@@ -245,7 +250,8 @@ std::vector<std::pair<std::string, std::string>> parse_key_values(const std::str
 // A NUL-terminated UTF-8 value without its NUL; IoError when it has none.
 std::string text_of(const std::string& path, const std::string& key, const std::string& value) {
   if (value.empty() || value.back() != '\0' || value.find('\0') != value.size() - 1)
-    throw IoError(fmt::format("{}: expected {} to hold one NUL-terminated string", path, key));
+    throw IoError(
+        fmt::format("{}: expected {} to hold one NUL-terminated string", path, key_text(key)));
   return value.substr(0, value.size() - 1);
 }
 
@@ -253,10 +259,12 @@ nlohmann::json json_of(const std::string& path, const std::string& key, const st
   const std::string text = text_of(path, key, value);
   ParsedJson parsed = parse_json_text(text);
   if (!parsed.value && parsed.why != "invalid JSON")
-    throw IoError(fmt::format("{}: expected {} to hold JSON: it {}", path, key, parsed.why));
+    throw IoError(
+        fmt::format("{}: expected {} to hold JSON: it {}", path, key_text(key), parsed.why));
   if (!parsed.value)
     throw IoError(
-        fmt::format("{}: expected {} to hold JSON, got '{}'", path, key, text.substr(0, 64)));
+        fmt::format("{}: expected {} to hold JSON, got '{}'", path, key_text(key),
+                    text.substr(0, 64)));
   return std::move(*parsed.value);
 }
 
@@ -299,7 +307,7 @@ void apply_key_values(const std::string& path, const Ktx2Image& image, int compo
       const nlohmann::json j = json_of(path, key, value);
       std::string why;
       std::optional<MetaValue> v = meta_from_json(j, &why);
-      if (!v) throw IoError(fmt::format("{}: key/value '{}': {}", path, key, why));
+      if (!v) throw IoError(fmt::format("{}: key/value '{}': {}", path, key_text(key), why));
       meta[key.substr(prefix.size())] = *v;
     }
   }

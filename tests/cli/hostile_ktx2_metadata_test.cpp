@@ -87,6 +87,15 @@ TEST(ShallowKeyValue, WrongShapeIsQuotedShort) {
   EXPECT_EQ(r.exit_code, 4) << r.err.substr(0, 400);
   EXPECT_THAT(r.err, HasSubstr("key/value 'skybake.product': expected"));
   EXPECT_LT(r.err.size(), 1000u);
+  // A key of 100,000 bytes is cut too.
+  const std::string long_key = "skybake." + std::string(100000, 'k');
+  skybake::test::write_bytes(file, skybake::test::with_ktx2_key_value(
+                                       skybake::test::read_bytes(file), long_key, "[[1]]" +
+                                       std::string(1, '\0')));
+  const auto l = run_skybake({"info", file.string()});
+  EXPECT_EQ(l.exit_code, 4) << l.err.substr(0, 400);
+  EXPECT_THAT(l.err, HasSubstr("key/value 'skybake.kkk"));
+  EXPECT_LT(l.err.size(), 1000u);
 }
 
 }  // namespace
