@@ -293,34 +293,24 @@ class SceneBake {
     if (options_.on_recorded) options_.on_recorded(summary_.scene_dir, entry.name, entry.input_hash);
   }
 
-  // The manifest describes this scene's outputs: entries of names the scene
-  // does not write go (a clean bake would not list them).
+  // Entries of other outputs are kept: presets of one scene name may share
+  // the folder, each recording its own outputs (docs/farm.md, "Concurrent
+  // bakes into one folder").
   void write_scene_manifest(Manifest& m) const {
     m.scene = scene_.name;
     m.preset = scene_.file.string();
     m.tool_version = SKYBAKE_VERSION;
-    for (auto it = m.entries.begin(); it != m.entries.end();)
-      it = is_scene_output(it->first) ? std::next(it) : m.entries.erase(it);
     write_manifest(manifest_path(), m);
   }
 
-  bool is_scene_output(const std::string& name) const {
-    return std::any_of(scene_.outputs.begin(), scene_.outputs.end(),
-                       [&](const OutputSpec& o) { return o.name == name; });
-  }
-
-  // A manifest read with damaged records, or with entries of outputs the
-  // scene no longer has, is rewritten without them even when nothing was
-  // baked, so that after any bake it lists what a clean bake would.
+  // A manifest read with damaged records is rewritten without them even
+  // when nothing was baked, so that after any bake its entries for the
+  // scene's outputs are what a clean bake writes.
   void tidy_manifest() {
-    const auto foreign = [&](const Manifest& m) {
-      return std::any_of(m.entries.begin(), m.entries.end(),
-                         [&](const auto& e) { return !is_scene_output(e.first); });
-    };
-    if (before_.damaged.empty() && !foreign(before_)) return;
+    if (before_.damaged.empty()) return;
     DirectoryLock lock(summary_.scene_dir);
     Manifest m = read_manifest(manifest_path());
-    if (m.damaged.empty() && !foreign(m)) return;  // another bake rewrote it meanwhile
+    if (m.damaged.empty()) return;  // another bake rewrote it meanwhile
     write_scene_manifest(m);
   }
 

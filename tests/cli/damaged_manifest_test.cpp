@@ -157,18 +157,4 @@ TEST_F(DamagedManifest, JunkAndRepeatedEntriesAreDroppedEvenUnderForce) {
                   "/outputs/0/name: expected a non-empty string");
 }
 
-// An output dropped from the scene leaves the manifest with the next bake:
-// it lists what a clean bake of the scene lists.
-TEST_F(DamagedManifest, AnOutputTheSceneNoLongerHasLeavesTheManifest) {
-  json scene = json::parse(read_file(folder_.scene));
-  scene["outputs"].erase(1);
-  write(folder_.scene, scene.dump(2));
-  const auto r = bake(folder_);
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(read_file(folder_.manifest), clean_manifest(folder_));
-  const json m = json::parse(read_file(folder_.manifest));
-  ASSERT_EQ(m["outputs"].size(), 1u);
-  EXPECT_EQ(m["outputs"][0]["name"], "transmittance");
-}
-
 }  // namespace
