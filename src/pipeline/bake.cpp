@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <exception>
 #include <optional>
 #include <set>
@@ -18,6 +17,7 @@
 #include "io/output_readback.hpp"
 #include "pipeline/error_measures.hpp"
 #include "pipeline/freshness.hpp"
+#include "pipeline/non_finite_output.hpp"
 #include "pipeline/output_writer.hpp"
 #include "pipeline/product_graph.hpp"
 #include "pipeline/runtime_metadata.hpp"
@@ -49,45 +49,6 @@ ManifestEntry make_entry(const GraphNode& node, const Texture& tex,
   e.input_hash = node.input_hash;
   e.bake_seconds = seconds;
   return e;
-}
-
-// Where `tex` first holds a NaN or an infinity: "nan at texel x=0 y=27 z=0
-// layer=0 channel R"; empty when every value is finite.
-std::string first_non_finite(const Texture& tex) {
-  if (texture_is_finite(tex)) return "";
-  const size_t nc = tex.channels.size();
-  for (size_t i = 0; i < tex.data.size(); ++i) {
-    if (std::isfinite(tex.data[i])) continue;
-    size_t t = i / nc;
-    const int x = int(t % size_t(tex.width));
-    t /= size_t(tex.width);
-    const int y = int(t % size_t(tex.height));
-    t /= size_t(tex.height);
-    return fmt::format("{} at texel x={} y={} z={} layer={} channel {}", tex.data[i], x, y,
-                       int(t % size_t(tex.depth)), int(t / size_t(tex.depth)),
-                       tex.channels[i % nc]);
-  }
-  return "";
-}
-
-// A baker that returns a NaN or an infinity for a preset that passed every
-// check: the preset's values are past what that baker computes, which is a
-// preset problem (exit 3, at the output's entry in "outputs"), never a file
-// error (docs/presets.md, "Numerical limits").
-void refuse_non_finite(const Scene& scene, const GraphNode& node, const Texture& tex) {
-  const std::string where = first_non_finite(tex);
-  if (where.empty()) return;
-  std::string pointer = "/outputs";
-  for (size_t i = 0; i < scene.outputs.size(); ++i)
-    if (scene.outputs[i].name == node.spec.name) pointer = fmt::format("/outputs/{}", i);
-  throw PresetError(scene.file.string(), pointer,
-                    fmt::format("{} came out non-finite ({}): this preset's values are past "
-                                "what the {} baker computes; see docs/presets.md, \"Numerical "
-                                "limits\"",
-                                node.spec.name == node.info->name
-                                    ? node.spec.name
-                                    : node.spec.name + " (" + node.info->name + ")",
-                                where, node.info->name));
 }
 
 // One bake of one scene, in stages: decide what is stale, then for each node
