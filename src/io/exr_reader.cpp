@@ -100,9 +100,8 @@ constexpr uint64_t kMaxExrExpansion = 4096;
 constexpr uint64_t kExrExpansionFloor = uint64_t(64) << 20;
 constexpr uint64_t kMaxExrDecodedBytes = uint64_t(16) << 30;
 
-void check_decoded_size(const std::string& path, const std::vector<PartInfo>& specs,
-                        uint64_t budget) {
-  uint64_t decoded = 0, largest_part = 0;
+void check_decoded_size(const std::string& path, const std::vector<PartInfo>& specs) {
+  uint64_t decoded = 0;
   for (size_t i = 0; i < specs.size(); ++i) {
     const PartInfo& s = specs[i];
     if (s.width < 1 || s.height < 1 || s.width > std::numeric_limits<int>::max() ||
@@ -118,7 +117,6 @@ void check_decoded_size(const std::string& path, const std::vector<PartInfo>& sp
         mul_saturated(mul_saturated(uint64_t(s.width), uint64_t(s.height)), uint64_t(s.channels)),
         sizeof(float));
     decoded = sizes::add_saturated(decoded, part);
-    largest_part = std::max(largest_part, part);
   }
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0)
@@ -133,27 +131,39 @@ void check_decoded_size(const std::string& path, const std::vector<PartInfo>& sp
         "is {} times the file size (at least {} MiB, at most {} GiB)",
         path, decoded == kU64Max ? std::string("more than 2^64") : std::to_string(decoded),
         file_size, kMaxExrExpansion, kExrExpansionFloor >> 20, kMaxExrDecodedBytes >> 30));
-  // The texture, and one part at a time decoded beside it (read_part).
-  const PartInfo& first = specs.front();
-  check_read_budget(path, sizes::add_saturated(decoded, largest_part), budget,
-                    fmt::format("{} part{} of {}x{} float32 pixels with {} channel{}, and one "
-                                "part's copy",
-                                specs.size(), specs.size() == 1 ? "" : "s", first.width,
-                                first.height, first.channels, first.channels == 1 ? "" : "s"));
 }
 
-// Reads one part as float32 with the channels in `channels` order.
-std::vector<float> read_part(const std::string& path, Imf::MultiPartInputFile& in, int part,
-                             const PartInfo& info, const std::vector<std::string>& channels) {
+// What reading takes at once, checked before the texture is allocated: the
+// texture, plus the atlas image beside it (its slices are copied out of it;
+// other parts are decoded straight into their slab of the texture).
+void check_exr_budget(const std::string& path, const PartShape& shape, size_t channels,
+                      const PartInfo& atlas, bool is_atlas, uint64_t budget) {
+  const uint64_t texels = mul_saturated(
+      mul_saturated(uint64_t(shape.width), uint64_t(shape.height)),
+      mul_saturated(uint64_t(shape.depth), uint64_t(shape.layers)));
+  const uint64_t bytes = mul_saturated(texels, uint64_t(channels) * sizeof(float));
+  const uint64_t atlas_bytes =
+      is_atlas ? mul_saturated(mul_saturated(uint64_t(atlas.width), uint64_t(atlas.height)),
+                               uint64_t(channels) * sizeof(float))
+               : 0;
+  check_read_budget(path, sizes::add_saturated(bytes, atlas_bytes), budget,
+                    fmt::format("{}x{}x{}x{} float32 texels with {} channel{}{}", shape.width,
+                                shape.height, shape.depth, shape.layers, channels,
+                                channels == 1 ? "" : "s",
+                                is_atlas ? ", and the slice atlas they are cut from" : ""));
+}
+
+// Reads one part as float32 with the channels in `channels` order into
+// `out`, room for width x height x channels values.
+void read_part_into(const std::string& path, Imf::MultiPartInputFile& in, int part,
+                    const PartInfo& info, const std::vector<std::string>& channels, float* out) {
   for (const std::string& name : channels)
     if (!has_channel(*info.header, name))
       throw IoError(
           fmt::format("{}: expected a channel '{}' in part {}, got none", path, name, part));
-  std::vector<float> out(size_t(info.width) * size_t(info.height) * channels.size());
   Imf::InputPart input(in, part);
-  input.setFrameBuffer(exr_frame_buffer(channels, out.data(), info.width, info.min_x, info.min_y));
+  input.setFrameBuffer(exr_frame_buffer(channels, out, info.width, info.min_x, info.min_y));
   input.readPixels(int(info.min_y), int(info.min_y + info.height - 1));
-  return out;
 }
 
 void expect_part_size(const std::string& path, const PartInfo& spec, int part, int64_t width,
@@ -246,7 +256,7 @@ Texture read_exr_file(const std::string& path, ExrShape shape_from, uint64_t bud
   if (specs.empty()) throw IoError(fmt::format("{}: expected at least one part, got none", path));
   // Every skybake:* attribute is checked against the parts' real sizes, and
   // those against the file size, before the texture is allocated.
-  check_decoded_size(path, specs, budget);
+  check_decoded_size(path, specs);
   const PartInfo& head_info = specs.at(0);
   const Imf::Header& head = *head_info.header;
 
@@ -285,6 +295,7 @@ Texture read_exr_file(const std::string& path, ExrShape shape_from, uint64_t bud
     for (size_t i = 0; i < specs.size(); ++i)
       expect_part_size(path, specs[i], int(i), shape.width, shape.height);
   }
+  check_exr_budget(path, shape, channels.size(), head_info, layout == "atlas", budget);
   Texture tex(shape.width, shape.height, shape.depth, shape.layers, channels);
   for (auto it = head.begin(); it != head.end(); ++it) {
     const std::string name = it.name();
@@ -295,8 +306,9 @@ Texture read_exr_file(const std::string& path, ExrShape shape_from, uint64_t bud
   }
 
   if (layout == "atlas") {
-    const std::vector<float> atlas = read_part(path, in, 0, head_info, tex.channels);
     const size_t nc = tex.channels.size(), atlas_width = size_t(columns) * tex.width;
+    std::vector<float> atlas(size_t(head_info.width) * size_t(head_info.height) * nc);
+    read_part_into(path, in, 0, head_info, tex.channels, atlas.data());
     for (int z = 0; z < tex.depth; ++z) {
       const size_t x0 = size_t(z % columns) * tex.width, y0 = size_t(z / columns) * tex.height;
       for (int y = 0; y < tex.height; ++y) {
@@ -306,12 +318,12 @@ Texture read_exr_file(const std::string& path, ExrShape shape_from, uint64_t bud
     }
     return tex;
   }
-  for (size_t i = 0; i < specs.size(); ++i) {
-    const std::vector<float> part = read_part(path, in, int(i), specs[i], tex.channels);
-    // Parts are slices (layers == 1) or layers (depth == 1): either way the
-    // part index is the slab index of the texture layout.
-    std::copy(part.begin(), part.end(), tex.data.begin() + i * part.size());
-  }
+  // Parts are slices (layers == 1) or layers (depth == 1), each of the
+  // texture's width and height: the part index is the slab index of the
+  // texture layout, and each part is decoded straight into its slab.
+  const size_t slab = size_t(tex.width) * size_t(tex.height) * tex.channels.size();
+  for (size_t i = 0; i < specs.size(); ++i)
+    read_part_into(path, in, int(i), specs[i], tex.channels, tex.data.data() + i * slab);
   return tex;
 }
 
