@@ -4,6 +4,7 @@
 // seeds are the shipped presets, copied by scripts/fuzz.sh.
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -34,7 +35,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   const fs::path dir = argv[1];
-  for (const char* sub : {"dds", "exr", "vdb", "ktx2", "manifest"}) fs::create_directories(dir / sub);
+  for (const char* sub : {"dds", "exr", "vdb", "ktx2", "manifest", "ktx2_key_value", "manifest_entry"})
+    fs::create_directories(dir / sub);
 
   const std::vector<Texture> shapes = {filled(4, 2, 1, 1, 4), filled(3, 3, 1, 2, 1),
                                        filled(2, 2, 4, 1, 3)};
@@ -79,5 +81,19 @@ int main(int argc, char** argv) {
   e.error = {{"rms_rel", 0.0004}, {"max_rel", 0.001}, {"queries", 512}, {"reference", "quadrature"}};
   m.entries[e.name] = e;
   write_manifest(dir / "manifest" / "manifest.json", m);
+
+  // One entry as JSON (manifest_entry_fuzz stamps its hash), with a warning.
+  e.warnings = nlohmann::json::array({{{"code", "error_above_limit"}, {"message", "seed"},
+                                       {"max_rel", 0.5}}});
+  nlohmann::json entry = to_json(e);
+  entry.erase("entry_hash");
+  std::ofstream(dir / "manifest_entry" / "entry.json") << entry.dump(1);
+  // A key/value value: the first byte picks skybake.channels, a metadata key
+  // or an unknown key (ktx2_key_value_fuzz).
+  const std::vector<std::string> values = {std::string("\0[\"R\", \"G\"]", 11), "\1\"seed\"",
+                                           "\1[1.0, 2.5, 3.0]", "\2[[[[1]]]]", "\2{\"a\": 1}"};
+  for (size_t i = 0; i < values.size(); ++i)
+    std::ofstream(dir / "ktx2_key_value" / ("value" + std::to_string(i)), std::ios::binary)
+        << values[i];
   return 0;
 }

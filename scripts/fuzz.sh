@@ -3,7 +3,7 @@
 # coverage) into build-fuzz/ and runs one for SECONDS:
 #   scripts/fuzz.sh TARGET SECONDS [libFuzzer flags...]
 # TARGET: preset_loader, dds_reader, exr_reader, vdb_reader, manifest_reader,
-# ktx2_reader
+# ktx2_reader, ktx2_key_value, manifest_entry
 # (the _fuzz suffix is optional), or all (each in turn for SECONDS).
 # The corpus build-fuzz/corpus/TARGET keeps what earlier runs found; the
 # seeds are fuzz/seeds/TARGET (committed, small), the shipped and bad presets
@@ -21,7 +21,8 @@ fi
 target="${1%_fuzz}"
 seconds="$2"
 shift 2
-all=(preset_loader dds_reader exr_reader vdb_reader manifest_reader ktx2_reader)
+all=(preset_loader dds_reader exr_reader vdb_reader manifest_reader ktx2_reader ktx2_key_value
+     manifest_entry)
 if [ "$target" = all ]; then targets=("${all[@]}"); else targets=("$target"); fi
 for t in "${targets[@]}"; do
   case " ${all[*]} " in *" $t "*) ;; *) echo "fuzz.sh: unknown target '$t' (one of ${all[*]}, all)" >&2; exit 2 ;; esac
@@ -60,6 +61,7 @@ for t in "${targets[@]}"; do
   case "$t" in
     preset_loader) extra+=("$seeds/preset_loader"); dict=fuzz/json.dict ;;
     manifest_reader) extra+=("$seeds/manifest"); dict=fuzz/json.dict ;;
+    ktx2_key_value | manifest_entry) extra+=("$seeds/$t"); dict=fuzz/json.dict ;;
     *) extra+=("$seeds/${t%_reader}"); dict= ;;
   esac
   flags=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2560 -malloc_limit_mb=2048

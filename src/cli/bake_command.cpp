@@ -195,8 +195,7 @@ class BakeRun {
 
 int run_bake(const BakeArgs& args) {
   const auto t0 = std::chrono::steady_clock::now();
-  std::vector<Scene> scenes;
-  for (const auto& preset : expand_presets(args.presets)) scenes.push_back(load_scene(preset));
+  const std::vector<Scene> scenes = load_scenes(expand_presets(args.presets));
 
   const size_t threads =
       args.threads > 0 ? size_t(args.threads) : size_t(tbb::info::default_concurrency());

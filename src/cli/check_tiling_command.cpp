@@ -48,14 +48,14 @@ const char* headline(TilingVerdict v) {
 // Reads `file`; an EXR whose pixels no longer match its skybake:shape or
 // skybake:layout (cropped or resized by another tool) is a picture all the
 // same, measured as stored, with the mismatch in `note`.
-LoadedTexture read_for_tiling(const std::string& file, std::string& note) {
+LoadedTexture read_for_tiling(const std::string& file, uint64_t budget, std::string& note) {
   try {
-    return read_texture_file(file);
+    return read_texture_file(file, budget);
   } catch (const IoError& e) {
     if (std::filesystem::path(file).extension() != ".exr") throw;
     LoadedTexture loaded;
     try {
-      loaded.texture = read_exr(file, ExrShape::as_stored);
+      loaded.texture = read_exr(file, ExrShape::as_stored, budget);
     } catch (const IoError&) {
       throw e;
     }
@@ -73,7 +73,7 @@ int run_check_tiling(const CheckTilingArgs& args) {
   nlohmann::json files = nlohmann::json::array();
   for (const std::string& file : args.files) {
     std::string note;
-    const LoadedTexture loaded = read_for_tiling(file, note);
+    const LoadedTexture loaded = read_for_tiling(file, args.max_memory, note);
     const Texture& tex = loaded.texture;
     const TilingReport report = measure_tiling(tex, loaded.lower_levels, args.tolerance);
     if (report.verdict == TilingVerdict::seam ||

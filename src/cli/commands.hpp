@@ -3,8 +3,11 @@
 // (the only translation unit that includes CLI11) and calls them.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
+
+#include "io/read_budget.hpp"
 
 namespace skybake::cli {
 
@@ -51,6 +54,7 @@ int run_plan(const PlanArgs& args);
 struct InfoArgs {
   std::vector<std::string> files;
   bool json = false;
+  uint64_t max_memory = kDefaultReadBudget;  // io/read_budget.hpp
 };
 int run_info(const InfoArgs& args);
 
@@ -59,6 +63,7 @@ struct CheckTilingArgs {
   double tolerance = 0.25;  // values margin of the seam over the median face (core/tiling.hpp)
   bool quiet = false;
   bool json = false;
+  uint64_t max_memory = kDefaultReadBudget;  // io/read_budget.hpp
 };
 int run_check_tiling(const CheckTilingArgs& args);
 

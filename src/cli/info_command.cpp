@@ -54,7 +54,7 @@ int run_info(const InfoArgs& args) {
   require_files(args.files);
   nlohmann::json all = nlohmann::json::array();
   for (const std::string& file : args.files) {
-    const LoadedTexture loaded = read_texture_file(file);
+    const LoadedTexture loaded = read_texture_file(file, args.max_memory);
     const Texture& tex = loaded.texture;
     const nlohmann::json stats = channel_stats(tex);
     const nlohmann::json meta = metadata_to_json(tex.metadata);

@@ -180,10 +180,20 @@ CLI::App* add_plan_command(CLI::App& app, PlanArgs& args) {
   return cmd;
 }
 
+// --max-memory of info and check-tiling: a size such as 1G, 512M or bytes.
+void add_max_memory_option(CLI::App* cmd, uint64_t& bytes) {
+  cmd->add_option("--max-memory", bytes,
+                  "Refuse a file whose header announces more than this much decoded data "
+                  "(e.g. 512M, 4G; default 1G), before anything is allocated")
+      ->transform(CLI::AsSizeValue(false))
+      ->check(CLI::Range(uint64_t(1) << 20, skybake::kNoReadBudget));
+}
+
 CLI::App* add_info_command(CLI::App& app, InfoArgs& args) {
   CLI::App* cmd =
       app.add_subcommand("info", "Read back EXR, DDS or VDB files and print shape and metadata.");
   cmd->add_option("files", args.files, "Files written by skybake")->required();
+  add_max_memory_option(cmd, args.max_memory);
   add_json_flag(cmd, args.json, "Print as JSON on stdout");
   return cmd;
 }
@@ -198,6 +208,7 @@ CLI::App* add_check_tiling_command(CLI::App& app, CheckTilingArgs& args) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1000.0));
   cmd->add_flag("-q,--quiet", args.quiet, "One line per file");
+  add_max_memory_option(cmd, args.max_memory);
   add_json_flag(cmd, args.json, "Print the scores as JSON on stdout");
   cmd->footer(
       "\nEvery mip level, array layer, axis and channel: the jump and the turn of slope across "

@@ -115,8 +115,7 @@ int run_plan(const PlanArgs& args) {
     throw UsageError(fmt::format(
         "-o: '{}' is a file; -o names the output folder (the emitted file is --emit-file)",
         args.out_dir));
-  std::vector<Scene> scenes;
-  for (const fs::path& preset : expand_presets(args.catalog)) scenes.push_back(load_scene(preset));
+  const std::vector<Scene> scenes = load_scenes(expand_presets(args.catalog));
   if (!args.emit.empty()) return emit_plan(scenes, args);
 
   nlohmann::json plans = nlohmann::json::array();

@@ -83,8 +83,7 @@ void print_summary(const nlohmann::json& s) {
 }  // namespace
 
 int run_report(const ReportArgs& args) {
-  std::vector<Scene> scenes;
-  for (const auto& preset : expand_presets(args.presets)) scenes.push_back(load_scene(preset));
+  const std::vector<Scene> scenes = load_scenes(expand_presets(args.presets));
 
   const size_t threads =
       args.threads > 0 ? size_t(args.threads) : size_t(tbb::info::default_concurrency());

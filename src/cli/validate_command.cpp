@@ -5,6 +5,7 @@
 // otherwise (every file is checked).
 #include <cstdio>
 #include <iostream>
+#include <map>
 
 #include <nlohmann/json.hpp>
 
@@ -30,9 +31,14 @@ int run_validate(const ValidateArgs& args) {
   require_files(args.presets);
   int status = kExitOk;
   nlohmann::json results = nlohmann::json::array();
+  std::map<std::string, std::string> scene_files;  // by scene name: as bake refuses them
   for (const std::string& preset : args.presets) {
     try {
       const PresetCheck check = check_preset(preset);
+      if (check.kind == "scene") {
+        const auto [it, fresh] = scene_files.emplace(check.scene_name, preset);
+        if (!fresh) throw duplicate_scene_name(preset, it->first, it->second);
+      }
       nlohmann::json result = {{"preset", preset},
                                {"valid", true},
                                {"kind", check.kind},

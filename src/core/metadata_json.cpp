@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "core/json_input.hpp"
 
 namespace skybake {
 
@@ -39,7 +40,8 @@ std::optional<MetaValue> vector_from_json(const json& j, std::string* why) {
   if (doubles && j.size() == 2) return glm::dvec2(d(j[0]), d(j[1]));
   if (doubles && j.size() == 3) return glm::dvec3(d(j[0]), d(j[1]), d(j[2]));
   if (why)
-    *why = fmt::format("expected 2 or 3 integers or 2 or 3 non-integer numbers, got {}", j.dump());
+    *why = fmt::format("expected 2 or 3 integers or 2 or 3 non-integer numbers, got {}",
+                       json_excerpt(j));
   return std::nullopt;
 }
 
@@ -73,12 +75,13 @@ std::optional<MetaValue> meta_from_json(const json& j, std::string* why) {
   if (is_int32(j)) return j.get<int>();
   if (j.is_array()) return vector_from_json(j, why);
   if (why)
-    *why = fmt::format("expected an int, a number, a string or 2 or 3 numbers, got {}", j.dump());
+    *why = fmt::format("expected an int, a number, a string or 2 or 3 numbers, got {}",
+                       json_excerpt(j));
   return std::nullopt;
 }
 
 Metadata metadata_from_json(const json& j) {
-  if (!j.is_object()) throw Error(fmt::format("metadata: expected an object, got {}", j.dump()));
+  if (!j.is_object()) throw Error(fmt::format("metadata: expected an object, got {}", json_excerpt(j)));
   Metadata meta;
   for (const auto& [key, value] : j.items()) {
     std::string why;

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/json_input.hpp"
 #include "core/safe_input.hpp"
 
 namespace fs = std::filesystem;
@@ -23,8 +24,8 @@ bool looks_like_scene(const fs::path& file) {
   const FileText read = read_regular_file(file, kMaxJsonFileBytes);
   if (read.status == ReadStatus::missing) return false;
   if (read.status == ReadStatus::refused || json_nesting_problem(read.text)) return true;
-  const nlohmann::json j = nlohmann::json::parse(read.text, nullptr, /*allow_exceptions=*/false);
-  return j.is_object() && j.contains("outputs");
+  const ParsedJson parsed = parse_json_text(read.text);
+  return parsed.value && parsed.value->is_object() && parsed.value->contains("outputs");
 }
 
 void add_folder(const fs::path& dir, std::vector<fs::path>& out) {

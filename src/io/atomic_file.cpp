@@ -353,14 +353,41 @@ void install_temporary_cleanup() {
   }
 }
 
+namespace {
+
+// The part of a lock file's message that says how to repair the folder: the
+// lock file holds nothing, so anything in its place can simply go.
+std::string remove_lock_hint(const fs::path& lock) {
+  return fmt::format("; remove {} (skybake creates it again; docs/farm.md, \"Repairing an "
+                     "output folder\")",
+                     lock.string());
+}
+
+}  // namespace
+
 DirectoryLock::DirectoryLock(const fs::path& dir) {
   const fs::path lock = dir / ".skybake.lock";
-  fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  // O_NOFOLLOW and O_NONBLOCK: a symbolic link or a FIFO put in its place is
+  // refused, never followed or waited on.
+  const int flags = O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY;
+  fd_ = ::open(lock.c_str(), O_RDWR | flags, 0644);
   // flock needs no write access: an existing lock file in a read-only folder
   // still locks.
-  if (fd_ < 0 && (errno == EROFS || errno == EACCES)) fd_ = ::open(lock.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd_ < 0)
-    throw IoError(fmt::format("{}: cannot open lock file: {}", lock.string(), std::strerror(errno)));
+  if (fd_ < 0 && (errno == EROFS || errno == EACCES)) fd_ = ::open(lock.c_str(), O_RDONLY | flags);
+  if (fd_ < 0) {
+    const int err = errno;
+    const bool in_the_way = err == EISDIR || err == ELOOP || err == ENXIO;
+    throw IoError(fmt::format("{}: cannot open lock file: {}{}", lock.string(),
+                              err == ELOOP ? "is a symbolic link" : std::strerror(err),
+                              in_the_way ? remove_lock_hint(lock) : ""));
+  }
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd_);
+    fd_ = -1;
+    throw IoError(fmt::format("{}: cannot open lock file: not a regular file{}", lock.string(),
+                              remove_lock_hint(lock)));
+  }
   while (::flock(fd_, LOCK_EX) != 0) {
     if (errno == EINTR) continue;
     const int err = errno;

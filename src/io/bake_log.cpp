@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/json_input.hpp"
 #include "core/safe_input.hpp"
 #include "io/atomic_file.hpp"
 
@@ -29,8 +30,10 @@ BakeLog read_bake_log(const std::filesystem::path& file) {
   BakeLog log;
   // Anything but a regular, small, shallow JSON file reads as an empty log.
   const FileText read = read_regular_file(file, kMaxJsonFileBytes);
-  if (read.status != ReadStatus::ok || json_nesting_problem(read.text)) return log;
-  const nlohmann::json j = nlohmann::json::parse(read.text, nullptr, /*allow_exceptions=*/false);
+  if (read.status != ReadStatus::ok) return log;
+  const ParsedJson parsed = parse_json_text(read.text);
+  if (!parsed.value) return log;
+  const nlohmann::json& j = *parsed.value;
   if (!j.is_object() || !j.contains("outputs") || !j["outputs"].is_object()) return log;
   for (const auto& [name, e] : j["outputs"].items())
     if (e.is_object()) log.entries[name] = entry_from_json(e);

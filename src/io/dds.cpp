@@ -255,6 +255,7 @@ struct Layout {
   int width, height, depth, layers, levels;
   uint32_t header_bytes;
   uint64_t data_bytes;
+  uint64_t decoded_bytes;  // float32 texels of every level and layer
 };
 
 // Bounds on what a header may announce (Direct3D 12: D3D12_REQ_TEXTURE2D_U_OR_V_DIMENSION,
@@ -367,6 +368,7 @@ Layout validate(const std::string& path, const DdsHeaderInfo& h) {
   const uint64_t decoded =
       mul_saturated(mul_saturated(texels_per_layer, uint64_t(l.layers)),
                     uint64_t(l.format->decoded_components) * sizeof(float));
+  l.decoded_bytes = decoded;
   if (decoded > kMaxDdsDecodedBytes)
     throw IoError(fmt::format(
         "{}: expected at most {} GiB of float32 texels (all mip levels and layers), got {} "
@@ -478,9 +480,15 @@ DdsHeaderInfo read_dds_header(const std::string& path) {
   return parse_header(path, read_bytes(path, dds::kHeaderBytes), uint64_t(st.st_size));
 }
 
-DdsImage read_dds(const std::string& path) {
+DdsImage read_dds(const std::string& path, uint64_t budget) {
   const DdsHeaderInfo h = read_dds_header(path);
   const Layout l = validate(path, h);  // also bounds the allocation by the file size
+  // The whole file is read, then decoded into textures of every level.
+  check_read_budget(path, sizes::add_saturated(l.decoded_bytes, h.file_size), budget,
+                    fmt::format("{}x{}x{} with {} layers and {} mip levels as float32 with {} "
+                                "channels, and the file's bytes",
+                                l.width, l.height, l.depth, l.layers, l.levels,
+                                l.format->decoded_components));
   const std::vector<uint8_t> bytes = read_bytes(path, size_t(h.file_size));
   if (bytes.size() != h.file_size)
     throw IoError(fmt::format("{}: expected {} bytes, got {} (file changed while reading)", path,

@@ -43,6 +43,7 @@
 
 #include "core/finite_check.hpp"
 #include "core/texture.hpp"
+#include "io/read_budget.hpp"
 
 namespace skybake {
 
@@ -111,7 +112,9 @@ struct DdsImage {
 // dimension, and that the file holds exactly the bytes the header announces
 // (a truncated file is an error). Block formats are decoded by decode_bc
 // (BC1 gives R, G, B, A).
-DdsImage read_dds(const std::string& path);
+// `budget`: the most the file's bytes and the decoded float32 levels may take
+// together (io/read_budget.hpp).
+DdsImage read_dds(const std::string& path, uint64_t budget = kNoReadBudget);
 
 // DDS_PIXELFORMAT, field by field.
 struct DdsPixelFormat {

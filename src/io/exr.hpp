@@ -37,6 +37,7 @@
 
 #include "core/finite_check.hpp"
 #include "core/texture.hpp"
+#include "io/read_budget.hpp"
 
 namespace skybake {
 
@@ -71,7 +72,9 @@ void write_exr(const std::string& path, const Texture& tex, ExrPrecision precisi
 // taken from the attributes): for a copy whose pixels no longer match what it
 // records, e.g. cropped by another tool, which check-tiling still measures.
 enum class ExrShape { recorded, as_stored };
-Texture read_exr(const std::string& path, ExrShape shape = ExrShape::recorded);
+// `budget`: the most the decoded float32 pixels may take (io/read_budget.hpp).
+Texture read_exr(const std::string& path, ExrShape shape = ExrShape::recorded,
+                 uint64_t budget = kNoReadBudget);
 
 // Columns of the slice atlas of a volume with `depth` slices: depth / rows,
 // rows the largest divisor of depth not above sqrt(depth).

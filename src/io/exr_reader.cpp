@@ -133,18 +133,37 @@ void check_decoded_size(const std::string& path, const std::vector<PartInfo>& sp
         file_size, kMaxExrExpansion, kExrExpansionFloor >> 20, kMaxExrDecodedBytes >> 30));
 }
 
-// Reads one part as float32 with the channels in `channels` order.
-std::vector<float> read_part(const std::string& path, Imf::MultiPartInputFile& in, int part,
-                             const PartInfo& info, const std::vector<std::string>& channels) {
+// What reading takes at once, checked before the texture is allocated: the
+// texture, plus the atlas image beside it (its slices are copied out of it;
+// other parts are decoded straight into their slab of the texture).
+void check_exr_budget(const std::string& path, const PartShape& shape, size_t channels,
+                      const PartInfo& atlas, bool is_atlas, uint64_t budget) {
+  const uint64_t texels = mul_saturated(
+      mul_saturated(uint64_t(shape.width), uint64_t(shape.height)),
+      mul_saturated(uint64_t(shape.depth), uint64_t(shape.layers)));
+  const uint64_t bytes = mul_saturated(texels, uint64_t(channels) * sizeof(float));
+  const uint64_t atlas_bytes =
+      is_atlas ? mul_saturated(mul_saturated(uint64_t(atlas.width), uint64_t(atlas.height)),
+                               uint64_t(channels) * sizeof(float))
+               : 0;
+  check_read_budget(path, sizes::add_saturated(bytes, atlas_bytes), budget,
+                    fmt::format("{}x{}x{}x{} float32 texels with {} channel{}{}", shape.width,
+                                shape.height, shape.depth, shape.layers, channels,
+                                channels == 1 ? "" : "s",
+                                is_atlas ? ", and the slice atlas they are cut from" : ""));
+}
+
+// Reads one part as float32 with the channels in `channels` order into
+// `out`, room for width x height x channels values.
+void read_part_into(const std::string& path, Imf::MultiPartInputFile& in, int part,
+                    const PartInfo& info, const std::vector<std::string>& channels, float* out) {
   for (const std::string& name : channels)
     if (!has_channel(*info.header, name))
       throw IoError(
           fmt::format("{}: expected a channel '{}' in part {}, got none", path, name, part));
-  std::vector<float> out(size_t(info.width) * size_t(info.height) * channels.size());
   Imf::InputPart input(in, part);
-  input.setFrameBuffer(exr_frame_buffer(channels, out.data(), info.width, info.min_x, info.min_y));
+  input.setFrameBuffer(exr_frame_buffer(channels, out, info.width, info.min_x, info.min_y));
   input.readPixels(int(info.min_y), int(info.min_y + info.height - 1));
-  return out;
 }
 
 void expect_part_size(const std::string& path, const PartInfo& spec, int part, int64_t width,
@@ -229,7 +248,7 @@ void check_header_sizes(const std::string& path) {
   }
 }
 
-Texture read_exr_file(const std::string& path, ExrShape shape_from) {
+Texture read_exr_file(const std::string& path, ExrShape shape_from, uint64_t budget) {
   check_header_sizes(path);
   Imf::MultiPartInputFile in(path.c_str(), exr_threads());
   std::vector<PartInfo> specs;
@@ -276,6 +295,7 @@ Texture read_exr_file(const std::string& path, ExrShape shape_from) {
     for (size_t i = 0; i < specs.size(); ++i)
       expect_part_size(path, specs[i], int(i), shape.width, shape.height);
   }
+  check_exr_budget(path, shape, channels.size(), head_info, layout == "atlas", budget);
   Texture tex(shape.width, shape.height, shape.depth, shape.layers, channels);
   for (auto it = head.begin(); it != head.end(); ++it) {
     const std::string name = it.name();
@@ -286,8 +306,9 @@ Texture read_exr_file(const std::string& path, ExrShape shape_from) {
   }
 
   if (layout == "atlas") {
-    const std::vector<float> atlas = read_part(path, in, 0, head_info, tex.channels);
     const size_t nc = tex.channels.size(), atlas_width = size_t(columns) * tex.width;
+    std::vector<float> atlas(size_t(head_info.width) * size_t(head_info.height) * nc);
+    read_part_into(path, in, 0, head_info, tex.channels, atlas.data());
     for (int z = 0; z < tex.depth; ++z) {
       const size_t x0 = size_t(z % columns) * tex.width, y0 = size_t(z / columns) * tex.height;
       for (int y = 0; y < tex.height; ++y) {
@@ -297,12 +318,12 @@ Texture read_exr_file(const std::string& path, ExrShape shape_from) {
     }
     return tex;
   }
-  for (size_t i = 0; i < specs.size(); ++i) {
-    const std::vector<float> part = read_part(path, in, int(i), specs[i], tex.channels);
-    // Parts are slices (layers == 1) or layers (depth == 1): either way the
-    // part index is the slab index of the texture layout.
-    std::copy(part.begin(), part.end(), tex.data.begin() + i * part.size());
-  }
+  // Parts are slices (layers == 1) or layers (depth == 1), each of the
+  // texture's width and height: the part index is the slab index of the
+  // texture layout, and each part is decoded straight into its slab.
+  const size_t slab = size_t(tex.width) * size_t(tex.height) * tex.channels.size();
+  for (size_t i = 0; i < specs.size(); ++i)
+    read_part_into(path, in, int(i), specs[i], tex.channels, tex.data.data() + i * slab);
   return tex;
 }
 
@@ -327,9 +348,9 @@ ExrLayout read_exr_layout(const std::string& path) {
   }
 }
 
-Texture read_exr(const std::string& path, ExrShape shape) {
+Texture read_exr(const std::string& path, ExrShape shape, uint64_t budget) {
   try {
-    return read_exr_file(path, shape);
+    return read_exr_file(path, shape, budget);
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {  // OpenEXR's Iex exceptions, bad_alloc

@@ -44,6 +44,7 @@
 
 #include "core/finite_check.hpp"
 #include "core/texture.hpp"
+#include "io/read_budget.hpp"
 #include "io/ktx2_dfd.hpp"
 #include "io/ktx2_format.hpp"
 
@@ -98,6 +99,8 @@ struct Ktx2Image {
 // textures, 3D arrays, supercompression and "generate mips" (levelCount 0).
 // Sizes are bounded before anything is allocated. Throws IoError naming the
 // file and the rule.
-Ktx2Image read_ktx2(const std::string& path);
+// `budget`: the most the file's bytes and the decoded float32 levels may take
+// together (io/read_budget.hpp).
+Ktx2Image read_ktx2(const std::string& path, uint64_t budget = kNoReadBudget);
 
 }  // namespace skybake

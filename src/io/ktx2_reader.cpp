@@ -17,10 +17,11 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
-#include "io/file_bytes.hpp"
-#include "core/metadata_json.hpp"
 #include "core/half.hpp"
+#include "core/json_input.hpp"
+#include "core/metadata_json.hpp"
 #include "core/mip_chain.hpp"
+#include "io/file_bytes.hpp"
 #include "io/block_compression.hpp"
 #include "io/ktx2.hpp"
 #include "io/le_bytes.hpp"
@@ -123,6 +124,7 @@ struct Layout {
   uint64_t kvd_end;                  // where the key/value data (or the descriptor) ends
   std::vector<Ktx2LevelIndex> want;  // the level index a writer must produce
   uint64_t file_bytes;               // and the file's length
+  uint64_t decoded_bytes;            // float32 texels of every level and layer
 };
 
 // The one layout a writer may produce for this header, index and descriptor size.
@@ -169,6 +171,7 @@ Layout expected_layout(const std::string& path, const Ktx2Header& h, const Ktx2F
         "layers), got {} bytes for {}x{}x{} with {} layers and {} levels",
         path, kMaxDecodedBytes >> 30, decoded, l.width, l.height, l.depth, l.layers, l.levels));
   l.file_bytes = offset;
+  l.decoded_bytes = decoded;
   return l;
 }
 
@@ -192,6 +195,11 @@ void check_zero(const std::string& path, const std::vector<uint8_t>& b, uint64_t
     if (b[size_t(i)] != 0)
       throw IoError(fmt::format("{}: expected zero {} at bytes {} to {}, got 0x{:02x} at {}", path,
                                 what, from, to, b[size_t(i)], i));
+}
+
+// A key as messages quote it: a forged key may be as long as the key/value data.
+std::string key_text(const std::string& key) {
+  return key.size() > 64 ? key.substr(0, 64) + "..." : key;
 }
 
 // Key/value pairs in file order (KTX2 "Key/Value Data"): lengths, sorting,
@@ -227,11 +235,11 @@ std::vector<std::pair<std::string, std::string>> parse_key_values(const std::str
       throw IoError(
           fmt::format("{}: key/value data: expected keys sorted and unique, got \"{}\" "
                       "after \"{}\"",
-                      path, key, kv.back().first));
+                      path, key_text(key), key_text(kv.back().first)));
     const uint64_t next = align_up(at + 4 + n, 4);
     if (next > end)
       throw IoError(fmt::format("{}: key/value data: the padding of \"{}\" runs past kvdByteLength",
-                                path, key));
+                                path, key_text(key)));
     check_zero(path, b, at + 4 + n, next, "valuePadding");
     kv.emplace_back(std::move(key), std::move(value));
     at = next;
@@ -242,17 +250,22 @@ std::vector<std::pair<std::string, std::string>> parse_key_values(const std::str
 // A NUL-terminated UTF-8 value without its NUL; IoError when it has none.
 std::string text_of(const std::string& path, const std::string& key, const std::string& value) {
   if (value.empty() || value.back() != '\0' || value.find('\0') != value.size() - 1)
-    throw IoError(fmt::format("{}: expected {} to hold one NUL-terminated string", path, key));
+    throw IoError(
+        fmt::format("{}: expected {} to hold one NUL-terminated string", path, key_text(key)));
   return value.substr(0, value.size() - 1);
 }
 
 nlohmann::json json_of(const std::string& path, const std::string& key, const std::string& value) {
   const std::string text = text_of(path, key, value);
-  nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded())
+  ParsedJson parsed = parse_json_text(text);
+  if (!parsed.value && parsed.why != "invalid JSON")
     throw IoError(
-        fmt::format("{}: expected {} to hold JSON, got '{}'", path, key, text.substr(0, 64)));
-  return j;
+        fmt::format("{}: expected {} to hold JSON: it {}", path, key_text(key), parsed.why));
+  if (!parsed.value)
+    throw IoError(
+        fmt::format("{}: expected {} to hold JSON, got '{}'", path, key_text(key),
+                    text.substr(0, 64)));
+  return std::move(*parsed.value);
 }
 
 std::vector<std::string> channels_of(const std::string& path, const nlohmann::json& j,
@@ -269,7 +282,7 @@ std::vector<std::string> channels_of(const std::string& path, const nlohmann::js
     throw IoError(
         fmt::format("{}: expected skybake.channels to be an array of 1 to {} distinct "
                     "non-empty names, got {}",
-                    path, components, j.dump().substr(0, 120)));
+                    path, components, json_excerpt(j, 120)));
   return names;
 }
 
@@ -294,7 +307,7 @@ void apply_key_values(const std::string& path, const Ktx2Image& image, int compo
       const nlohmann::json j = json_of(path, key, value);
       std::string why;
       std::optional<MetaValue> v = meta_from_json(j, &why);
-      if (!v) throw IoError(fmt::format("{}: key/value '{}': {}", path, key, why));
+      if (!v) throw IoError(fmt::format("{}: key/value '{}': {}", path, key_text(key), why));
       meta[key.substr(prefix.size())] = *v;
     }
   }
@@ -353,7 +366,7 @@ void decode_levels(const std::vector<uint8_t>& b, const Layout& l, const Ktx2For
 
 }  // namespace
 
-Ktx2Image read_ktx2(const std::string& path) {
+Ktx2Image read_ktx2(const std::string& path, uint64_t budget) {
   const uint64_t size = file_size_of(path);
   Ktx2Image image;
   Ktx2Header& h = image.header;
@@ -367,6 +380,11 @@ Ktx2Image read_ktx2(const std::string& path) {
         "got {}{}",
         path, l.file_bytes, l.levels, size,
         size < l.file_bytes ? " (truncated file)" : " (trailing bytes)"));
+  // The whole file is read, then decoded into textures of every level.
+  check_read_budget(path, l.decoded_bytes + size, budget,
+                    fmt::format("{}x{}x{} with {} layers and {} levels as float32 with {} "
+                                "channels, and the file's bytes",
+                                l.width, l.height, l.depth, l.layers, l.levels, f.components));
   const std::vector<uint8_t> b = read_bytes(path, size);
   if (b.size() != size)
     throw IoError(fmt::format("{}: expected {} bytes, got {} (file changed while reading)", path,

@@ -10,9 +10,10 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
-#include "core/metadata_json.hpp"
+#include "core/json_input.hpp"
 #include "core/safe_input.hpp"
 #include "io/atomic_file.hpp"
+#include "io/manifest_checks.hpp"
 
 namespace skybake {
 
@@ -24,12 +25,14 @@ nlohmann::json to_json(const ManifestEntry& e) {
                      {"encoding", f.encoding},
                      {"size", f.size},
                      {"hash", f.hash}});
-  return {{"product", e.product},       {"name", e.name},
-          {"files", files},             {"dimensions", e.dimensions},
-          {"layers", e.layers},         {"channels", e.channels},
-          {"metadata", e.metadata},     {"input_hash", e.input_hash},
-          {"error", e.error},           {"tiling", e.tiling},
-          {"warnings", e.warnings}};
+  nlohmann::json j = {{"product", e.product},   {"name", e.name},
+                      {"files", files},         {"dimensions", e.dimensions},
+                      {"layers", e.layers},     {"channels", e.channels},
+                      {"metadata", e.metadata}, {"input_hash", e.input_hash},
+                      {"error", e.error},       {"tiling", e.tiling},
+                      {"warnings", e.warnings}};
+  j["entry_hash"] = manifest_entry_hash(j);
+  return j;
 }
 
 ManifestEntry manifest_entry_from_json(const nlohmann::json& j) {
@@ -54,75 +57,16 @@ namespace {
 
 using nlohmann::json;
 
-// The first key of `j` (an object) whose value has a type the reader cannot
-// take, as "/key: expected ..."; absent keys are fine (defaults apply).
-std::optional<std::string> field_type_problem(const json& j, const std::string& at,
-                                              const std::set<std::string>& strings) {
-  for (const std::string& key : strings)
-    if (j.contains(key) && !j[key].is_string())
-      return fmt::format("{}/{}: expected a string", at, key);
-  return std::nullopt;
-}
-
-bool is_int(const json& v) {
-  if (v.is_number_unsigned()) return v.get<uint64_t>() <= uint64_t(std::numeric_limits<int>::max());
-  if (v.is_number_integer())
-    return v.get<int64_t>() >= std::numeric_limits<int>::min() &&
-           v.get<int64_t>() <= std::numeric_limits<int>::max();
-  return false;
-}
-
-// Checks every field manifest_entry_from_json reads against the type it
-// converts to, so that the conversion cannot throw or overflow.
-std::optional<std::string> entry_problem(const json& e, const std::string& at) {
-  if (!e.is_object()) return fmt::format("{}: expected an object", at);
-  if (auto bad = field_type_problem(e, at, {"product", "name", "input_hash"})) return bad;
-  if (e.contains("files")) {
-    const json& files = e["files"];
-    if (!files.is_array()) return fmt::format("{}/files: expected an array", at);
-    for (size_t i = 0; i < files.size(); ++i) {
-      const std::string fat = fmt::format("{}/files/{}", at, i);
-      if (!files[i].is_object()) return fmt::format("{}: expected an object", fat);
-      if (auto bad = field_type_problem(files[i], fat, {"path", "format", "encoding", "hash"}))
-        return bad;
-      if (files[i].contains("size") && !files[i]["size"].is_number_unsigned())
-        return fmt::format("{}/size: expected a non-negative integer", fat);
-    }
-  }
-  if (e.contains("dimensions")) {
-    const json& d = e["dimensions"];
-    if (!d.is_array()) return fmt::format("{}/dimensions: expected an array", at);
-    for (const json& v : d)
-      if (!is_int(v)) return fmt::format("{}/dimensions: expected integers", at);
-  }
-  if (e.contains("layers") && !is_int(e["layers"]))
-    return fmt::format("{}/layers: expected an integer", at);
-  if (e.contains("channels")) {
-    const json& c = e["channels"];
-    if (!c.is_array()) return fmt::format("{}/channels: expected an array", at);
-    for (const json& v : c)
-      if (!v.is_string()) return fmt::format("{}/channels: expected strings", at);
-  }
-  if (e.contains("metadata")) {
-    if (!e["metadata"].is_object()) return fmt::format("{}/metadata: expected an object", at);
-    std::string why;
-    for (const auto& [key, value] : e["metadata"].items())
-      if (!meta_from_json(value, &why)) return fmt::format("{}/metadata/{}: {}", at, key, why);
-  }
-  if (e.contains("warnings") && !e["warnings"].is_array())
-    return fmt::format("{}/warnings: expected an array", at);
-  if (e.contains("bake_seconds") && !e["bake_seconds"].is_number())
-    return fmt::format("{}/bake_seconds: expected a number", at);
-  return std::nullopt;
-}
-
-// Why `text` is not a manifest skybake can read, or nullopt (with `m` filled).
+// Why `text` is not a manifest skybake can read at all, or nullopt with `m`
+// filled: every entry that breaks a rule of io/manifest_checks.hpp goes to
+// m.damaged instead of m.entries, and so does a second entry of one name.
 std::optional<std::string> parse_manifest(const std::string& text, Manifest& m) {
-  if (auto deep = json_nesting_problem(text)) return *deep;
-  const json j = json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded()) return std::string("invalid JSON");
+  const ParsedJson parsed = parse_json_text(text);
+  if (!parsed.value) return parsed.why;
+  const json& j = *parsed.value;
   if (!j.is_object()) return std::string("expected an object");
-  if (auto bad = field_type_problem(j, "", {"scene", "preset", "tool_version"})) return bad;
+  for (const char* key : {"scene", "preset", "tool_version"})
+    if (j.contains(key) && !j[key].is_string()) return fmt::format("/{}: expected a string", key);
   if (j.contains("outputs") && !j["outputs"].is_array())
     return std::string("/outputs: expected an array");
   m.scene = j.value("scene", "");
@@ -131,23 +75,38 @@ std::optional<std::string> parse_manifest(const std::string& text, Manifest& m) 
   if (!j.contains("outputs")) return std::nullopt;
   const json& outputs = j["outputs"];
   for (size_t i = 0; i < outputs.size(); ++i) {
-    if (auto bad = entry_problem(outputs[i], fmt::format("/outputs/{}", i))) return bad;
+    const std::string at = fmt::format("/outputs/{}", i);
+    if (auto bad = manifest_entry_problem(outputs[i], at)) {
+      m.damaged.push_back(*bad);
+      continue;
+    }
     ManifestEntry entry = manifest_entry_from_json(outputs[i]);
-    m.entries[entry.name] = entry;
+    if (m.entries.count(entry.name)) {
+      m.damaged.push_back(fmt::format("{}: a second entry named '{}'", at, entry.name));
+      continue;
+    }
+    m.entries[entry.name] = std::move(entry);
   }
   return std::nullopt;
 }
 
-// Says once per process and file that a manifest was set aside.
-void note_ignored(const std::filesystem::path& file, const std::string& why) {
+// Says once per process and file that a manifest, or records in it, were
+// set aside.
+void note_once(const std::filesystem::path& file, const std::string& note) {
   static std::mutex mutex;
   static std::set<std::string> noted;
   const std::lock_guard<std::mutex> lock(mutex);
   if (!noted.insert(file.string()).second) return;
-  std::fprintf(stderr,
-               "skybake: note: %s: not a manifest skybake can read (%s); read as empty, so "
-               "its outputs count as not baked\n",
-               file.c_str(), why.c_str());
+  std::fprintf(stderr, "skybake: note: %s: %s\n", file.c_str(), note.c_str());
+}
+
+std::string damaged_note(const std::vector<std::string>& damaged) {
+  const size_t n = damaged.size();
+  return fmt::format("{} damaged record{} set aside ({}{}); {} output{} count{} as not baked, "
+                     "and the next bake rewrites the manifest",
+                     n, n == 1 ? "" : "s", damaged.front(),
+                     n > 1 ? fmt::format("; and {} more", n - 1) : "", n == 1 ? "its" : "their",
+                     n == 1 ? "" : "s", n == 1 ? "s" : "");
 }
 
 }  // namespace
@@ -156,12 +115,20 @@ Manifest read_manifest(const std::filesystem::path& file) {
   const FileText read = read_regular_file(file, kMaxJsonFileBytes);
   if (read.status == ReadStatus::missing) return {};
   if (read.status == ReadStatus::refused)
-    throw IoError(fmt::format("{}: cannot read manifest: {}", file.string(), read.why));
+    throw IoError(fmt::format("{}: cannot read manifest: {}; remove it and bake again (the "
+                              "manifest is a cache the bake rebuilds; docs/farm.md, \"Repairing "
+                              "an output folder\")",
+                              file.string(), read.why));
   Manifest m;
   if (auto bad = parse_manifest(read.text, m)) {
-    note_ignored(file, *bad);
-    return {};
+    note_once(file, fmt::format("not a manifest skybake can read ({}); read as empty, so its "
+                                "outputs count as not baked",
+                                *bad));
+    Manifest empty;
+    empty.damaged.push_back(*bad);
+    return empty;
   }
+  if (!m.damaged.empty()) note_once(file, damaged_note(m.damaged));
   return m;
 }
 

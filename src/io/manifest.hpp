@@ -50,10 +50,18 @@ struct Manifest {
   std::string preset;
   std::string tool_version;
   std::map<std::string, ManifestEntry> entries;  // by output name
+  // Why each damaged record was set aside ("/outputs/2/warnings/0/code:
+  // expected a string"), or why the whole file was; empty for a manifest as
+  // skybake wrote it. A bake that finds any rewrites the manifest.
+  std::vector<std::string> damaged;
 };
 
-// Missing file -> empty manifest; unreadable or malformed -> empty manifest
-// too (it is a cache: the outputs will simply be baked again).
+// Missing file -> empty manifest. Not JSON or not an object -> empty manifest
+// with one note; an entry of the wrong shape or whose entry hash does not
+// match (io/manifest_checks.hpp) -> left out, with one note for the file. It
+// is a cache: what is left out is simply baked again. Throws IoError when the
+// path is not a regular file (a folder, a FIFO, a device, a link loop), with
+// what to remove.
 Manifest read_manifest(const std::filesystem::path& file);
 void write_manifest(const std::filesystem::path& file, const Manifest& manifest);
 

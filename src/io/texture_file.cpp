@@ -47,9 +47,9 @@ std::string manifest_encoding(const fs::path& file) {
   return find_manifest_entry(m, file, &record) ? record->encoding : "unknown";
 }
 
-LoadedTexture load_dds(const std::string& path) {
+LoadedTexture load_dds(const std::string& path, uint64_t budget) {
   const DdsHeaderInfo h = read_dds_header(path);
-  DdsImage image = read_dds(path);
+  DdsImage image = read_dds(path, budget);
   LoadedTexture out;
   out.format = "dds";
   out.encoding = dxgi_format_name(image.format);
@@ -80,8 +80,8 @@ LoadedTexture load_dds(const std::string& path) {
   return out;
 }
 
-LoadedTexture load_ktx2(const std::string& path) {
-  Ktx2Image image = read_ktx2(path);
+LoadedTexture load_ktx2(const std::string& path, uint64_t budget) {
+  Ktx2Image image = read_ktx2(path, budget);
   const Ktx2Header& h = image.header;
   LoadedTexture out;
   out.format = "ktx2";
@@ -112,18 +112,18 @@ LoadedTexture load_ktx2(const std::string& path) {
 
 }  // namespace
 
-LoadedTexture read_texture_file(const std::string& path) {
+LoadedTexture read_texture_file(const std::string& path, uint64_t budget) {
   const std::string ext = fs::path(path).extension().string();
   if (!fs::exists(path)) throw IoError(fmt::format("{}: no such file", path));
   // Readers open what they are given: a FIFO would block them, a device would never end.
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
     throw IoError(fmt::format("{}: expected a regular file", path));
-  if (ext == ".dds") return load_dds(path);
-  if (ext == ".ktx2") return load_ktx2(path);
+  if (ext == ".dds") return load_dds(path, budget);
+  if (ext == ".ktx2") return load_ktx2(path, budget);
   LoadedTexture out;
   if (ext == ".exr") {
-    out.texture = read_exr(path);
+    out.texture = read_exr(path, ExrShape::recorded, budget);
     out.format = "exr";
     const ExrLayout layout = read_exr_layout(path);
     out.details = {{"layout", layout.layout}, {"parts", layout.parts}};
@@ -133,7 +133,7 @@ LoadedTexture read_texture_file(const std::string& path) {
                           {"slice_count", layout.slice_count}});
     out.encoding = manifest_encoding(path);
   } else if (ext == ".vdb") {
-    out.texture = read_vdb(path);
+    out.texture = read_vdb(path, budget);
     out.format = "vdb";
     out.encoding = "float";
   } else {

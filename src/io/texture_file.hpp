@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/texture.hpp"
+#include "io/read_budget.hpp"
 
 namespace skybake {
 
@@ -21,7 +22,9 @@ struct LoadedTexture {
   nlohmann::json details = nlohmann::json::object();  // format-specific header fields
 };
 
-// Throws IoError for unknown extensions and unreadable files.
-LoadedTexture read_texture_file(const std::string& path);
+// Throws IoError for unknown extensions and unreadable files, and for a file
+// whose header announces more than `budget` bytes of what its reader holds
+// at once (io/read_budget.hpp: info and check-tiling pass --max-memory).
+LoadedTexture read_texture_file(const std::string& path, uint64_t budget = kNoReadBudget);
 
 }  // namespace skybake

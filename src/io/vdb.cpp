@@ -368,7 +368,8 @@ std::vector<openvdb::FloatGrid::Ptr> in_channel_order(
 }
 
 // The dense copy's size comes from the file: refuse it before allocating.
-void check_dense_size(const std::string& path, const openvdb::CoordBBox& box, size_t grids) {
+void check_dense_size(const std::string& path, const openvdb::CoordBBox& box, size_t grids,
+                      uint64_t budget) {
   uint64_t voxels = 1;
   for (int axis = 0; axis < 3; ++axis) {
     const int64_t side = int64_t(box.max()[axis]) - box.min()[axis] + 1;
@@ -381,6 +382,10 @@ void check_dense_size(const std::string& path, const openvdb::CoordBBox& box, si
   if (voxels > kMaxVdbDenseBytes / voxel_bytes)
     throw IoError(fmt::format("{}: a dense copy of {} voxels x {} grids is over the {} GiB limit",
                               path, voxels, grids, kMaxVdbDenseBytes >> 30));
+  const openvdb::Coord dim = box.dim();
+  check_read_budget(path, voxels * voxel_bytes, budget,
+                    fmt::format("a dense {}x{}x{} copy of {} float grid{} and one plane",
+                                dim.x(), dim.y(), dim.z(), grids, grids == 1 ? "" : "s"));
 }
 
 Texture dense_texture(const openvdb::CoordBBox& box,
@@ -406,7 +411,7 @@ Texture dense_texture(const openvdb::CoordBBox& box,
 
 }  // namespace
 
-Texture read_vdb_file(const std::string& path) {
+Texture read_vdb_file(const std::string& path, uint64_t budget) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
     throw IoError(fmt::format("{}: expected a regular file", path));
@@ -417,7 +422,7 @@ Texture read_vdb_file(const std::string& path) {
   const std::vector<openvdb::FloatGrid::Ptr> floats = read_float_grids(path, active);
   const openvdb::CoordBBox box = texture_box(path, *floats[0], active);
   const std::vector<openvdb::FloatGrid::Ptr> ordered = in_channel_order(path, floats);
-  check_dense_size(path, box, ordered.size());
+  check_dense_size(path, box, ordered.size(), budget);
   return dense_texture(box, ordered);
 }
 

@@ -36,6 +36,7 @@
 
 #include "core/finite_check.hpp"
 #include "core/texture.hpp"
+#include "io/read_budget.hpp"
 
 namespace skybake {
 
@@ -99,6 +100,7 @@ void write_vdb(const std::string& path, const Texture& tex, double voxel_size);
 // skybake:shape, or for a foreign file from the union of the grids' active bounding boxes (whose
 // minimum becomes texel 0). Metadata: the first grid's skybake:* strings, prefix stripped. Throws
 // IoError when the file cannot be read or holds a non-float grid.
-Texture read_vdb(const std::string& path);
+// `budget`: the most the dense copy may take (io/read_budget.hpp).
+Texture read_vdb(const std::string& path, uint64_t budget = kNoReadBudget);
 
 }  // namespace skybake

@@ -71,11 +71,11 @@ void write_vdb(const std::string& path, const Texture& tex, double voxel_size) {
   write_vdb(path, tex, options);
 }
 
-Texture read_vdb(const std::string& path) {
+Texture read_vdb(const std::string& path, uint64_t budget) {
   const VdbPlugin& plugin = plugin_for(path, "read");
   Texture tex;
   std::string message;
-  rethrow(plugin.read(path.c_str(), &tex, &message), message);
+  rethrow(plugin.read(path.c_str(), budget, &tex, &message), message);
   return tex;
 }
 

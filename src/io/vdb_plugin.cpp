@@ -39,7 +39,8 @@ extern "C" __attribute__((visibility("default"))) int skybake_vdb_write(
 }
 
 extern "C" __attribute__((visibility("default"))) int skybake_vdb_read(const char* path,
+                                                                       uint64_t budget,
                                                                        skybake::Texture* out,
                                                                        std::string* message) {
-  return guarded(message, [&] { *out = skybake::read_vdb_file(path); });
+  return guarded(message, [&] { *out = skybake::read_vdb_file(path, budget); });
 }

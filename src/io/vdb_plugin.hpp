@@ -27,12 +27,12 @@ namespace skybake {
 // The implementations inside the plugin (vdb.cpp); contracts as write_vdb and
 // read_vdb in vdb.hpp.
 void write_vdb_file(const std::string& path, const Texture& tex, const VdbWriteOptions& options);
-Texture read_vdb_file(const std::string& path);
+Texture read_vdb_file(const std::string& path, uint64_t budget);
 
 enum VdbPluginStatus : int { vdb_plugin_ok = 0, vdb_plugin_io_error = 1, vdb_plugin_error = 2 };
 
 // Bumped whenever an entry point's signature or Texture's layout changes.
-constexpr int kVdbPluginAbi = 6;
+constexpr int kVdbPluginAbi = 7;
 constexpr const char* kVdbPluginName = "libskybake_vdb.so";
 
 }  // namespace skybake
@@ -41,5 +41,6 @@ extern "C" {
 using SkybakeVdbAbiFn = int();
 using SkybakeVdbWriteFn = int(const char* path, const skybake::Texture* tex,
                               const skybake::VdbWriteOptions* options, std::string* message);
-using SkybakeVdbReadFn = int(const char* path, skybake::Texture* out, std::string* message);
+using SkybakeVdbReadFn = int(const char* path, uint64_t budget, skybake::Texture* out,
+                             std::string* message);
 }

@@ -17,6 +17,7 @@
 #include "io/output_readback.hpp"
 #include "pipeline/error_measures.hpp"
 #include "pipeline/freshness.hpp"
+#include "pipeline/non_finite_output.hpp"
 #include "pipeline/output_writer.hpp"
 #include "pipeline/product_graph.hpp"
 #include "pipeline/runtime_metadata.hpp"
@@ -78,6 +79,7 @@ class SceneBake {
       } catch (...) {
         failure = std::current_exception();
       }
+    if (!failure) tidy_manifest();
     record_log();
     if (failure) std::rethrow_exception(failure);
     summary_.seconds = seconds_since(t0);
@@ -183,6 +185,7 @@ class SceneBake {
     textures_[i] = node.info->bake(scene_, node.spec, inputs, ctx);
     bake_seconds_ = seconds_since(t_bake);
     Texture& tex = *textures_[i];
+    if (node.requested) refuse_non_finite(scene_, node, tex);
     set_meta(tex.metadata, "product", node.info->name);
     set_meta(tex.metadata, "tool", std::string("skybake " SKYBAKE_VERSION));
     set_meta(tex.metadata, "input_hash", node.input_hash);
@@ -264,13 +267,31 @@ class SceneBake {
     {
       DirectoryLock lock(summary_.scene_dir);
       Manifest m = read_manifest(manifest_path());
-      m.scene = scene_.name;
-      m.preset = scene_.file.string();
-      m.tool_version = SKYBAKE_VERSION;
       m.entries[entry.name] = entry;
-      write_manifest(manifest_path(), m);
+      write_scene_manifest(m);
     }
     if (options_.on_recorded) options_.on_recorded(summary_.scene_dir, entry.name, entry.input_hash);
+  }
+
+  // Entries of other outputs are kept: presets of one scene name may share
+  // the folder, each recording its own outputs (docs/farm.md, "Concurrent
+  // bakes into one folder").
+  void write_scene_manifest(Manifest& m) const {
+    m.scene = scene_.name;
+    m.preset = scene_.file.string();
+    m.tool_version = SKYBAKE_VERSION;
+    write_manifest(manifest_path(), m);
+  }
+
+  // A manifest read with damaged records is rewritten without them even
+  // when nothing was baked, so that after any bake its entries for the
+  // scene's outputs are what a clean bake writes.
+  void tidy_manifest() {
+    if (before_.damaged.empty()) return;
+    DirectoryLock lock(summary_.scene_dir);
+    Manifest m = read_manifest(manifest_path());
+    if (m.damaged.empty()) return;  // another bake rewrote it meanwhile
+    write_scene_manifest(m);
   }
 
   // The times of this run's outputs and of the files it found current, merged

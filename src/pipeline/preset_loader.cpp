@@ -358,6 +358,28 @@ Scene load_scene(const fs::path& file) {
   return scene;
 }
 
+std::vector<Scene> load_scenes(const std::vector<fs::path>& files) {
+  std::vector<Scene> scenes;
+  std::map<std::string, fs::path> first_file;  // by scene name
+  for (const fs::path& file : files) {
+    Scene scene = load_scene(file);
+    const auto [it, fresh] = first_file.emplace(scene.name, file);
+    std::error_code ec;
+    if (!fresh && fs::equivalent(file, it->second, ec)) continue;  // one file named twice
+    if (!fresh) throw duplicate_scene_name(file.string(), it->first, it->second.string());
+    scenes.push_back(std::move(scene));
+  }
+  return scenes;
+}
+
+PresetError duplicate_scene_name(const std::string& file, const std::string& name,
+                                 const std::string& first_file) {
+  return PresetError(file, "/name",
+                     fmt::format("'{}' is also the name of the scene {}; two scenes of one "
+                                 "name would bake into one folder, so rename one",
+                                 name, first_file));
+}
+
 PresetCheck check_preset(const fs::path& file) {
   const std::string display = file.string();
   std::string why;

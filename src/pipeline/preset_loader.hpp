@@ -31,6 +31,16 @@ namespace skybake {
 // content (including a referenced file that is missing or invalid).
 Scene load_scene(const std::filesystem::path& file);
 
+// The scenes of one run, loaded in order. Two scenes of one name would bake
+// into one folder (out/<name>/), the later overwriting the earlier's
+// manifest: a PresetError (exit 3) at the later file's /name, naming the
+// earlier file.
+std::vector<Scene> load_scenes(const std::vector<std::filesystem::path>& files);
+
+// That error: `file` holds a scene named `name`, as does `first_file`.
+PresetError duplicate_scene_name(const std::string& file, const std::string& name,
+                                 const std::string& first_file);
+
 // What `skybake validate` learns of a preset file of any kind.
 struct PresetCheck {
   std::string kind;                     // "scene", "planet", "atmosphere" or "clouds"

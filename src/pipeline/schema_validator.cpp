@@ -23,6 +23,7 @@
 #include <rapidjson/stringbuffer.h>
 
 #include "core/error.hpp"
+#include "core/json_input.hpp"
 #include "core/safe_input.hpp"
 #include "core/suggest.hpp"
 
@@ -41,6 +42,15 @@ bool schema_exists(const std::string& schema) {
   return fs::is_regular_file(schema_dir() / schema, ec);
 }
 
+namespace {
+
+// A string from a preset, cut for a message.
+std::string excerpt_text(const std::string& s) {
+  return s.size() > 80 ? s.substr(0, 80) + "..." : s;
+}
+
+}  // namespace
+
 std::string describe_json(const json& v) {
   switch (v.type()) {
     case json::value_t::null:
@@ -53,7 +63,7 @@ std::string describe_json(const json& v) {
     case json::value_t::number_float:
       return "number " + v.dump();
     case json::value_t::string:
-      return "string " + v.dump();
+      return "string " + json_excerpt(v);
     case json::value_t::array:
       return "array";
     case json::value_t::object:
@@ -333,7 +343,8 @@ SchemaViolation explain(const std::string& keyword, std::string pointer, const j
   const json& s = node.j ? *node.j : no_schema;
   const json::json_pointer jp(pointer);
   const json value = doc.contains(jp) ? doc.at(jp) : json();
-  const std::string got = value.is_string() ? "'" + value.get<std::string>() + "'" : value.dump();
+  const std::string got = value.is_string() ? "'" + excerpt_text(value.get<std::string>()) + "'"
+                                            : json_excerpt(value);
 
   if (keyword == "type") {
     v.rule = fmt::format("expected {}, got {}", expected_type(s), describe_json(value));
@@ -353,7 +364,7 @@ SchemaViolation explain(const std::string& keyword, std::string pointer, const j
   } else if (keyword == "enum") {
     std::vector<std::string> options;
     for (const json& e : s.value("enum", json::array()))
-      options.push_back(e.is_string() ? e.get<std::string>() : e.dump());
+      options.push_back(e.is_string() ? e.get<std::string>() : json_excerpt(e));
     v.rule = fmt::format("expected one of {}, got {}", quote_list(options), got);
     if (value.is_string()) v.rule += did_you_mean(value.get<std::string>(), options);
   } else if (keyword == "minItems" || keyword == "maxItems") {

@@ -274,7 +274,9 @@ for ((r = 0; r < rounds; r++)); do
   grep -q '"name": "t_a"' "$conc/out/shared/manifest.json" && grep -q '"name": "t_b"' "$conc/out/shared/manifest.json" ||
     fail "round $r: the shared manifest lost an entry:
 $(cat "$conc/out/shared/manifest.json")"
-  check_current "$conc/presets/a.json" "$conc/presets/b.json"
+  # One plan each: two scenes of one name in one run are refused.
+  check_current "$conc/presets/a.json"
+  check_current "$conc/presets/b.json"
   [ -z "$dep" ] || check_current "$conc/presets/c.json"
   tmp="$(find "$conc/out" -name '*.tmp-*')"
   [ -z "$tmp" ] || fail "temporaries left behind: $tmp"

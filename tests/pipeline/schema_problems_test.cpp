@@ -43,7 +43,7 @@ TEST(SchemaProblems, EveryViolationIsFoundAndThePatchedDocumentPasses) {
   ASSERT_TRUE(first);
   EXPECT_EQ(all.front().pointer, first->pointer);
   EXPECT_EQ(all.front().rule, first->rule);
-  EXPECT_EQ(all[1].rule, "must be < 1, got 1");
+  EXPECT_EQ(all[1].rule, "must be <= 0.999999, got 1");
   ASSERT_FALSE(patched.is_null());
   EXPECT_FALSE(validate_against_schema(patched, "scene.schema.json"));
   // The misspelled required key is read as the key it meant.
