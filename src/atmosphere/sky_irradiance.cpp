@@ -179,6 +179,8 @@ Texture bake_sky_irradiance(const Atmosphere& atm, const SkyRadianceSource& sour
            std::string("z up, sun at azimuth 0 in the x-z plane; y-odd coefficients are 0"));
   set_meta(m, "sh_normalization", std::string("orthonormal real SH (Ramamoorthi-Hanrahan 2001)"));
   set_meta(m, "max_sun_zenith_deg", spec.max_sun_zenith_rad / kDeg);
+  set_meta(m, "bottom_radius_m", atm.bottom_radius_m);
+  set_meta(m, "top_radius_m", atm.top_radius_m);
   set_meta(m, "atmosphere_height_m", height_of(atm));
   set_meta(m, "altitude_mapping", std::string("quadratic"));
   set_meta(m, "sky_only", spec.sky_only ? 1 : 0);
