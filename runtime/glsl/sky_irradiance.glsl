@@ -8,9 +8,11 @@
 //
 // The texture: sky_irradiance.dds / .ktx2 / .exr, a 2D array of 6 layers,
 // RGB linear float; bilinear, clamp to edge; no mips. Bind as
-// sampler2DArray. Layer j holds the coefficient of Y_00, Y_10, Y_11, Y_20,
-// Y_21, Y_22 (j = 0..5) in the frame with z up and the sun in the x-z
-// plane (the y-odd coefficients are 0 there). u: sun zenith angle, linear
+// sampler2DArray. The coefficients L_k of Y_00, Y_10, Y_11, Y_20, Y_21,
+// Y_22 in the frame with z up and the sun in the x-z plane (the y-odd
+// coefficients are 0 there) are stored as layer 0 = ln L_00, layers 1-5 =
+// L_k / L_00: bilinear reads of the logarithm follow the light's
+// exponential fall across the terminator. u: sun zenith angle, linear
 // from 0 to max_sun_zenith; v: altitude, (v)^2 = altitude / height; texel
 // centres at the ends of both axes. Values in units of the sun's
 // illuminance (solar_irradiance in the metadata), like the sky-view.
@@ -22,14 +24,16 @@ struct SkyIrradianceAxes {
   float height;          // m, top of the atmosphere above the ground
 };
 
-// The six stored coefficients at (altitude, sun zenith), bilinear.
+// The six coefficients L_k at (altitude, sun zenith): bilinear reads of the
+// stored form, decoded.
 void sky_irradiance_coefficients(sampler2DArray table, SkyIrradianceAxes axes, float altitude,
                                  float sun_zenith, out vec3 c[6]) {
   vec2 size = vec2(textureSize(table, 0).xy);
   vec2 x = vec2(clamp(sun_zenith / axes.max_sun_zenith, 0.0, 1.0),
                 sqrt(clamp(altitude / axes.height, 0.0, 1.0)));
   vec2 uv = (0.5 + x * (size - 1.0)) / size;
-  for (int j = 0; j < 6; ++j) c[j] = textureLod(table, vec3(uv, float(j)), 0.0).rgb;
+  c[0] = exp(textureLod(table, vec3(uv, 0.0), 0.0).rgb);
+  for (int j = 1; j < 6; ++j) c[j] = c[0] * textureLod(table, vec3(uv, float(j)), 0.0).rgb;
 }
 
 // E(n) for n in the table's frame: sum over k of A_l(k) L_k Y_k(n), with

@@ -3,8 +3,9 @@
 // HLSL twin of runtime/glsl/sky_irradiance.glsl (Ramamoorthi & Hanrahan
 // 2001 eq. 8; C++ src/atmosphere/sky_irradiance.hpp; docs/runtime.md "Sky
 // irradiance"). A Texture2DArray of 6 layers, RGB linear float, bilinear,
-// clamp to edge, no mips; layers Y_00, Y_10, Y_11, Y_20, Y_21, Y_22 in the
-// frame with z up and the sun in the x-z plane.
+// clamp to edge, no mips; layer 0 = ln L_00, layers 1-5 = L_k / L_00 for
+// Y_10, Y_11, Y_20, Y_21, Y_22, in the frame with z up and the sun in the
+// x-z plane.
 
 struct SkyIrradianceAxes {
   float max_sun_zenith;  // rad
@@ -20,7 +21,8 @@ void sky_irradiance_coefficients(Texture2DArray<float4> table, SamplerState tabl
   float2 x = float2(clamp(sun_zenith / axes.max_sun_zenith, 0.0, 1.0),
                     sqrt(clamp(altitude / axes.height, 0.0, 1.0)));
   float2 uv = (0.5 + x * (size - 1.0)) / size;
-  for (int j = 0; j < 6; ++j) c[j] = table.SampleLevel(table_sampler, float3(uv, j), 0.0).rgb;
+  c[0] = exp(table.SampleLevel(table_sampler, float3(uv, 0.0), 0.0).rgb);
+  for (int j = 1; j < 6; ++j) c[j] = c[0] * table.SampleLevel(table_sampler, float3(uv, j), 0.0).rgb;
 }
 
 // E(n) for n in the table's frame (see the GLSL).

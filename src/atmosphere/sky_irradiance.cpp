@@ -167,14 +167,16 @@ Texture bake_sky_irradiance(const Atmosphere& atm, const SkyRadianceSource& sour
     const ShRadiance sh = compute_sky_radiance_sh(atm, source, spec,
                                                   sky_irradiance_altitude(atm, spec, y),
                                                   sky_irradiance_sun_zenith(spec, x));
+    const std::array<glm::dvec3, kShSymmetricCount> stored = encode_sky_radiance_sh(sh);
     for (int j = 0; j < kShSymmetricCount; ++j)
-      for (int c = 0; c < 3; ++c) tex.at(x, y, 0, j, c) = float(sh[kShSymmetricIndex[j]][c]);
+      for (int c = 0; c < 3; ++c) tex.at(x, y, 0, j, c) = float(stored[j][c]);
     if (x == spec.width - 1) progress.tick();
   });
   Metadata& m = tex.metadata;
   set_meta(m, "parameterization", std::string("sky_irradiance_sh_l2"));
   set_meta(m, "radiance_source", std::string(source.field ? "field" : "psi_ms"));
-  set_meta(m, "sh_layers", std::string("Y00 Y10 Y11 Y20 Y21 Y22"));
+  set_meta(m, "sh_layers",
+           std::string("ln(L00), L10/L00, L11/L00, L20/L00, L21/L00, L22/L00"));
   set_meta(m, "sh_frame",
            std::string("z up, sun at azimuth 0 in the x-z plane; y-odd coefficients are 0"));
   set_meta(m, "sh_normalization", std::string("orthonormal real SH (Ramamoorthi-Hanrahan 2001)"));
@@ -202,17 +204,31 @@ ShRadiance lookup_sky_radiance_sh(const Texture& table, double altitude_m, doubl
   const int y0 = std::min(int(fy), std::max(table.height - 2, 0));
   const int x1 = std::min(x0 + 1, table.width - 1), y1 = std::min(y0 + 1, table.height - 1);
   const double ax = fx - x0, ay = fy - y0;
-  ShRadiance sh;
-  sh.fill(glm::dvec3(0.0));
+  std::array<glm::dvec3, kShSymmetricCount> stored;
   for (int j = 0; j < kShSymmetricCount; ++j) {
-    glm::dvec3 c(0.0);
     for (int ch = 0; ch < 3; ++ch) {
       const double a = table.at(x0, y0, 0, j, ch) * (1 - ax) + table.at(x1, y0, 0, j, ch) * ax;
       const double b = table.at(x0, y1, 0, j, ch) * (1 - ax) + table.at(x1, y1, 0, j, ch) * ax;
-      c[ch] = a * (1 - ay) + b * ay;
+      stored[j][ch] = a * (1 - ay) + b * ay;
     }
-    sh[kShSymmetricIndex[j]] = c;
   }
+  return decode_sky_radiance_sh(stored);
+}
+
+std::array<glm::dvec3, kShSymmetricCount> encode_sky_radiance_sh(const ShRadiance& sh) {
+  std::array<glm::dvec3, kShSymmetricCount> stored;
+  const glm::dvec3 l00 = glm::max(sh[0], glm::dvec3(kMinStoredL00));
+  stored[0] = glm::log(l00);
+  for (int j = 1; j < kShSymmetricCount; ++j) stored[j] = sh[kShSymmetricIndex[j]] / l00;
+  return stored;
+}
+
+ShRadiance decode_sky_radiance_sh(const std::array<glm::dvec3, kShSymmetricCount>& stored) {
+  ShRadiance sh;
+  sh.fill(glm::dvec3(0.0));
+  const glm::dvec3 l00 = glm::exp(stored[0]);
+  sh[0] = l00;
+  for (int j = 1; j < kShSymmetricCount; ++j) sh[kShSymmetricIndex[j]] = stored[j] * l00;
   return sh;
 }
 

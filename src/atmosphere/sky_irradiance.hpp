@@ -12,9 +12,14 @@
 // about the zenith by the sun's azimuth (lookup_sky_irradiance).
 //
 // Shape: width (sun zenith) x height (altitude), 6 layers (a 2D array),
-// channels R, G, B: layer j holds L_k with k = kShSymmetricIndex[j]
-// (Y_00, Y_10, Y_11, Y_20, Y_21, Y_22), in units of the sun's illuminance
-// per steradian like the sky-view LUT. Texel centres at the ends of both
+// channels R, G, B. The coefficients L_k, k = kShSymmetricIndex[j] (Y_00,
+// Y_10, Y_11, Y_20, Y_21, Y_22), in units of the sun's illuminance per
+// steradian like the sky-view LUT, are stored as layer 0 = ln L_00 and
+// layer j = L_k / L_00 (j = 1..5): the light falls by orders of magnitude
+// across the terminator, about 2x per degree of sun in twilight, and
+// bilinear reads of the logarithm follow that fall where reads of L_00
+// itself overshoot by 100% and more between 3.5-degree columns; the
+// ratios, the shape of the light, change slowly. Texel centres at the ends of both
 // axes: theta_s = theta_max u, altitude = (Rt - Rb) v^2 (rows crowd near the
 // ground, where the light changes fastest with height), u, v in [0, 1].
 //
@@ -94,7 +99,13 @@ ShRadiance compute_sky_radiance_sh(const Atmosphere& atm, const SkyRadianceSourc
 Texture bake_sky_irradiance(const Atmosphere& atm, const SkyRadianceSource& source,
                             const SkyIrradianceSpec& spec, const BakeContext& ctx);
 
-// Bilinear read of the coefficients (clamp to edge), axes from the metadata.
+// The stored form of a texel (the layout above) and back. L_00 is floored
+// at kMinStoredL00 before its logarithm (a sky without light).
+constexpr double kMinStoredL00 = 1e-30;
+std::array<glm::dvec3, kShSymmetricCount> encode_sky_radiance_sh(const ShRadiance& sh);
+ShRadiance decode_sky_radiance_sh(const std::array<glm::dvec3, kShSymmetricCount>& stored);
+
+// Bilinear read of the stored form, decoded (clamp to edge), axes from the metadata.
 ShRadiance lookup_sky_radiance_sh(const Texture& table, double altitude_m, double sun_zenith_rad);
 
 // E(n) at an altitude for a unit normal n, a unit zenith `up` and a unit
