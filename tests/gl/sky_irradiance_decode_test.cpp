@@ -88,5 +88,47 @@ TEST(SkyIrradianceDecode, ShaderIsTheCppLookup) {
   expect_within(c, kCoordinateBar, 1e-5);
 }
 
+// The cloud-ambient views: the upper hemisphere's mean radiance (GLSL and
+// HLSL) and the sphere's (GLSL) against sh_mean_upper_radiance and
+// sh_mean_radiance of the C++ read.
+TEST(SkyIrradianceDecode, CloudAmbientIsTheCppView) {
+  const BakedScene& s = sky_irradiance_scene();
+  Texture table = s.texture("sky_irradiance");
+  for (const char* key : {"max_sun_zenith_deg", "atmosphere_height_m"})
+    set_meta(table.metadata, key, s.meta_number("sky_irradiance", key));
+  const GlTexture tex =
+      upload_dds(s.dds_path("sky_irradiance"), s.sampler("sky_irradiance", kClamp), true);
+  const float max_zenith = float(s.meta_number("sky_irradiance", "max_sun_zenith_deg") * kDeg);
+  const float height = float(s.meta_number("sky_irradiance", "atmosphere_height_m"));
+  const auto query = [&](bool upper) {
+    return [&, upper](size_t i, glm::vec4& q0, glm::vec4&) {
+      q0 = glm::vec4(float(120000.0 * unit(i, 1)), float(2.0 * unit(i, 2)), 0.0f, 0.0f);
+      const ShRadiance sh = lookup_sky_radiance_sh(table, q0.x, q0.y);
+      return rgb(upper ? sh_mean_upper_radiance(sh) : sh_mean_radiance(sh));
+    };
+  };
+  const auto uniforms = [&](const ComputeProgram& p) {
+    p.set("axes.max_sun_zenith", max_zenith);
+    p.set("axes.height", height);
+  };
+  const std::string glsl_decl =
+      "layout(binding = 0) uniform sampler2DArray lut;\nuniform SkyIrradianceAxes axes;";
+  const Comparison upper = run_case(
+      {"sky_mean_upper_radiance", {"sky_irradiance.glsl"}, glsl_decl,
+       "vec4(sky_mean_upper_radiance(lut, axes, q0.x, q0.y), 0.0)", {&tex}, 3,
+       "Texture2DArray<float4> lut : register(t0);\nSamplerState lut_sampler : register(s0);\n"
+       "SkyIrradianceAxes load_axes() { SkyIrradianceAxes a; a.max_sun_zenith = extra(0).x; "
+       "a.height = extra(0).y; return a; }",
+       "float4(sky_mean_upper_radiance(lut, lut_sampler, load_axes(), q0.x, q0.y), 0.0)",
+       {glm::vec4(max_zenith, height, 0.0f, 0.0f)}},
+      s.parameters("sky_irradiance"), query(true), uniforms);
+  expect_within(upper, kCoordinateBar, 1e-5);
+  const Comparison sphere = run_case(
+      {"sky_mean_radiance", {"sky_irradiance.glsl"}, glsl_decl,
+       "vec4(sky_mean_radiance(lut, axes, q0.x, q0.y), 0.0)", {&tex}, 3, "", "", {}},
+      s.parameters("sky_irradiance"), query(false), uniforms);
+  expect_within(sphere, kCoordinateBar, 1e-5);
+}
+
 }  // namespace
 }  // namespace skybake::gltest
