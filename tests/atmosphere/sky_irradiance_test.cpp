@@ -6,9 +6,11 @@
 
 #include "atmosphere/converged_multiscattering.hpp"
 #include "atmosphere/sh_l2.hpp"
+#include "atmosphere/sky_integrator.hpp"
 #include "atmosphere/sky_irradiance.hpp"
 #include "atmosphere/sphere_rule.hpp"
 #include "atmosphere/transmittance_lut.hpp"
+#include "reference/atmosphere_quadrature.hpp"
 #include "sky_irradiance_reference.hpp"
 #include "support/test_atmospheres.hpp"
 
@@ -139,6 +141,32 @@ TEST(SkyIrradiance, SkyOnlyDropsTheGround) {
   for (int c = 0; c < 3; ++c) {
     EXPECT_LT(sh_l2_irradiance(only, down)[c], 0.5 * sh_l2_irradiance(all, down)[c]);
     EXPECT_LT(sh_mean_radiance(only)[c], sh_mean_radiance(all)[c]);
+  }
+}
+
+// In twilight the table's single scattering (the march of the field
+// source, its default 40 steps) against the deterministic quadrature
+// (reference/atmosphere_quadrature.hpp): within 2% of each view's value,
+// the sun 4 and 8 degrees below the horizon, views toward, across and up.
+TEST(SkyIrradiance, TwilightSingleScatteringMatchesTheQuadrature) {
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const Texture t = bake_transmittance_lut(atm, {}, {});
+  const glm::dvec3 position(0.0, 0.0, atm.bottom_radius_m + 1.0);
+  for (double zenith_deg : {94.0, 98.0}) {
+    const double z = zenith_deg * kDeg;
+    const glm::dvec3 sun(std::sin(z), 0.0, std::cos(z));
+    for (double el : {2.0, 10.0, 30.0, 80.0})
+      for (double az : {0.0, 90.0}) {
+        const glm::dvec3 d(std::cos(el * kDeg) * std::cos(az * kDeg),
+                           std::cos(el * kDeg) * std::sin(az * kDeg), std::sin(el * kDeg));
+        const glm::dvec3 march = integrate_scattered_luminance(atm, t, nullptr, position, d, sun,
+                                                               INFINITY, SkyIrradianceSpec{}.steps)
+                                     .luminance;
+        const glm::dvec3 exact = reference_single_scattering(atm, position, d, sun, 1e-7).value;
+        for (int c = 0; c < 3; ++c)
+          EXPECT_NEAR(march[c], exact[c], 0.02 * exact[c])
+              << zenith_deg << " " << el << " " << az << " " << c;
+      }
   }
 }
 
