@@ -12,9 +12,7 @@
 
 namespace skybake {
 
-namespace {
-
-bool uses_multiscattering_table(const OutputSpec& spec) {
+bool sky_irradiance_reads_multiscattering(const OutputSpec& spec) {
   return option_string(spec, "radiance_source", "converged_field") == "multiscattering_table";
 }
 
@@ -22,7 +20,8 @@ SkyIrradianceSpec sky_irradiance_spec(const OutputSpec& spec) {
   SkyIrradianceSpec s;
   s.width = spec.size.at(0);
   s.height = spec.size.at(1);
-  s.max_sun_zenith_rad = option_double(spec, "max_sun_zenith_deg", s.max_sun_zenith_rad / kDeg) * kDeg;
+  s.max_sun_zenith_rad =
+      option_double(spec, "max_sun_zenith_deg", s.max_sun_zenith_rad / kDeg) * kDeg;
   s.sky_only = spec.options.value("sky_only", false);
   s.steps = option_int(spec, "steps", s.steps);
   s.below = option_int(spec, "rays_below_horizon", s.below);
@@ -31,16 +30,18 @@ SkyIrradianceSpec sky_irradiance_spec(const OutputSpec& spec) {
   return s;
 }
 
+namespace {
+
 Texture bake_sky_irradiance_product(const Scene& scene, const OutputSpec& spec,
                                     const ProductInputs& in, const BakeContext& ctx) {
   const Atmosphere& atm = scene.atmosphere;
   const Texture& transmittance = *in.at("transmittance");
   const SkyIrradianceSpec s = sky_irradiance_spec(spec);
-  if (uses_multiscattering_table(spec)) {
+  if (sky_irradiance_reads_multiscattering(spec)) {
     const SkyRadianceSource source = psi_ms_source(atm, transmittance, *in.at("multiscattering"), s);
     return bake_sky_irradiance(atm, source, s, ctx);
   }
-  // The field's iteration takes most of the time (docs/decisions/sky-irradiance-source.md).
+  // The field's iteration is about half the bake (docs/decisions/sky-irradiance-source.md).
   const ConvergedField field = compute_converged_field(
       atm, transmittance, converged_multiscattering_spec(spec), stage_context(ctx, 0.0, 0.7));
   SkyRadianceSource source;
@@ -51,7 +52,7 @@ Texture bake_sky_irradiance_product(const Scene& scene, const OutputSpec& spec,
 
 // The field's 4D table must be one bake_bruneton accepts.
 std::vector<ProductProblem> sky_irradiance_problems(const OutputSpec& spec) {
-  if (uses_multiscattering_table(spec)) return {};
+  if (sky_irradiance_reads_multiscattering(spec)) return {};
   BrunetonSpec b = converged_multiscattering_spec(spec).bruneton;
   b.mu_s_min = -0.5;  // replaced at bake time by converged_mu_s_min, always in (-1, 0]
   try {
@@ -78,7 +79,7 @@ void add_sky_light_products(std::vector<ProductInfo>& r) {
       "sky and ground light as L2 SH radiance, (sun zenith, altitude) x 6 coefficients, "
       "Ramamoorthi & Hanrahan 2001",
       {"sun_zenith", "altitude"}, {32, 16}, {256, 256}, {"transmittance", "multiscattering"},
-      bake_sky_irradiance_product, 400000.0);
+      bake_sky_irradiance_product, 280000.0);
   p.default_formats = {"exr"};
   p.allowed_formats = {"exr", "dds", "ktx2"};
   p.check = sky_irradiance_problems;
