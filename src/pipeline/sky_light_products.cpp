@@ -80,7 +80,6 @@ void add_sky_light_products(std::vector<ProductInfo>& r) {
       "Ramamoorthi & Hanrahan 2001",
       {"sun_zenith", "altitude"}, {32, 16}, {256, 256}, {"transmittance", "multiscattering"},
       bake_sky_irradiance_product, 280000.0);
-  p.default_formats = {"exr"};
   p.allowed_formats = {"exr", "dds", "ktx2"};
   p.check = sky_irradiance_problems;
   r.push_back(std::move(p));
