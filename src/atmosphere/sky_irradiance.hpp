@@ -23,13 +23,14 @@
 // axes: theta_s = theta_max u, altitude = (Rt - Rb) v^2 (rows crowd near the
 // ground, where the light changes fastest with height), u, v in [0, 1].
 //
-// Radiance: the march of sky_integrator.hpp with the multiple-scattering
-// table's Psi_ms (Hillaire 2020 eq. 11) along the rays of a symmetric
-// Gauss rule split at the horizon (sphere_rule.hpp); rays that meet the
-// ground add its Lambertian response to the sun and to the sky, the sky's
-// irradiance at the ground taken from the same march
-// (docs/decisions/sky-irradiance-source.md).
-// Reads: the transmittance and multiple-scattering tables.
+// Radiance: along the rays of a symmetric Gauss rule split at the viewer's
+// horizon (sphere_rule.hpp), from one of two sources (SkyRadianceSource
+// below; docs/decisions/sky-irradiance-source.md): single scattering
+// marched plus the converged 4D field's orders >= 2 (the default), or the
+// march with a multiple-scattering table's Psi_ms (Hillaire 2020 eq. 11).
+// Rays that meet the ground add its Lambertian response, attenuated along
+// the ray. Reads: the transmittance table, and the field or the
+// multiple-scattering table.
 #pragma once
 
 #include <array>
