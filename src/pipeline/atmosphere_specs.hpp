@@ -10,6 +10,7 @@
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/scattering3d_lut.hpp"
 #include "atmosphere/scattering_orders.hpp"
+#include "atmosphere/sky_irradiance.hpp"
 #include "atmosphere/skyview_lut.hpp"
 #include "atmosphere/skyview_multiple4d.hpp"
 #include "atmosphere/transmittance_lut.hpp"
@@ -30,6 +31,10 @@ ConvergedMultiscatteringSpec converged_multiscattering_spec(const OutputSpec& sp
 bool skyview_uses_multiple4d(const OutputSpec& spec);
 SkyviewLutSpec skyview_spec(const OutputSpec& spec);
 AerialPerspectiveSpec aerial_perspective_spec(const OutputSpec& spec);
+// Sky irradiance (sky_light_products.cpp): its spec, and whether its
+// radiance comes from the multiscattering table ("radiance_source").
+SkyIrradianceSpec sky_irradiance_spec(const OutputSpec& spec);
+bool sky_irradiance_reads_multiscattering(const OutputSpec& spec);
 // Defined in bruneton_products.cpp.
 BrunetonSpec bruneton_spec(const OutputSpec& spec);
 Scattering3dSpec scattering3d_spec(const OutputSpec& spec);

@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 
+#include "atmosphere/sh_l2.hpp"
 #include "atmosphere/sky_preview.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/product_options.hpp"
@@ -37,6 +38,7 @@ const std::map<std::string, ProductLimits>& limits_table() {
       {"scattering", {{}, {{"exr", 7.0}, {"dds", 7.0}, {"ktx2", 7.0}, {"png", 7.0}}}},
       {"single_mie", {}},
       {"irradiance", {{2, 2}, {}}},
+      {"sky_irradiance", {{2, 2}, {}}},
       {"scattering3d", {{}, {{"exr", 4.0}, {"dds", 6.0}, {"ktx2", 6.0}, {"png", 4.5}}}},
       {"gathering_sum", {}},
       {"noise_shape",
@@ -69,6 +71,7 @@ const ProductLimits& product_limits(const std::string& product) {
 int output_layers(const OutputSpec& spec) {
   if (spec.product == "skyview") return int(skyview_spec(spec).views.size());
   if (spec.product == "sky_preview") return int(SkyPreviewSpec().panels.size());
+  if (spec.product == "sky_irradiance") return kShSymmetricCount;
   return 1;
 }
 

@@ -15,6 +15,7 @@ std::vector<ProductInfo> make_registry() {
   std::vector<ProductInfo> r;
   add_atmosphere_products(r);
   add_bruneton_products(r);
+  add_sky_light_products(r);
   add_noise_products(r);
   add_cloud_products(r);
   return r;

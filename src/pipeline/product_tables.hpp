@@ -13,6 +13,7 @@ void add_atmosphere_products(std::vector<ProductInfo>& registry);
 void add_noise_products(std::vector<ProductInfo>& registry);
 void add_cloud_products(std::vector<ProductInfo>& registry);
 void add_bruneton_products(std::vector<ProductInfo>& registry);
+void add_sky_light_products(std::vector<ProductInfo>& registry);
 
 // What every product states (product.hpp): its name and one-line summary,
 // its size axes with their default and largest sizes, its baker and its

@@ -13,6 +13,7 @@
 #include "report/scattering.hpp"
 #include "report/scattering3d.hpp"
 #include "report/single_mie.hpp"
+#include "report/sky_irradiance.hpp"
 #include "report/sky_radiance.hpp"
 #include "report/skyview.hpp"
 #include "report/transmittance.hpp"
@@ -60,6 +61,10 @@ const std::vector<ReportSection>& report_sections() {
       make_section("hillaire_runtime", {"skyview"}, "/hillaire_runtime",
                    HillaireRuntimeSetup::quick(), HillaireRuntimeSetup::full(),
                    hillaire_runtime_report),
+      // Ambient light: the SH table against the path tracer's E(n).
+      make_section("sky_irradiance", {"sky_irradiance"}, "/sky_irradiance",
+                   SkyIrradianceReportSetup::quick(), SkyIrradianceReportSetup::full(),
+                   sky_irradiance_report),
       make_section("horizon_transmittance", {"transmittance"}, "/precision/horizon_transmittance",
                    horizon_transmittance_report),
       make_section("bruneton_comparison", {}, "/bruneton_comparison", BrunetonSetup::quick(),

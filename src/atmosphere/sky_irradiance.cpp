@@ -1,0 +1,264 @@
+#include "atmosphere/sky_irradiance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include "atmosphere/geometry.hpp"
+#include "atmosphere/irradiance_lut.hpp"
+#include "atmosphere/multiscattering_lut.hpp"
+#include "atmosphere/sky_integrator.hpp"
+#include "atmosphere/skyview_lut.hpp"
+#include "atmosphere/skyview_multiple4d.hpp"
+#include "atmosphere/sphere_rule.hpp"
+
+namespace skybake {
+
+namespace {
+
+double height_of(const Atmosphere& atm) { return atm.top_radius_m - atm.bottom_radius_m; }
+
+// Linear read of ground_sky_irradiance's table at a sun cosine.
+glm::dvec3 ground_sky_at(const std::vector<glm::dvec3>& table, double mu_s) {
+  const int n = int(table.size());
+  const double x = std::clamp(0.5 * (mu_s + 1.0), 0.0, 1.0) * (n - 1);
+  const int i = std::min(int(x), n - 2);
+  const double f = x - i;
+  return table[i] * (1.0 - f) + table[i + 1] * f;
+}
+
+// The cosine of the horizon's zenith angle at radius r: rays below it meet the ground.
+double horizon_cosine(const Atmosphere& atm, double r) {
+  const double rb = atm.bottom_radius_m;
+  return -std::sqrt(std::max((r - rb) * (r + rb), 0.0)) / r;
+}
+
+// Radiance along one ray from the psi_ms source: the march, plus the
+// ground's response to the sky when the ray ends there (the march's lit
+// ground holds the sun's part).
+glm::dvec3 psi_ms_ray(const Atmosphere& atm, const Texture& tlut, const Texture& mslut,
+                      const MultiscatteringMapping& mapping,
+                      const std::vector<glm::dvec3>& ground_sky, bool sky_only,
+                      glm::dvec3 position, glm::dvec3 dir, glm::dvec3 sun_dir, int steps) {
+  IntegrationOptions options;
+  options.lit_ground = !sky_only;
+  options.multiscattering_mapping = &mapping;
+  const ScatteringResult s =
+      integrate_scattered_luminance(atm, tlut, &mslut, position, dir, sun_dir, INFINITY, steps,
+                                    options);
+  glm::dvec3 l = s.luminance;
+  if (sky_only || ground_sky.empty()) return l;
+  const AtmosphereSpan span = clip_ray_to_atmosphere(atm, position, dir);
+  if (!span.hits_atmosphere || !span.exits_on_ground) return l;
+  const glm::dvec3 ground = position + span.t_exit * dir;
+  const double mu_s = glm::dot(glm::normalize(ground), sun_dir);
+  return l + s.transmittance * atm.ground_albedo / kPi * ground_sky_at(ground_sky, mu_s);
+}
+
+// Radiance along one ray from the field source: single scattering marched,
+// orders >= 2 from the 4D field, and the ground lit by every order.
+glm::dvec3 field_ray(const Atmosphere& atm, const Texture& tlut, const ConvergedField& field,
+                     bool sky_only, glm::dvec3 position, glm::dvec3 dir, glm::dvec3 sun_dir,
+                     double sun_zenith_rad, int steps) {
+  const ScatteringResult s = integrate_scattered_luminance(atm, tlut, nullptr, position, dir,
+                                                           sun_dir, INFINITY, steps, {});
+  const double r = glm::length(position);
+  const glm::dvec3 up = position / r;
+  glm::dvec3 l = s.luminance + lookup_field_multiple_scattering(
+                                   atm, field, r, skyview_direction_from_vectors(up, dir, sun_dir),
+                                   sun_zenith_rad);
+  if (sky_only) return l;
+  const AtmosphereSpan span = clip_ray_to_atmosphere(atm, position, dir);
+  if (!span.hits_atmosphere || !span.exits_on_ground) return l;
+  const glm::dvec3 ground = position + span.t_exit * dir;
+  const double mu_s = glm::dot(glm::normalize(ground), sun_dir);
+  return l + s.transmittance * atm.ground_albedo / kPi *
+                 lookup_irradiance(field.ground_irradiance, atm, atm.bottom_radius_m, mu_s);
+}
+
+glm::dvec3 sun_in_plane(double sun_zenith_rad) {
+  return {std::sin(sun_zenith_rad), 0.0, std::cos(sun_zenith_rad)};
+}
+
+}  // namespace
+
+double sky_irradiance_sun_zenith(const SkyIrradianceSpec& spec, int x) {
+  return spec.width > 1 ? spec.max_sun_zenith_rad * x / (spec.width - 1) : 0.0;
+}
+
+double sky_irradiance_altitude(const Atmosphere& atm, const SkyIrradianceSpec& spec, int y) {
+  const double v = spec.height > 1 ? double(y) / (spec.height - 1) : 0.0;
+  return height_of(atm) * v * v;
+}
+
+std::vector<glm::dvec3> ground_sky_irradiance(const Atmosphere& atm,
+                                              const Texture& transmittance_lut,
+                                              const Texture& multiscattering_lut,
+                                              const SkyIrradianceSpec& spec, int nodes) {
+  // Upward rays from the ground see only sky: one node below the split, never cast.
+  const SphereRule rule = symmetric_gauss_rule(1, spec.above, spec.azimuths, 0.0);
+  const MultiscatteringMapping mapping = multiscattering_mapping_of(multiscattering_lut);
+  const glm::dvec3 position(0.0, 0.0, atm.bottom_radius_m);
+  std::vector<glm::dvec3> table(nodes, glm::dvec3(0.0));
+  tbb::parallel_for(0, nodes, [&](int i) {
+    const double mu_s = -1.0 + 2.0 * i / (nodes - 1);
+    const glm::dvec3 sun(std::sqrt(std::max(1.0 - mu_s * mu_s, 0.0)), 0.0, mu_s);
+    glm::dvec3 e(0.0);
+    for (size_t k = 0; k < rule.dirs.size(); ++k) {
+      const glm::dvec3 d = rule.dirs[k];
+      if (d.z <= 0.0) continue;
+      e += rule.weights[k] * d.z *
+           psi_ms_ray(atm, transmittance_lut, multiscattering_lut, mapping, {}, true, position, d,
+                      sun, spec.steps);
+    }
+    table[i] = 4.0 * kPi * e;
+  });
+  return table;
+}
+
+SkyRadianceSource psi_ms_source(const Atmosphere& atm, const Texture& transmittance_lut,
+                                const Texture& multiscattering_lut, const SkyIrradianceSpec& spec) {
+  SkyRadianceSource source;
+  source.transmittance = &transmittance_lut;
+  source.multiscattering = &multiscattering_lut;
+  if (!spec.sky_only)
+    source.ground_sky = ground_sky_irradiance(atm, transmittance_lut, multiscattering_lut, spec,
+                                              kGroundSkyNodes);
+  return source;
+}
+
+ShRadiance compute_sky_radiance_sh(const Atmosphere& atm, const SkyRadianceSource& source,
+                                   const SkyIrradianceSpec& spec, double altitude_m,
+                                   double sun_zenith_rad) {
+  const double r = atm.bottom_radius_m + std::clamp(altitude_m, 0.0, height_of(atm));
+  const SphereRule rule =
+      symmetric_gauss_rule(spec.below, spec.above, spec.azimuths, horizon_cosine(atm, r));
+  MultiscatteringMapping mapping{};
+  if (!source.field) mapping = multiscattering_mapping_of(*source.multiscattering);
+  const glm::dvec3 position(0.0, 0.0, r);
+  const glm::dvec3 sun = sun_in_plane(sun_zenith_rad);
+  ShRadiance sh;
+  sh.fill(glm::dvec3(0.0));
+  for (size_t k = 0; k < rule.dirs.size(); ++k) {
+    const glm::dvec3 d = rule.dirs[k];
+    const glm::dvec3 l =
+        source.field ? field_ray(atm, *source.transmittance, *source.field, spec.sky_only,
+                                 position, d, sun, sun_zenith_rad, spec.steps)
+                     : psi_ms_ray(atm, *source.transmittance, *source.multiscattering, mapping,
+                                  source.ground_sky, spec.sky_only, position, d, sun, spec.steps);
+    const std::array<double, kShL2Count> y = sh_l2_basis(d);
+    // The rule stands each ray for itself and its mirror image in y: the
+    // y-odd functions cancel in pairs, so only the others are summed.
+    for (int j : kShSymmetricIndex) sh[j] += rule.weights[k] * y[j] * l;
+  }
+  for (glm::dvec3& c : sh) c *= 4.0 * kPi;  // the weights are fractions of 4 pi
+  return sh;
+}
+
+Texture bake_sky_irradiance(const Atmosphere& atm, const SkyRadianceSource& source,
+                            const SkyIrradianceSpec& spec, const BakeContext& ctx) {
+  Texture tex(spec.width, spec.height, 1, kShSymmetricCount, {"R", "G", "B"});
+  ProgressCounter progress(ctx, size_t(spec.height));
+  tbb::parallel_for(0, spec.width * spec.height, [&](int task) {
+    const int x = task % spec.width, y = task / spec.width;
+    const ShRadiance sh = compute_sky_radiance_sh(atm, source, spec,
+                                                  sky_irradiance_altitude(atm, spec, y),
+                                                  sky_irradiance_sun_zenith(spec, x));
+    const std::array<glm::dvec3, kShSymmetricCount> stored = encode_sky_radiance_sh(sh);
+    for (int j = 0; j < kShSymmetricCount; ++j)
+      for (int c = 0; c < 3; ++c) tex.at(x, y, 0, j, c) = float(stored[j][c]);
+    if (x == spec.width - 1) progress.tick();
+  });
+  Metadata& m = tex.metadata;
+  set_meta(m, "parameterization", std::string("sky_irradiance_sh_l2"));
+  set_meta(m, "radiance_source", std::string(source.field ? "field" : "psi_ms"));
+  set_meta(m, "sh_layers",
+           std::string("ln(L00), L10/L00, L11/L00, L20/L00, L21/L00, L22/L00"));
+  set_meta(m, "sh_frame",
+           std::string("z up, sun at azimuth 0 in the x-z plane; y-odd coefficients are 0"));
+  set_meta(m, "sh_normalization", std::string("orthonormal real SH (Ramamoorthi-Hanrahan 2001)"));
+  set_meta(m, "max_sun_zenith_deg", spec.max_sun_zenith_rad / kDeg);
+  set_meta(m, "bottom_radius_m", atm.bottom_radius_m);
+  set_meta(m, "top_radius_m", atm.top_radius_m);
+  set_meta(m, "atmosphere_height_m", height_of(atm));
+  set_meta(m, "altitude_mapping", std::string("quadratic"));
+  set_meta(m, "sky_only", spec.sky_only ? 1 : 0);
+  set_meta(m, "direction_rule",
+           fmt::format("Gauss-Legendre zenith cosines, {} below and {} above the horizon, x {} "
+                       "midpoint azimuths on (0, pi) weighted twice",
+                       spec.below, spec.above, spec.azimuths));
+  set_meta(m, "steps", spec.steps);
+  return tex;
+}
+
+ShRadiance lookup_sky_radiance_sh(const Texture& table, double altitude_m, double sun_zenith_rad) {
+  const double max_zenith = meta_double(table.metadata, "max_sun_zenith_deg") * kDeg;
+  const double height = meta_double(table.metadata, "atmosphere_height_m");
+  const double u = std::clamp(sun_zenith_rad / max_zenith, 0.0, 1.0);
+  const double v = std::sqrt(std::clamp(altitude_m / height, 0.0, 1.0));
+  const double fx = u * (table.width - 1), fy = v * (table.height - 1);
+  const int x0 = std::min(int(fx), std::max(table.width - 2, 0));
+  const int y0 = std::min(int(fy), std::max(table.height - 2, 0));
+  const int x1 = std::min(x0 + 1, table.width - 1), y1 = std::min(y0 + 1, table.height - 1);
+  const double ax = fx - x0, ay = fy - y0;
+  std::array<glm::dvec3, kShSymmetricCount> stored;
+  for (int j = 0; j < kShSymmetricCount; ++j) {
+    for (int ch = 0; ch < 3; ++ch) {
+      const double a = table.at(x0, y0, 0, j, ch) * (1 - ax) + table.at(x1, y0, 0, j, ch) * ax;
+      const double b = table.at(x0, y1, 0, j, ch) * (1 - ax) + table.at(x1, y1, 0, j, ch) * ax;
+      stored[j][ch] = a * (1 - ay) + b * ay;
+    }
+  }
+  return decode_sky_radiance_sh(stored);
+}
+
+std::array<glm::dvec3, kShSymmetricCount> encode_sky_radiance_sh(const ShRadiance& sh) {
+  std::array<glm::dvec3, kShSymmetricCount> stored;
+  const glm::dvec3 l00 = glm::max(sh[0], glm::dvec3(kMinStoredL00));
+  stored[0] = glm::log(l00);
+  for (int j = 1; j < kShSymmetricCount; ++j) stored[j] = sh[kShSymmetricIndex[j]] / l00;
+  return stored;
+}
+
+ShRadiance decode_sky_radiance_sh(const std::array<glm::dvec3, kShSymmetricCount>& stored) {
+  ShRadiance sh;
+  sh.fill(glm::dvec3(0.0));
+  const glm::dvec3 l00 = glm::exp(stored[0]);
+  sh[0] = l00;
+  for (int j = 1; j < kShSymmetricCount; ++j) sh[kShSymmetricIndex[j]] = stored[j] * l00;
+  return sh;
+}
+
+SkyFrame sky_frame(glm::dvec3 up, glm::dvec3 sun_dir) {
+  SkyFrame f;
+  f.z = up;
+  const double mu_s = std::clamp(glm::dot(up, sun_dir), -1.0, 1.0);
+  glm::dvec3 x = sun_dir - mu_s * up;
+  if (glm::dot(x, x) < 1e-24) {
+    // Sun at the zenith or nadir: the sky is symmetric about z, any x will do.
+    x = std::abs(up.x) < 0.9 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0);
+    x -= glm::dot(x, up) * up;
+  }
+  f.x = glm::normalize(x);
+  f.y = glm::cross(f.z, f.x);
+  f.sun_zenith_rad = std::acos(mu_s);
+  return f;
+}
+
+glm::dvec3 lookup_sky_irradiance(const Texture& table, glm::dvec3 n, glm::dvec3 up,
+                                 glm::dvec3 sun_dir, double altitude_m) {
+  const SkyFrame f = sky_frame(up, sun_dir);
+  const glm::dvec3 local(glm::dot(n, f.x), glm::dot(n, f.y), glm::dot(n, f.z));
+  return sh_l2_irradiance(lookup_sky_radiance_sh(table, altitude_m, f.sun_zenith_rad), local);
+}
+
+glm::dvec3 sh_mean_radiance(const ShRadiance& sh) { return kShY00 * sh[0]; }
+
+glm::dvec3 sh_mean_upper_radiance(const ShRadiance& sh) {
+  return kShY00 * sh[0] + 0.5 * kShY1 * sh[2];
+}
+
+}  // namespace skybake

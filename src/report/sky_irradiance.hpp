@@ -1,0 +1,33 @@
+// The sky_irradiance section of `skybake report` (sky_irradiance.cpp): the
+// table at the preset's settings against the path tracer's E(n), with its
+// three errors apart: the decode at texels, L2's own limit, and the
+// bilinear read between texels (docs/runtime.md "Sky irradiance").
+#pragma once
+
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "report/setup.hpp"
+
+namespace skybake {
+
+struct SkyIrradianceReportSetup {
+  std::vector<int> sky_irradiance_rows;     // altitude texel rows measured
+  std::vector<int> sky_irradiance_columns;  // sun zenith texel columns (daylight)
+  int sky_irradiance_normals = 64;
+  int sky_irradiance_rays_below = 4, sky_irradiance_rays_above = 8;
+  int sky_irradiance_azimuths = 12;
+  int sky_irradiance_samples = 32;  // paths per ray and channel
+
+  static SkyIrradianceReportSetup quick();
+  static SkyIrradianceReportSetup full();
+};
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SkyIrradianceReportSetup, sky_irradiance_rows,
+                                   sky_irradiance_columns, sky_irradiance_normals,
+                                   sky_irradiance_rays_below, sky_irradiance_rays_above,
+                                   sky_irradiance_azimuths, sky_irradiance_samples)
+
+nlohmann::json sky_irradiance_report(const ReportInputs& in, const SkyIrradianceReportSetup& setup);
+
+}  // namespace skybake
