@@ -36,6 +36,12 @@ inline double distance_to_nearest_boundary(double bottom_m, double top_m, double
 
 // Radius and zenith cosine after travelling distance d along (r, mu)
 // (law of cosines); the square root is safe, callers clamp to the shell.
+// Zenith cosine of the horizon seen from radius r >= bottom_m:
+// -sqrt(r^2 - Rb^2) / r; views below it meet the ground.
+inline double horizon_zenith_cosine(double bottom_m, double r) {
+  return -std::sqrt(std::max((r - bottom_m) * (r + bottom_m), 0.0)) / r;
+}
+
 inline double radius_after(double r, double mu, double d) {
   return safe_sqrt(d * d + 2.0 * r * mu * d + r * r);
 }

@@ -30,12 +30,6 @@ glm::dvec3 ground_sky_at(const std::vector<glm::dvec3>& table, double mu_s) {
   return table[i] * (1.0 - f) + table[i + 1] * f;
 }
 
-// The cosine of the horizon's zenith angle at radius r: rays below it meet the ground.
-double horizon_cosine(const Atmosphere& atm, double r) {
-  const double rb = atm.bottom_radius_m;
-  return -std::sqrt(std::max((r - rb) * (r + rb), 0.0)) / r;
-}
-
 // Radiance along one ray from the psi_ms source: the march, plus the
 // ground's response to the sky when the ray ends there (the march's lit
 // ground holds the sun's part).
@@ -135,7 +129,7 @@ ShRadiance compute_sky_radiance_sh(const Atmosphere& atm, const SkyRadianceSourc
                                    double sun_zenith_rad) {
   const double r = atm.bottom_radius_m + std::clamp(altitude_m, 0.0, height_of(atm));
   const SphereRule rule =
-      symmetric_gauss_rule(spec.below, spec.above, spec.azimuths, horizon_cosine(atm, r));
+      symmetric_gauss_rule(spec.below, spec.above, spec.azimuths, horizon_zenith_cosine(atm.bottom_radius_m, r));
   MultiscatteringMapping mapping{};
   if (!source.field) mapping = multiscattering_mapping_of(*source.multiscattering);
   const glm::dvec3 position(0.0, 0.0, r);
