@@ -415,6 +415,20 @@ bool dds_has_legacy_form(DdsFormat format) {
   return info(format).legacy.has_value();
 }
 
+DdsHeader dds_default_header(DdsFormat format, int layers) {
+  switch (format) {
+    case DdsFormat::R8G8B8A8_UNORM:
+    case DdsFormat::R8_UNORM:
+    case DdsFormat::BC1_UNORM:
+    case DdsFormat::BC3_UNORM:
+    case DdsFormat::BC4_UNORM:
+    case DdsFormat::BC5_UNORM:
+      return layers > 1 ? DdsHeader::dx10 : DdsHeader::legacy;
+    default:
+      return DdsHeader::dx10;
+  }
+}
+
 DdsFormat dds_format_from_name(const std::string& name, const std::string& context) {
   const std::string prefix = "DXGI_FORMAT_";
   const std::string bare =

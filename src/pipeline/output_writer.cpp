@@ -59,7 +59,8 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
                                             : std::vector<Texture>();
     MipLevels levels{&tex};
     for (const Texture& level : lower) levels.push_back(&level);
-    write_dds(tmp, levels, dds, output_dds_header(spec), FiniteCheck::already_checked);
+    write_dds(tmp, levels, dds, output_dds_header(spec, dds, tex.layers),
+              FiniteCheck::already_checked);
     return dxgi_format_name(dds);
   }
   if (format == "ktx2") {
