@@ -437,7 +437,8 @@ DdsFormat dds_format_from_name(const std::string& name, const std::string& conte
     if (bare == f.name) return f.format;
   std::vector<std::string> names;
   for (const FormatInfo& f : dds_format_infos()) names.push_back(f.name);
-  const std::string* best = closest_name(bare, names, 2);
+  const std::string* best = same_format_name(bare, names);
+  if (!best) best = closest_name(bare, names, 2);
   throw IoError(fmt::format("{}: expected one of {}, got \"{}\"{}", context, format_list(false),
                             name, best ? fmt::format(" (did you mean \"{}\"?)", *best) : ""));
 }
