@@ -21,6 +21,10 @@ struct LoadedTexture {
   nlohmann::json details = nlohmann::json::object();  // format-specific header fields
 };
 
+// The formats read_texture_file reads, by extension without the dot:
+// "exr", "dds", "ktx2", "vdb" (for messages and help text).
+const std::vector<std::string>& texture_file_formats();
+
 // Throws IoError for unknown extensions and unreadable files.
 LoadedTexture read_texture_file(const std::string& path);
 

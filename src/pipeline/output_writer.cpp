@@ -91,6 +91,11 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
 
 }  // namespace
 
+const std::vector<std::string>& output_formats() {
+  static const std::vector<std::string> formats = {"exr", "dds", "ktx2", "vdb", "png"};
+  return formats;
+}
+
 std::vector<std::string> output_files(const OutputSpec& spec) {
   std::vector<std::string> files;
   for (const std::string& format : spec.formats)

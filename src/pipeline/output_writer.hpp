@@ -13,6 +13,10 @@
 
 namespace skybake {
 
+// Every format write_outputs writes, in the order help text lists them:
+// "exr", "dds", "ktx2", "vdb", "png" (each product allows some of them).
+const std::vector<std::string>& output_formats();
+
 // The file names an output writes, one per format, relative to the scene folder.
 std::vector<std::string> output_files(const OutputSpec& spec);
 
