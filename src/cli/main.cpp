@@ -140,7 +140,7 @@ CLI::App* add_validate_command(CLI::App& app, ValidateArgs& args) {
       app.add_subcommand("validate", "Check presets against schemas/ and the semantic rules.");
   cmd->add_option("presets", args.presets,
                   "Preset files (JSON) of any kind: scene, planet, atmosphere or clouds, by "
-                  "their $schema")
+                  "their $schema; folders (their scene presets, recursively) or globs")
       ->required();
   cmd->add_flag("--strict", args.strict, "Keys that have no effect are errors, not warnings");
   cmd->add_flag("-q,--quiet", args.quiet, "Print only errors and warnings");

@@ -195,4 +195,23 @@ TEST(Validate, KeysWithNoEffectAreWarningsAndErrorsUnderStrict) {
   EXPECT_EQ(r.err, "");
 }
 
+// Folders and globs, as bake takes them: a folder's scene presets,
+// recursively, and what a pattern matches (docs/presets.md).
+TEST(Validate, AcceptsFoldersAndGlobsAsBakeDoes) {
+  const skybake::test::RunResult folder = run_skybake({"validate", source_path("presets").string()});
+  EXPECT_EQ(folder.exit_code, 0) << folder.err;
+  EXPECT_NE(folder.out.find("earth.json (scene 'earth'"), std::string::npos) << folder.out;
+  EXPECT_NE(folder.out.find("extreme/"), std::string::npos) << folder.out;
+  EXPECT_EQ(folder.out.find("atmospheres/earth.json"), std::string::npos)
+      << "a folder expands to its scene presets: " << folder.out;
+  const skybake::test::RunResult glob =
+      run_skybake({"validate", source_path("presets").string() + "/earth*.json"});
+  EXPECT_EQ(glob.exit_code, 0) << glob.err;
+  EXPECT_EQ(lines(glob.out).size(), 4u) << glob.out;  // earth, fair weather, precomputed, storm
+  const fs::path dir = fresh_dir("validate_nothing");
+  const skybake::test::RunResult none = run_skybake({"validate", (dir / "*.json").string()});
+  EXPECT_EQ(none.exit_code, 2) << none.err;
+  EXPECT_NE(none.err.find("no such preset file, folder or matching pattern"), std::string::npos);
+}
+
 }  // namespace
