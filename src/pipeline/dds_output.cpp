@@ -93,11 +93,7 @@ DdsHeader output_dds_header(const OutputSpec& spec, DdsFormat format, int layers
 
 std::vector<ProductProblem> dds_output_problems(const OutputSpec& spec, const ProductInfo& info) {
   const bool dds = std::find(spec.formats.begin(), spec.formats.end(), "dds") != spec.formats.end();
-  if (!dds) {
-    if (spec.options.contains("dds_header"))
-      return {{"/dds_header", "is only used with \"dds\" in formats"}};
-    return {};
-  }
+  if (!dds) return {};  // dds_format and dds_header without DDS: warnings
   const int channels = output_channels(spec);
   const DdsFormat format = output_dds_format(spec, info, channels);
   std::vector<ProductProblem> problems = format_problems(spec, info, format, channels);

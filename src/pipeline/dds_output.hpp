@@ -29,8 +29,8 @@ DdsHeader output_dds_header(const OutputSpec& spec, DdsFormat format, int layers
 // product that is not 8-bit [0, 1] data (the float tables), or whose channel
 // count differs from the product's; a legacy header for a format without
 // one, or for a product written as a 2D array (skyview's views, the sky
-// preview's panels); dds_header without "dds" in formats. Empty when the
-// output writes no DDS.
+// preview's panels). Empty when the output writes no DDS (its DDS keys then
+// have no effect: a warning of the preset loader).
 std::vector<ProductProblem> dds_output_problems(const OutputSpec& spec, const ProductInfo& info);
 
 }  // namespace skybake
