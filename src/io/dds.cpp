@@ -174,12 +174,13 @@ constexpr size_t kChunkTexels = size_t(1) << 18;
 // Writes one mip level of one array slice: every depth slice, in order.
 // `chunk` is the caller's buffer, reused across levels.
 void write_level(std::ostream& out, const Texture& m, int layer, const FormatInfo& f,
-                 std::unique_ptr<uint8_t[]>& chunk) {
+                 std::unique_ptr<uint8_t[]>& chunk, BcSliceCache* cache) {
   const int nc = m.channel_count();
   if (f.block) {
+    std::vector<uint8_t> scratch;
     for (int z = 0; z < m.depth; ++z) {
-      const std::vector<uint8_t> slice =
-          encode_bc(m.texel(0, 0, z, layer), m.width, m.height, nc, *f.block);
+      const std::vector<uint8_t>& slice = encode_bc_slice(
+          cache, scratch, m.texel(0, 0, z, layer), m.width, m.height, nc, *f.block);
       out.write(reinterpret_cast<const char*>(slice.data()), std::streamsize(slice.size()));
     }
     return;
@@ -460,7 +461,7 @@ void write_dds(const std::string& path, const std::vector<Texture>& mips, DdsFor
 }
 
 void write_dds(const std::string& path, const MipLevels& mips, DdsFormat format,
-               DdsHeader header_kind, FiniteCheck level0) {
+               DdsHeader header_kind, FiniteCheck level0, BcSliceCache* cache) {
   const FormatInfo& f = info(format);
   check_writable(path, mips, f, header_kind, level0);
   const std::vector<uint8_t> header = make_header(mips, f, header_kind);
@@ -474,7 +475,7 @@ void write_dds(const std::string& path, const MipLevels& mips, DdsFormat format,
   // (slice -> mips) and volumes (mip -> slices, with a single "slice").
   std::unique_ptr<uint8_t[]> chunk;
   for (int layer = 0; layer < mips[0]->layers && out; ++layer)
-    for (const Texture* m : mips) write_level(out, *m, layer, f, chunk);
+    for (const Texture* m : mips) write_level(out, *m, layer, f, chunk, cache);
   out.close();
   if (!out) {
     const std::string reason = std::strerror(errno);

@@ -44,6 +44,7 @@
 
 #include "core/finite_check.hpp"
 #include "core/texture.hpp"
+#include "io/block_compression.hpp"
 
 namespace skybake {
 
@@ -103,9 +104,11 @@ void write_dds(const std::string& path, const std::vector<Texture>& mips, DdsFor
                DdsHeader header = DdsHeader::dx10, FiniteCheck level0 = FiniteCheck::run);
 // The same from levels held elsewhere (level 0 need not be copied next to
 // the levels built from it).
+// A block format's slices go through `cache` when given (block_compression.hpp).
 using MipLevels = std::vector<const Texture*>;
 void write_dds(const std::string& path, const MipLevels& mips, DdsFormat format,
-               DdsHeader header = DdsHeader::dx10, FiniteCheck level0 = FiniteCheck::run);
+               DdsHeader header = DdsHeader::dx10, FiniteCheck level0 = FiniteCheck::run,
+               BcSliceCache* cache = nullptr);
 
 struct DdsImage {
   std::vector<Texture> mips;  // decoded float values; channels R, G, B, A as the format has

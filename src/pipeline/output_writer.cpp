@@ -1,6 +1,7 @@
 #include "pipeline/output_writer.hpp"
 
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -40,10 +41,26 @@ VdbWriteOptions vdb_options(const Texture& tex, const ProductInfo& info, const O
   return options;
 }
 
+// What the formats of one output share: the lower mip levels, built once
+// for DDS and KTX2 alike, and the block-compressed slices of every level,
+// encoded once for both (BC encoding is most of their writing).
+struct SharedLevels {
+  std::optional<std::vector<Texture>> lower;
+  BcSliceCache bc;
+
+  MipLevels levels(const Texture& tex, bool mips) {
+    MipLevels out{&tex};
+    if (!mips) return out;
+    if (!lower) lower = build_lower_mips(tex, MipEdge::wrap);
+    for (const Texture& level : *lower) out.push_back(&level);
+    return out;
+  }
+};
+
 // Writes `tex` to `tmp` in one format; returns the encoding it used. The
 // caller has run check_finite on `tex` (write_outputs: once for every format).
 std::string write_format(const std::string& format, const std::string& tmp, const Texture& tex,
-                         const ProductInfo& info, const OutputSpec& spec) {
+                         const ProductInfo& info, const OutputSpec& spec, SharedLevels& shared) {
   if (format == "exr") {
     const bool half = spec.precision == "half";
     write_exr(tmp, tex, half ? ExrPrecision::half : ExrPrecision::float32, ExrVolumeLayout::atlas,
@@ -55,19 +72,14 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
   if (format == "dds") {
     const DdsFormat dds = output_dds_format(spec, info, tex.channel_count());
     const bool mips = spec.options.value("mips", info.default_mips);
-    const std::vector<Texture> lower = mips ? build_lower_mips(tex, MipEdge::wrap)
-                                            : std::vector<Texture>();
-    MipLevels levels{&tex};
-    for (const Texture& level : lower) levels.push_back(&level);
-    write_dds(tmp, levels, dds, output_dds_header(spec, dds, tex.layers),
-              FiniteCheck::already_checked);
+    write_dds(tmp, shared.levels(tex, mips), dds, output_dds_header(spec, dds, tex.layers),
+              FiniteCheck::already_checked, &shared.bc);
     return dxgi_format_name(dds);
   }
   if (format == "ktx2") {
     const Ktx2Format ktx2 = output_ktx2_format(spec, info, tex.channel_count());
     const bool mips = spec.options.value("mips", info.default_mips);
-    write_ktx2(tmp, mips ? build_mip_chain(tex, MipEdge::wrap) : std::vector<Texture>{tex}, ktx2,
-               FiniteCheck::already_checked);
+    write_ktx2(tmp, shared.levels(tex, mips), ktx2, FiniteCheck::already_checked, &shared.bc);
     return ktx2_format_name(ktx2);
   }
   if (format == "vdb") {
@@ -105,11 +117,14 @@ std::vector<std::string> output_files(const OutputSpec& spec) {
 
 std::vector<ManifestFile> write_outputs(const Texture& tex, const ProductInfo& info,
                                         const OutputSpec& spec,
-                                        const std::filesystem::path& scene_dir) {
+                                        const std::filesystem::path& scene_dir,
+                                        const WriteProgress& on_file) {
   std::vector<std::unique_ptr<AtomicFile>> pending;
   std::vector<ManifestFile> files;
+  SharedLevels shared;
   const std::vector<std::string> names = output_files(spec);
   for (size_t i = 0; i < spec.formats.size(); ++i) {
+    if (on_file) on_file(names[i], double(i) / double(spec.formats.size()));
     pending.push_back(std::make_unique<AtomicFile>(scene_dir / names[i]));
     ManifestFile record;
     record.path = names[i];
@@ -119,7 +134,7 @@ std::vector<ManifestFile> write_outputs(const Texture& tex, const ProductInfo& i
       // Once for every format, by the first one's writer as before (the same
       // message, naming its file); the writers then skip it.
       if (i == 0) check_finite(tex, tmp.string());
-      record.encoding = write_format(spec.formats[i], tmp.string(), tex, info, spec);
+      record.encoding = write_format(spec.formats[i], tmp.string(), tex, info, spec, shared);
       // Size and content as written, so freshness notices a truncated or edited file.
       record.size = stat_file(tmp).size;
       record.hash = hash_file(tmp);

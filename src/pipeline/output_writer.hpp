@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,8 +21,12 @@ const std::vector<std::string>& output_formats();
 // The file names an output writes, one per format, relative to the scene folder.
 std::vector<std::string> output_files(const OutputSpec& spec);
 
+// `on_file`, when given, hears each file's name before it is written, with
+// the fraction of the output's files written so far.
+using WriteProgress = std::function<void(const std::string& file, double fraction)>;
 std::vector<ManifestFile> write_outputs(const Texture& tex, const ProductInfo& info,
                                         const OutputSpec& spec,
-                                        const std::filesystem::path& scene_dir);
+                                        const std::filesystem::path& scene_dir,
+                                        const WriteProgress& on_file = {});
 
 }  // namespace skybake
