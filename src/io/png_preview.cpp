@@ -90,10 +90,13 @@ void draw_panel(std::vector<uint8_t>& rgb, const PreviewLayout& layout, const Te
   const int sub_panels = opt.split_channels ? shown : 1;
   const int x0 = (k % layout.columns) * layout.cell_width;
   const int y0 = (k / layout.columns) * layout.cell_height;
+  const int w = tex.width * layout.scale_x, h = tex.height * layout.scale_y;  // one tile
   std::vector<uint8_t> mapped(shown);
-  for (int y = 0; y < tex.height; ++y)
-    for (int x = 0; x < tex.width; ++x) {
-      const float* v = panel_texel(tex, layout.panels[k], x, y);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int tx_ = x / layout.scale_x, ty_ = y / layout.scale_y;
+      const float* v =
+          panel_texel(tex, layout.panels[k], tx_, opt.height_up ? tex.height - 1 - ty_ : ty_);
       for (int c = 0; c < shown; ++c)
         mapped[c] = srgb8(tone_curve(e.offset + e.scale * v[c], opt.tonemap));
       for (int s = 0; s < sub_panels; ++s) {
@@ -104,8 +107,8 @@ void draw_panel(std::vector<uint8_t>& rgb, const PreviewLayout& layout, const Te
           px[1] = mapped[1], px[2] = shown > 2 ? mapped[2] : 0;
         for (int ty = 0; ty < tiles; ++ty)
           for (int tx = 0; tx < tiles; ++tx) {
-            const size_t px_x = x0 + (s * tiles + tx) * tex.width + x;
-            const size_t px_y = y0 + ty * tex.height + y;
+            const size_t px_x = x0 + (s * tiles + tx) * w + x;
+            const size_t px_y = y0 + ty * h + y;
             std::copy(px, px + 3, &rgb[(px_y * layout.width + px_x) * 3]);
           }
       }
@@ -237,8 +240,11 @@ PreviewLayout preview_layout(const Texture& tex, const PreviewOptions& opt) {
   layout.rows = (n + layout.columns - 1) / layout.columns;
   const int tiles = opt.tile_2x2 ? 2 : 1;
   const int sub_panels = opt.split_channels ? shown_channels(tex, opt) : 1;
-  layout.cell_width = tex.width * tiles * sub_panels;
-  layout.cell_height = tex.height * tiles;
+  // Whole pixels per texel, each axis to min_side (ceil(min_side / side)).
+  layout.scale_x = std::max(1, (opt.min_side + tex.width - 1) / tex.width);
+  layout.scale_y = std::max(1, (opt.min_side + tex.height - 1) / tex.height);
+  layout.cell_width = tex.width * layout.scale_x * tiles * sub_panels;
+  layout.cell_height = tex.height * layout.scale_y * tiles;
   layout.width = layout.columns * layout.cell_width;
   layout.height = layout.rows * layout.cell_height;
   return layout;

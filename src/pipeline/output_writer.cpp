@@ -41,6 +41,9 @@ VdbWriteOptions vdb_options(const Texture& tex, const ProductInfo& info, const O
   return options;
 }
 
+// Pixels a preview panel has at least along each axis (png_preview.hpp min_side).
+constexpr int kPreviewMinSide = 64;
+
 // What the formats of one output share: the lower mip levels, built once
 // for DDS and KTX2 alike, and the block-compressed slices of every level,
 // encoded once for both (BC encoding is most of their writing).
@@ -91,6 +94,10 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
     preview.tile_2x2 = info.preview_tiled;
     preview.split_channels = info.preview_split;
     preview.finite = FiniteCheck::already_checked;
+    // Small textures enlarged for the eye (cloud_types: 8 x 128); profiles
+    // over height drawn rising upward.
+    preview.min_side = kPreviewMinSide;
+    preview.height_up = !info.axes.empty() && info.axes.back() == "height";
     if (info.preview_split) {  // channels side by side, two slices stacked: stays readable
       preview.max_slices = 2;
       preview.max_columns = 1;

@@ -89,6 +89,44 @@ TEST(PngPreview, DimensionsFollowTheDocumentedLayout) {
   }
 }
 
+// min_side enlarges each short axis by whole pixels per texel (a 1 x 8
+// profile at 4 becomes 4 x 8; 2 x 3 at 5 becomes blocks of 3 x 2, 6 x 6),
+// and height_up draws texture row 0 at the bottom.
+TEST(PngPreview, SmallTexturesAreEnlargedAndHeightsRiseUpward) {
+  Texture profile(1, 8, 1, 1, {"R"});
+  for (int y = 0; y < 8; ++y) profile.at(0, y, 0, 0, 0) = float(y) / 7.0f;  // row 0 lowest
+  PreviewOptions opt;
+  opt.min_side = 4;
+  const std::string path = tmp_path("enlarged", "profile.png");
+  write_png_preview(path, profile, opt);
+  Rgb8 img = read_png(path);
+  ASSERT_EQ(img.width, 4);
+  ASSERT_EQ(img.height, 8);
+  auto grey = [](const Rgb8& im, int x, int y) { return im.at(x, y, 0); };
+  for (int x = 0; x < 4; ++x) EXPECT_EQ(grey(img, x, 0), grey(img, 0, 0));  // one texel, 4 px
+  EXPECT_LT(grey(img, 0, 0), grey(img, 0, 7));  // row 0 (0.0) on top, as stored
+  opt.height_up = true;
+  write_png_preview(path, profile, opt);
+  img = read_png(path);
+  EXPECT_GT(grey(img, 0, 0), grey(img, 0, 7));  // row 7 (1.0) on top: heights rise
+  EXPECT_EQ(grey(img, 0, 0), 255);
+  EXPECT_EQ(grey(img, 0, 7), 0);
+
+  Texture small(2, 3, 1, 1, {"R"});
+  small.at(1, 2, 0, 0, 0) = 1.0f;
+  opt = PreviewOptions{};
+  opt.min_side = 5;  // ceil(5 / 2) = 3 across, ceil(5 / 3) = 2 down
+  write_png_preview(path, small, opt);
+  img = read_png(path);
+  ASSERT_EQ(img.width, 6);
+  ASSERT_EQ(img.height, 6);
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 6; ++x)
+      EXPECT_EQ(grey(img, x, y), x >= 3 && y >= 4 ? 255 : 0) << x << " " << y;
+  // Textures already as large keep one pixel per texel.
+  EXPECT_EQ(preview_layout(constant(7, 5, 1, 1, 3, 0.2f), opt).width, 7);
+}
+
 TEST(PngPreview, ConstantHalfWithoutTonemapIsSrgbHalf) {
   const std::string path = tmp_path("constant", "t.png");
   PreviewOptions opt;
