@@ -50,6 +50,14 @@ struct PreviewOptions {
   // its own: a 1 x 128 height profile shows as 64 x 128). 0 = off.
   int min_side = 0;
   bool height_up = false;  // texture row 0 at the bottom (rows are heights, rising upward)
+  // With split_channels: a band above each sub-panel names its channel (and
+  // what the metadata "channel.<name>" says before any ':'), says "<v>
+  // EVERYWHERE" for a constant channel (an all-zero one is correct, not
+  // broken) and, with stretch_narrow, maps a [0, 1] channel whose range is
+  // narrower than 0.5 from [min, max] to [0, 1], saying "<min>-<max>
+  // STRETCHED".
+  bool label_channels = false;
+  bool stretch_narrow = false;
   FiniteCheck finite = FiniteCheck::run;  // core/finite_check.hpp
 };
 
@@ -58,6 +66,7 @@ struct PreviewLayout {
   std::vector<int> panels;  // the slice (volume) or layer (array) shown in each panel
   int columns = 1, rows = 1;
   int scale_x = 1, scale_y = 1;         // pixels per texel along x and y (min_side)
+  int label_height = 0;                 // the label band at the top of each cell
   int cell_width = 0, cell_height = 0;  // one panel in pixels
   int width = 0, height = 0;            // the whole image
 };
@@ -67,6 +76,10 @@ struct PreviewLayout {
 std::vector<int> preview_slices(int depth, int max_slices);
 
 PreviewLayout preview_layout(const Texture& tex, const PreviewOptions& opt);
+
+// The second line of a channel's label (label_channels): "0 EVERYWHERE" when
+// lo == hi, "0.70-0.94 STRETCHED" when stretched, else "".
+std::string preview_range_label(double lo, double hi, bool stretched);
 
 // Writes the preview to exactly `path` as an RGB8 PNG.
 // Throws IoError (before creating the file) when a value is NaN/Inf or the

@@ -98,6 +98,7 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
     // over height drawn rising upward.
     preview.min_side = kPreviewMinSide;
     preview.height_up = !info.axes.empty() && info.axes.back() == "height";
+    preview.label_channels = preview.stretch_narrow = info.preview_split;
     if (info.preview_split) {  // channels side by side, two slices stacked: stays readable
       preview.max_slices = 2;
       preview.max_columns = 1;

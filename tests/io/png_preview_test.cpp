@@ -3,6 +3,7 @@
 // (IEC 61966-2-1, recomputed here), monotonic tone mapping, exact 2x2 tiling
 // and deterministic bytes without time stamps.
 #include "io/png_preview.hpp"
+#include "io/preview_font.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -125,6 +126,45 @@ TEST(PngPreview, SmallTexturesAreEnlargedAndHeightsRiseUpward) {
       EXPECT_EQ(grey(img, x, y), x >= 3 && y >= 4 ? 255 : 0) << x << " " << y;
   // Textures already as large keep one pixel per texel.
   EXPECT_EQ(preview_layout(constant(7, 5, 1, 1, 3, 0.2f), opt).width, 7);
+}
+
+// Labels (label_channels): a band above each channel names it and says what
+// its second line means: "0 EVERYWHERE" for an all-zero channel, whose
+// panel stays black, and "<min>-<max> STRETCHED" for a narrow [0, 1]
+// channel that stretch_narrow maps to the full range.
+TEST(PngPreview, ChannelLabelsSayConstantAndStretchedChannels) {
+  EXPECT_EQ(preview_range_label(0.0, 0.0, false), "0 EVERYWHERE");
+  EXPECT_EQ(preview_range_label(0.5, 0.5, false), "0.5 EVERYWHERE");
+  EXPECT_EQ(preview_range_label(0.7, 0.94, true), "0.70-0.94 STRETCHED");
+  EXPECT_EQ(preview_range_label(0.0, 1.0, false), "");
+
+  Texture tex(128, 16, 1, 1, {"R", "G"});
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 128; ++x) tex.at(x, y, 0, 0, 1) = 0.7f + 0.24f * float(x) / 127.0f;
+  PreviewOptions opt;
+  opt.split_channels = opt.label_channels = opt.stretch_narrow = true;
+  const PreviewLayout layout = preview_layout(tex, opt);
+  ASSERT_GT(layout.label_height, 0);
+  const std::string path = tmp_path("labels", "t.png");
+  write_png_preview(path, tex, opt);
+  const Rgb8 img = read_png(path);
+  ASSERT_EQ(img.width, 256);
+  ASSERT_EQ(img.height, 16 + layout.label_height);
+  const int band = layout.label_height;
+  for (int y = band; y < img.height; ++y) {
+    for (int x = 0; x < 128; ++x) ASSERT_EQ(img.at(x, y, 0), 0) << "R is 0 everywhere";
+    EXPECT_EQ(img.at(128, y, 0), 0);    // G's minimum maps to black
+    EXPECT_EQ(img.at(255, y, 0), 255);  // and its maximum to white
+  }
+  // The band holds exactly the two lines of each channel, drawn by the font.
+  std::vector<uint8_t> expected(size_t(256) * band * 3, 0);
+  draw_preview_text(expected, 256, band, 1, 1, "R", 2, 255);
+  draw_preview_text(expected, 256, band, 1, 1 + band / 2, "0 EVERYWHERE", 2, 255);
+  draw_preview_text(expected, 256, band, 129, 1, "G", 2, 255);
+  draw_preview_text(expected, 256, band, 129, 1 + band / 2, "0.70-0.94 STRETCHED", 1, 255);
+  for (int y = 0; y < band; ++y)
+    for (int x = 0; x < 256; ++x)
+      ASSERT_EQ(img.at(x, y, 0), expected[(size_t(y) * 256 + x) * 3]) << x << " " << y;
 }
 
 TEST(PngPreview, ConstantHalfWithoutTonemapIsSrgbHalf) {
