@@ -170,7 +170,13 @@ void draw_labels(std::vector<uint8_t>& rgb, const PreviewLayout& layout, const T
   const int w = tex.width * layout.scale_x * tiles;
   for (int k = 0; k < int(layout.panels.size()); ++k) {
     const int x0 = (k % layout.columns) * layout.cell_width;
-    const int y0 = (k / layout.columns) * layout.cell_height;
+    int y0 = (k / layout.columns) * layout.cell_height;
+    if (!opt.panel_labels.empty()) {
+      const size_t panel = size_t(layout.panels[k]);
+      if (panel < opt.panel_labels.size())
+        draw_label_line(rgb, layout, x0, y0, layout.cell_width, opt.panel_labels[panel]);
+      y0 += kLabelLine;
+    }
     for (int c = 0; c < int(ranges.size()); ++c) {
       draw_label_line(rgb, layout, x0 + c * w, y0, w, channel_title(tex, c));
       draw_label_line(rgb, layout, x0 + c * w, y0 + kLabelLine, w, ranges[c]);
@@ -312,7 +318,8 @@ PreviewLayout preview_layout(const Texture& tex, const PreviewOptions& opt) {
   // Whole pixels per texel, each axis to min_side (ceil(min_side / side)).
   layout.scale_x = std::max(1, (opt.min_side + tex.width - 1) / tex.width);
   layout.scale_y = std::max(1, (opt.min_side + tex.height - 1) / tex.height);
-  layout.label_height = opt.label_channels && opt.split_channels ? 2 * kLabelLine : 0;
+  layout.label_height = (opt.label_channels && opt.split_channels ? 2 * kLabelLine : 0) +
+                        (opt.panel_labels.empty() ? 0 : kLabelLine);
   layout.cell_width = tex.width * layout.scale_x * tiles * sub_panels;
   layout.cell_height = tex.height * layout.scale_y * tiles + layout.label_height;
   layout.width = layout.columns * layout.cell_width;
@@ -334,7 +341,7 @@ void write_png_preview(const std::string& path, const Texture& tex, const Previe
   const Exposure common = opt.exposure ? Exposure{*opt.exposure} : auto_exposure(tex, layout, shown);
   std::vector<Exposure> e(size_t(shown), common);
   std::vector<std::string> ranges;
-  if (layout.label_height > 0)
+  if (opt.label_channels && opt.split_channels)
     for (int c = 0; c < shown; ++c) {
       const auto [lo, hi] = channel_range(tex, layout, c);
       const bool stretched = stretches(opt, lo, hi);

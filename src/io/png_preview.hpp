@@ -58,6 +58,9 @@ struct PreviewOptions {
   // STRETCHED".
   bool label_channels = false;
   bool stretch_narrow = false;
+  // One line above each panel (layer or slice shown), by panel index: what
+  // it shows (a sky preview: its sun and camera). Empty = no panel labels.
+  std::vector<std::string> panel_labels;
   FiniteCheck finite = FiniteCheck::run;  // core/finite_check.hpp
 };
 

@@ -1,5 +1,5 @@
 // A 3 x 5 pixel bitmap font for the labels of PNG previews (png_preview.hpp):
-// digits, upper-case letters and . - + : _ / ( ) %; lower case is drawn as
+// digits, upper-case letters and . , - + : _ / ( ) %; lower case is drawn as
 // upper case, anything else as a blank. Glyphs are 3 pixels wide with one
 // pixel between them, drawn at a whole-pixel scale.
 #pragma once

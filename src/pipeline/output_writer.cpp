@@ -1,7 +1,9 @@
 #include "pipeline/output_writer.hpp"
 
+#include <algorithm>
 #include <memory>
 #include <optional>
+#include <variant>
 
 #include <fmt/format.h>
 
@@ -43,6 +45,31 @@ VdbWriteOptions vdb_options(const Texture& tex, const ProductInfo& info, const O
 
 // Pixels a preview panel has at least along each axis (png_preview.hpp min_side).
 constexpr int kPreviewMinSide = 64;
+
+// The label of each panel a texture's metadata describes (a sky preview's
+// panel_<i>, its sun elevation and camera altitude): "SUNSET: SUN 0 DEG,
+// CAMERA AT 200 M"; none when it describes none.
+std::vector<std::string> panel_labels(const Texture& tex) {
+  std::vector<std::string> labels;
+  for (int i = 0;; ++i) {
+    const std::string key = fmt::format("panel_{}", i);
+    const auto name = tex.metadata.find(key);
+    if (name == tex.metadata.end() || !std::holds_alternative<std::string>(name->second)) break;
+    std::string label = std::get<std::string>(name->second);
+    std::replace(label.begin(), label.end(), '_', ' ');
+    const auto sun = tex.metadata.find(key + "_sun_elevation_deg");
+    if (sun != tex.metadata.end() && std::holds_alternative<double>(sun->second))
+      label += fmt::format(": SUN {} DEG", std::get<double>(sun->second));
+    const auto alt = tex.metadata.find(key + "_camera_altitude_m");
+    if (alt != tex.metadata.end() && std::holds_alternative<double>(alt->second)) {
+      const double m = std::get<double>(alt->second);
+      label += m < 1e4 ? fmt::format(", CAMERA AT {:.0f} M", m)
+                       : fmt::format(", CAMERA AT {:.0f} KM", m / 1e3);
+    }
+    labels.push_back(label);
+  }
+  return labels;
+}
 
 // What the formats of one output share: the lower mip levels, built once
 // for DDS and KTX2 alike, and the block-compressed slices of every level,
@@ -99,6 +126,7 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
     preview.min_side = kPreviewMinSide;
     preview.height_up = !info.axes.empty() && info.axes.back() == "height";
     preview.label_channels = preview.stretch_narrow = info.preview_split;
+    preview.panel_labels = panel_labels(tex);
     if (info.preview_split) {  // channels side by side, two slices stacked: stays readable
       preview.max_slices = 2;
       preview.max_columns = 1;

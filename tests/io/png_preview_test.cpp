@@ -167,6 +167,28 @@ TEST(PngPreview, ChannelLabelsSayConstantAndStretchedChannels) {
       ASSERT_EQ(img.at(x, y, 0), expected[(size_t(y) * 256 + x) * 3]) << x << " " << y;
 }
 
+// Panel labels: one line above each panel, by the panel's layer (or slice).
+TEST(PngPreview, PanelLabelsStandAboveTheirPanels) {
+  Texture tex(60, 8, 1, 3, {"R", "G", "B"});
+  PreviewOptions opt;
+  opt.panel_labels = {"SUN 60", "SUN 10", "SUN -3"};
+  opt.max_columns = 2;
+  const PreviewLayout layout = preview_layout(tex, opt);
+  ASSERT_GT(layout.label_height, 0);
+  const std::string path = tmp_path("panel_labels", "t.png");
+  write_png_preview(path, tex, opt);
+  const Rgb8 img = read_png(path);
+  ASSERT_EQ(img.width, 120);
+  ASSERT_EQ(img.height, 2 * (8 + layout.label_height));
+  std::vector<uint8_t> expected(size_t(120) * img.height * 3, 0);
+  draw_preview_text(expected, 120, img.height, 1, 1, "SUN 60", 2, 255);
+  draw_preview_text(expected, 120, img.height, 61, 1, "SUN 10", 2, 255);
+  draw_preview_text(expected, 120, img.height, 1, 1 + 8 + layout.label_height, "SUN -3", 2, 255);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < 120; ++x)
+      ASSERT_EQ(img.at(x, y, 0), expected[(size_t(y) * 120 + x) * 3]) << x << " " << y;
+}
+
 TEST(PngPreview, ConstantHalfWithoutTonemapIsSrgbHalf) {
   const std::string path = tmp_path("constant", "t.png");
   PreviewOptions opt;
