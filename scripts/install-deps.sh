@@ -20,13 +20,14 @@ packages=(
 )
 # What the tests, benchmarks and sanitizer checks add: test frameworks, the
 # independent readers (OpenImageIO, OpenEXR's and OpenVDB's tools, nvtt,
-# Pillow), the shader compiler and a software GL, clang with its sanitizer
-# and fuzzer runtime; Slurm and munge for the build-farm end-to-end test.
+# Pillow, Blender: docs/decisions/blender-test-dependency.md), the shader
+# compiler and a software GL, clang with its sanitizer and fuzzer runtime;
+# Slurm and munge for the build-farm end-to-end test.
 if [ "$mode" = all ]; then
   packages+=(
     clang-format libopenvdb-tools libopenimageio-dev openimageio-tools openexr
     libgtest-dev libgmock-dev libbenchmark-dev
-    libnvtt-bin python3-pil
+    libnvtt-bin python3-pil blender
     glslang-tools libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev
     clang libclang-rt-14-dev
     slurmctld slurmd slurm-client munge

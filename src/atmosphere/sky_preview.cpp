@@ -35,6 +35,16 @@ float tonemap(double x) {
   return float(std::clamp(c, 0.0, 1.0));
 }
 
+// The camera's altitude of a panel: from space far enough that the whole
+// planet and its atmosphere fit the frame; on the ground the spec's, at most
+// half the atmosphere's depth.
+double panel_altitude_m(const Atmosphere& atm, const SkyPreviewSpec& spec,
+                        const SkyPreviewPanel& panel) {
+  if (panel.from_space)
+    return atm.top_radius_m / std::sin(0.45 * spec.vertical_fov_deg * kDeg) - atm.bottom_radius_m;
+  return std::min(spec.camera_altitude_m, 0.5 * (atm.top_radius_m - atm.bottom_radius_m));
+}
+
 Texture render_panel(const Atmosphere& atm, const Texture& transmittance,
                      const Texture& multiscattering, const SkyPreviewSpec& spec,
                      const SkyPreviewPanel& panel) {
@@ -50,15 +60,11 @@ Texture render_panel(const Atmosphere& atm, const Texture& transmittance,
   luts.transmittance = &transmittance;
   luts.multiscattering = &multiscattering;
   const BakeContext quiet;
+  image.camera.altitude_m = panel_altitude_m(atm, spec, panel);
   if (panel.from_space) {
-    // Far enough that the whole planet and its atmosphere fit the frame.
-    const double fov = spec.vertical_fov_deg * kDeg;
-    image.camera.altitude_m = atm.top_radius_m / std::sin(0.45 * fov) - atm.bottom_radius_m;
     image.camera.pitch_rad = -kPi / 2;
     return render_sky_image(atm, luts, image, quiet);
   }
-  image.camera.altitude_m =
-      std::min(spec.camera_altitude_m, 0.5 * (atm.top_radius_m - atm.bottom_radius_m));
   image.camera.pitch_rad = spec.camera_pitch_deg * kDeg;
   image.camera.yaw_rad = 0.0;  // toward the sun
 
@@ -92,6 +98,11 @@ Texture bake_sky_preview(const Atmosphere& atm, const Texture& transmittance,
     float* dst = out.data.data() + size_t(p) * panel_values;
     for (size_t i = 0; i < panel_values; ++i) dst[i] = tonemap(exposure * hdr.data[i]);
     set_meta(out.metadata, fmt::format("panel_{}", p), spec.panels[p].label);
+    // What the PNG's label of the panel says (png_preview.hpp panel_labels).
+    set_meta(out.metadata, fmt::format("panel_{}_sun_elevation_deg", p),
+             spec.panels[p].sun_elevation_deg);
+    set_meta(out.metadata, fmt::format("panel_{}_camera_altitude_m", p),
+             panel_altitude_m(atm, spec, spec.panels[p]));
     set_meta(out.metadata, fmt::format("exposure_{}", p), exposure);
     ctx.report(size_t(p + 1), size_t(n));
   }

@@ -1,6 +1,7 @@
 // The skybake executable: parses the command line with CLI11 (only here) and
 // dispatches to the subcommands of commands.hpp. Errors are caught once:
 // `skybake: error: <message>` on stderr and the exit code of core/error.hpp.
+#include <cctype>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -13,6 +14,8 @@
 #include "core/error.hpp"
 #include "core/fresh_pages.hpp"
 #include "io/atomic_file.hpp"
+#include "io/texture_file.hpp"
+#include "pipeline/output_writer.hpp"
 #include "pipeline/product.hpp"
 
 namespace {
@@ -36,6 +39,29 @@ std::string products_help() {
          "  " + p.summary + "\n";
   }
   return s;
+}
+
+// "EXR, DDS, KTX2 or VDB": format names in upper case, the last joined by `last`.
+std::string formats_help(const std::vector<std::string>& formats, const std::string& last) {
+  std::string s;
+  for (size_t i = 0; i < formats.size(); ++i) {
+    if (i > 0) s += i + 1 == formats.size() ? " " + last + " " : ", ";
+    for (char c : formats[i]) s += char(std::toupper((unsigned char)c));
+  }
+  return s;
+}
+
+// The names --only takes, every registered product, wrapped at 90 columns.
+std::string only_products_help() {
+  std::string s = "\nProducts (--only):\n", line = " ";
+  for (const skybake::ProductInfo& p : skybake::product_registry()) {
+    if (line.size() + p.name.size() > 88) {
+      s += line + "\n";
+      line = " ";
+    }
+    line += " " + p.name;
+  }
+  return s + line + "\n";
 }
 
 const char* kFooter = R"(
@@ -101,6 +127,7 @@ CLI::App* add_bake_command(CLI::App& app, BakeArgs& args) {
                 "in memory, threads and timings");
   add_json_flag(cmd, args.json, "Print a machine-readable summary on stdout");
   cmd->footer(
+      only_products_help() +
       "\nOutputs are written to a temporary name and renamed when complete; "
       "DIR/<scene>/manifest.json records every output (files, shape, channels, "
       "parameterization, input hash, bake time). Re-running an unchanged bake does no work. "
@@ -113,7 +140,7 @@ CLI::App* add_validate_command(CLI::App& app, ValidateArgs& args) {
       app.add_subcommand("validate", "Check presets against schemas/ and the semantic rules.");
   cmd->add_option("presets", args.presets,
                   "Preset files (JSON) of any kind: scene, planet, atmosphere or clouds, by "
-                  "their $schema")
+                  "their $schema; folders (their scene presets, recursively) or globs")
       ->required();
   cmd->add_flag("--strict", args.strict, "Keys that have no effect are errors, not warnings");
   cmd->add_flag("-q,--quiet", args.quiet, "Print only errors and warnings");
@@ -168,6 +195,7 @@ CLI::App* add_plan_command(CLI::App& app, PlanArgs& args) {
                 "JSON on stdout: per-scene graphs plus the farm graph of stale nodes and edges");
   add_plan_emit_options(cmd, args);
   cmd->footer(
+      only_products_help() +
       "\nExamples:\n"
       "  skybake plan presets/earth.json                       graph and state of one scene\n"
       "  skybake plan presets/ --json                          farm graph of a catalog\n"
@@ -191,7 +219,8 @@ void add_max_memory_option(CLI::App* cmd, uint64_t& bytes) {
 
 CLI::App* add_info_command(CLI::App& app, InfoArgs& args) {
   CLI::App* cmd =
-      app.add_subcommand("info", "Read back EXR, DDS or VDB files and print shape and metadata.");
+      app.add_subcommand("info", "Read back " + formats_help(skybake::texture_file_formats(), "or") +
+                                     " files and print shape and metadata.");
   cmd->add_option("files", args.files, "Files written by skybake")->required();
   add_max_memory_option(cmd, args.max_memory);
   add_json_flag(cmd, args.json, "Print as JSON on stdout");
@@ -200,7 +229,9 @@ CLI::App* add_info_command(CLI::App& app, InfoArgs& args) {
 
 CLI::App* add_check_tiling_command(CLI::App& app, CheckTilingArgs& args) {
   CLI::App* cmd = app.add_subcommand(
-      "check-tiling", "Check that baked 2D/3D textures tile (DDS, EXR, VDB); exit 1 if not.");
+      "check-tiling", "Check that baked 2D/3D textures tile (" +
+                          formats_help(skybake::texture_file_formats(), "or") +
+                          " files); exit 1 if not.");
   cmd->add_option("files", args.files, "Texture files written by skybake")->required();
   cmd->add_option("-t,--tolerance", args.tolerance,
                   "The seam's jump score may exceed the median interior face's by this "
@@ -234,6 +265,7 @@ CLI::App* add_report_command(CLI::App& app, ReportArgs& args) {
   cmd->add_flag("-q,--quiet", args.quiet, "No progress lines on stderr");
   add_json_flag(cmd, args.json, "Print the summary as JSON on stdout");
   cmd->footer(
+      only_products_help() +
       "\nLadders of sample counts and sizes per table against independent references (adaptive "
       "quadrature, finer integration), sky radiance against the path tracer, float32/half "
       "findings, sky previews. Exit 0 whatever the accuracy; see docs/report.md.");
@@ -320,7 +352,8 @@ int main(int argc, char** argv) {
   skybake::install_temporary_cleanup();  // SIGINT, SIGTERM: no temporaries left behind
   CLI::App app{"skybake " SKYBAKE_VERSION
                " - bakes real-time sky assets (atmosphere LUTs, cloud noise, weather textures)\n"
-               "from JSON scene presets into EXR, DDS, VDB and PNG files."};
+               "from JSON scene presets into " +
+               formats_help(skybake::output_formats(), "and") + " files."};
   configure_app(app);
   Arguments args;
   args.plan.self = self_path(argv[0]);

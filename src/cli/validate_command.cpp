@@ -1,6 +1,7 @@
 // skybake validate: schema and semantic checks of each preset, of the kind
 // its $schema names (scene, planet, atmosphere, clouds); every problem of a
-// file in one error (pipeline/preset_loader.hpp), keys that have no effect
+// file in one error (pipeline/preset_loader.hpp); folders and globs expand
+// to scene presets as in bake (cli/errors.hpp); keys that have no effect
 // as warnings (errors under --strict); exit 0 when all are valid, 1
 // otherwise (every file is checked).
 #include <cstdio>
@@ -28,11 +29,13 @@ nlohmann::json problems_json(const std::vector<PresetProblem>& problems) {
 }  // namespace
 
 int run_validate(const ValidateArgs& args) {
-  require_files(args.presets);
+  // Files of any kind as named; folders and globs as bake expands them.
+  std::vector<std::string> presets;
+  for (const auto& path : expand_presets(args.presets)) presets.push_back(path.string());
   int status = kExitOk;
   nlohmann::json results = nlohmann::json::array();
   std::map<std::string, std::string> scene_files;  // by scene name: as bake refuses them
-  for (const std::string& preset : args.presets) {
+  for (const std::string& preset : presets) {
     try {
       const PresetCheck check = check_preset(preset);
       if (check.kind == "scene") {

@@ -101,7 +101,7 @@ Texture bake_cirrus(const CirrusSpec& spec, const BakeContext& ctx) {
   Metadata& m = tex.metadata;
   set_meta(m, "product", "cirrus");
   set_meta(m, "tiling", "periodic on x, y");
-  set_meta(m, "seed", double(spec.seed));  // uint32: exact in a double
+  set_meta(m, "seed", int(spec.seed));  // at most 2^31 - 1 (the schemas): an int
   set_meta(m, "channel.R", "cirrus streaks: ridged Perlin fBm 1 - |n|, fibres along x");
   set_meta(m, "channel.G", "cirrocumulus cells: inverted Worley fBm");
   set_meta(m, "channel.B", "altostratus sheets: Perlin fBm");

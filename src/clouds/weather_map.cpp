@@ -218,7 +218,7 @@ void set_weather_metadata(Metadata& m, const WeatherSpec& spec, const WeatherSig
   set_meta(m, "product", "weather");
   set_meta(m, "weather_layout", schneider ? "schneider" : "frostbite");
   set_meta(m, "tiling", "periodic on x, y");
-  set_meta(m, "seed", double(spec.seed));  // uint32: exact in a double
+  set_meta(m, "seed", int(spec.seed));  // at most 2^31 - 1 (the schemas): an int
   set_meta(m, "world_size_km", spec.world_size_km);
   set_meta(m, "texel_size_m", spec.world_size_km * 1e3 / spec.size);
   set_meta(m, "coverage.mean", spec.coverage.mean);

@@ -19,7 +19,9 @@ template <> const char* type_name_of<glm::dvec2>() { return "double2"; }
 template <> const char* type_name_of<glm::dvec3>() { return "double3"; }
 
 std::string number_text(int v) { return std::to_string(v); }
-std::string number_text(double v) { return fmt::format("{:.17g}", v); }
+// The shortest text that reads back as the same double (fmt's "{}", Dragonbox):
+// 0.09, not 0.089999999999999997.
+std::string number_text(double v) { return fmt::format("{}", v); }
 
 template <class V>
 std::string vector_text(const V& v) {

@@ -26,8 +26,9 @@ using Metadata = std::map<std::string, MetaValue>;
 // "string", "int2", "int3", "double2", "double3".
 std::string meta_type_name(const MetaValue& value);
 
-// The value as a person reads it: numbers with round-trip precision (17
-// significant digits for doubles), vectors as "[a, b, c]", strings as they are.
+// The value as a person reads it: doubles in the shortest text that reads
+// back as the same double ("0.09", "1e-300"), vectors as "[a, b, c]",
+// strings as they are.
 std::string meta_text(const MetaValue& value);
 
 // Sets a value. Call sites pass the natural C++ type; there is no conversion

@@ -15,7 +15,7 @@
 namespace skybake {
 
 struct BakeLogEntry {
-  double bake_seconds = 0.0;   // the baker's wall time
+  double bake_seconds = 0.0;   // wall time of computing the output and writing its files
   double error_seconds = 0.0;  // the error measurement's wall time
   std::map<std::string, int64_t> mtime_ns;  // by file path relative to the scene folder
   bool operator==(const BakeLogEntry& o) const {

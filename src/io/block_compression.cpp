@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
@@ -134,6 +135,28 @@ std::vector<uint8_t> encode_bc(const float* texels, int width, int height, int c
     }
   });
   return out;
+}
+
+bool BcSliceCache::Key::operator<(const Key& o) const {
+  return std::tie(texels, width, height, channels, format) <
+         std::tie(o.texels, o.width, o.height, o.channels, o.format);
+}
+
+const std::vector<uint8_t>& BcSliceCache::encode(const float* texels, int width, int height,
+                                                 int channels, BcFormat format) {
+  const Key key{texels, width, height, channels, format};
+  auto it = slices_.find(key);
+  if (it == slices_.end())
+    it = slices_.emplace(key, encode_bc(texels, width, height, channels, format)).first;
+  return it->second;
+}
+
+const std::vector<uint8_t>& encode_bc_slice(BcSliceCache* cache, std::vector<uint8_t>& scratch,
+                                            const float* texels, int width, int height,
+                                            int channels, BcFormat format) {
+  if (cache) return cache->encode(texels, width, height, channels, format);
+  scratch = encode_bc(texels, width, height, channels, format);
+  return scratch;
 }
 
 }  // namespace skybake

@@ -21,6 +21,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,32 @@ size_t bc_row_pitch(int width, BcFormat format);
 // tried), Error on a bad argument.
 std::vector<uint8_t> encode_bc(const float* texels, int width, int height, int channels,
                                BcFormat format);
+
+// encode_bc remembered per slice (texels, size, channels, format): the DDS
+// and the KTX2 file of one output hold the same blocks of the same levels,
+// and encoding is most of their writing, so each slice is encoded once. The
+// caller keeps the texels alive and unchanged while the cache lives. Not
+// for concurrent use (encode_bc itself runs in parallel).
+class BcSliceCache {
+ public:
+  const std::vector<uint8_t>& encode(const float* texels, int width, int height, int channels,
+                                     BcFormat format);
+  size_t encoded() const { return slices_.size(); }  // slices encoded so far
+
+ private:
+  struct Key {
+    const float* texels;
+    int width, height, channels;
+    BcFormat format;
+    bool operator<(const Key& o) const;
+  };
+  std::map<Key, std::vector<uint8_t>> slices_;
+};
+
+// encode_bc through `cache` when there is one.
+const std::vector<uint8_t>& encode_bc_slice(BcSliceCache* cache, std::vector<uint8_t>& scratch,
+                                            const float* texels, int width, int height,
+                                            int channels, BcFormat format);
 
 // Decodes one w x h slice of bc_slice_bytes(w, h, format) bytes at `blocks`
 // into w * h texels of bc_decoded_channel_count(format) floats each (x

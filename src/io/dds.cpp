@@ -174,12 +174,13 @@ constexpr size_t kChunkTexels = size_t(1) << 18;
 // Writes one mip level of one array slice: every depth slice, in order.
 // `chunk` is the caller's buffer, reused across levels.
 void write_level(std::ostream& out, const Texture& m, int layer, const FormatInfo& f,
-                 std::unique_ptr<uint8_t[]>& chunk) {
+                 std::unique_ptr<uint8_t[]>& chunk, BcSliceCache* cache) {
   const int nc = m.channel_count();
   if (f.block) {
+    std::vector<uint8_t> scratch;
     for (int z = 0; z < m.depth; ++z) {
-      const std::vector<uint8_t> slice =
-          encode_bc(m.texel(0, 0, z, layer), m.width, m.height, nc, *f.block);
+      const std::vector<uint8_t>& slice = encode_bc_slice(
+          cache, scratch, m.texel(0, 0, z, layer), m.width, m.height, nc, *f.block);
       out.write(reinterpret_cast<const char*>(slice.data()), std::streamsize(slice.size()));
     }
     return;
@@ -417,6 +418,20 @@ bool dds_has_legacy_form(DdsFormat format) {
   return info(format).legacy.has_value();
 }
 
+DdsHeader dds_default_header(DdsFormat format, int layers) {
+  switch (format) {
+    case DdsFormat::R8G8B8A8_UNORM:
+    case DdsFormat::R8_UNORM:
+    case DdsFormat::BC1_UNORM:
+    case DdsFormat::BC3_UNORM:
+    case DdsFormat::BC4_UNORM:
+    case DdsFormat::BC5_UNORM:
+      return layers > 1 ? DdsHeader::dx10 : DdsHeader::legacy;
+    default:
+      return DdsHeader::dx10;
+  }
+}
+
 DdsFormat dds_format_from_name(const std::string& name, const std::string& context) {
   const std::string prefix = "DXGI_FORMAT_";
   const std::string bare =
@@ -425,7 +440,8 @@ DdsFormat dds_format_from_name(const std::string& name, const std::string& conte
     if (bare == f.name) return f.format;
   std::vector<std::string> names;
   for (const FormatInfo& f : dds_format_infos()) names.push_back(f.name);
-  const std::string* best = closest_name(bare, names, 2);
+  const std::string* best = same_format_name(bare, names);
+  if (!best) best = closest_name(bare, names, 2);
   throw IoError(fmt::format("{}: expected one of {}, got \"{}\"{}", context, format_list(false),
                             name, best ? fmt::format(" (did you mean \"{}\"?)", *best) : ""));
 }
@@ -447,7 +463,7 @@ void write_dds(const std::string& path, const std::vector<Texture>& mips, DdsFor
 }
 
 void write_dds(const std::string& path, const MipLevels& mips, DdsFormat format,
-               DdsHeader header_kind, FiniteCheck level0) {
+               DdsHeader header_kind, FiniteCheck level0, BcSliceCache* cache) {
   const FormatInfo& f = info(format);
   check_writable(path, mips, f, header_kind, level0);
   const std::vector<uint8_t> header = make_header(mips, f, header_kind);
@@ -461,7 +477,7 @@ void write_dds(const std::string& path, const MipLevels& mips, DdsFormat format,
   // (slice -> mips) and volumes (mip -> slices, with a single "slice").
   std::unique_ptr<uint8_t[]> chunk;
   for (int layer = 0; layer < mips[0]->layers && out; ++layer)
-    for (const Texture* m : mips) write_level(out, *m, layer, f, chunk);
+    for (const Texture* m : mips) write_level(out, *m, layer, f, chunk, cache);
   out.close();
   if (!out) {
     const std::string reason = std::strerror(errno);

@@ -1,5 +1,6 @@
-// Our DDS writer and reader: the "DDS " magic, DDS_HEADER (124 bytes), by
-// default the DDS_HEADER_DXT10 extension (20 bytes), then the pixel data.
+// Our DDS writer and reader: the "DDS " magic, DDS_HEADER (124 bytes), with
+// the DX10 header the DDS_HEADER_DXT10 extension (20 bytes), then the pixel
+// data.
 // References (Microsoft Learn): "DDS_HEADER structure", "DDS_PIXELFORMAT",
 // "DDS_HEADER_DXT10 structure", "Programming Guide for DDS", "DXGI_FORMAT",
 // "Block Compression (Direct3D 10)"; docs/formats.md "DDS".
@@ -25,7 +26,7 @@
 // to the largest finite value (65024 for R and G, 64512 for B); block formats
 // clamp to [0, 1] and round to 8 bits before encoding.
 //
-// Headers: DX10 (the default) names the DXGI format; its miscFlags2 (alpha
+// Headers: DX10 names the DXGI format; its miscFlags2 (alpha
 // mode) is DDS_ALPHA_MODE_CUSTOM when the texture's fourth channel fills the
 // format's alpha (our alpha channels hold data, a fourth LUT component, not
 // coverage), DDS_ALPHA_MODE_OPAQUE when the format has alpha and the texture
@@ -44,6 +45,7 @@
 #include "core/finite_check.hpp"
 #include "core/texture.hpp"
 #include "io/read_budget.hpp"
+#include "io/block_compression.hpp"
 
 namespace skybake {
 
@@ -83,6 +85,14 @@ int dds_bytes_per_texel(DdsFormat format);
 bool dds_is_block_compressed(DdsFormat format);
 // Whether the format has a pre-DX10 pixel format (all but R11G11B10_FLOAT).
 bool dds_has_legacy_form(DdsFormat format);
+// The header a file gets when its output does not choose one, as texconv
+// (DirectXTex) chooses: legacy for a single texture (2D or volume) in
+// R8G8B8A8_UNORM, R8_UNORM (luminance), BC1 (DXT1), BC3 (DXT5), BC4 (ATI1) or
+// BC5 (ATI2), the forms that image tools outside engines read; DX10 for the
+// float formats, R8G8_UNORM (whose legacy masks leave B empty, which some
+// readers do not handle) and 2D arrays (`layers` > 1), which only DX10 can
+// describe. docs/formats.md "Which tools read which file" has the measurements.
+DdsHeader dds_default_header(DdsFormat format, int layers);
 
 // Writes `mips` (mips[0] full size; level i is max(1, size0 >> i) on every
 // axis; all levels share layers and channels; at most a full chain) to exactly
@@ -95,9 +105,11 @@ void write_dds(const std::string& path, const std::vector<Texture>& mips, DdsFor
                DdsHeader header = DdsHeader::dx10, FiniteCheck level0 = FiniteCheck::run);
 // The same from levels held elsewhere (level 0 need not be copied next to
 // the levels built from it).
+// A block format's slices go through `cache` when given (block_compression.hpp).
 using MipLevels = std::vector<const Texture*>;
 void write_dds(const std::string& path, const MipLevels& mips, DdsFormat format,
-               DdsHeader header = DdsHeader::dx10, FiniteCheck level0 = FiniteCheck::run);
+               DdsHeader header = DdsHeader::dx10, FiniteCheck level0 = FiniteCheck::run,
+               BcSliceCache* cache = nullptr);
 
 struct DdsImage {
   std::vector<Texture> mips;  // decoded float values; channels R, G, B, A as the format has

@@ -11,7 +11,11 @@
 //                           largest divisor of depth not above sqrt(depth)
 //                           (32 -> 8 x 4, 7 -> 7 x 1; docs/formats.md "EXR").
 //   volume, multipart       a multi-part EXR, part z named "slice<z>".
-// Channels keep the texture's names ("R", "G", "B", "A" or any other name).
+// Channels keep the texture's names ("R", "G", "B", "A" or any other name);
+// in a multi-part file each part's are prefixed with the part's name
+// ("layer0.R", "slice3.density"): OpenEXR's layer naming, channel names
+// unique across the file, which Blender needs to open it (docs/formats.md
+// "Which tools read which file").
 // Compression: zip by default (16 lines per block), or zips (1 line), piz or
 // none, all lossless; every one gives the same bytes for any thread count.
 //

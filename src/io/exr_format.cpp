@@ -53,6 +53,14 @@ std::vector<std::string> split_exr_channels(const std::string& text) {
   return out;
 }
 
+std::vector<std::string> exr_part_channels(const std::string& part,
+                                           const std::vector<std::string>& channels) {
+  if (part.empty()) return channels;
+  std::vector<std::string> out;
+  for (const std::string& c : channels) out.push_back(part + "." + c);
+  return out;
+}
+
 Imf::FrameBuffer exr_frame_buffer(const std::vector<std::string>& channels, const float* pixels,
                                   int64_t width, int64_t min_x, int64_t min_y) {
   return frame_buffer(channels, pixels, width, min_x, min_y);

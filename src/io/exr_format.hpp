@@ -26,6 +26,14 @@ bool is_reserved_exr_key(const std::string& key);
 std::string join_exr_channels(const std::vector<std::string>& channels);
 std::vector<std::string> split_exr_channels(const std::string& text);
 
+// The names a part's channels have in the file: "<part>.<channel>" in a
+// part named `part` (OpenEXR's layer naming, "Technical Introduction to
+// OpenEXR": a channel name is unique across the parts of a file, and Blender
+// and OpenImageIO read each part as the layer of that name), the channels
+// themselves when `part` is empty (a single-part file).
+std::vector<std::string> exr_part_channels(const std::string& part,
+                                           const std::vector<std::string>& channels);
+
 // Interleaved pixels (float, or half for writing half files: OpenEXR
 // converts types when reading, not when writing) of `width` texels per row,
 // channels in `channels` order, as OpenEXR's frame buffer. `min_x`, `min_y`:

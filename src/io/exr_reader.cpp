@@ -76,14 +76,26 @@ bool has_channel(const Imf::Header& h, const std::string& name) {
   return h.channels().findChannel(name) != nullptr;
 }
 
-// A foreign file's channels: EXR stores them sorted by name; R, G, B, A come
-// first (in that order), then the others in file order.
+// The name texture channel `name` has in part `h`: prefixed with the part's
+// name where the part holds it so (exr_part_channels), else `name` itself.
+std::string file_channel(const Imf::Header& h, const std::string& name) {
+  if (h.hasName() && has_channel(h, h.name() + "." + name)) return h.name() + "." + name;
+  return name;
+}
+
+// A foreign file's channels, without the part's name as prefix: EXR stores
+// them sorted by name; R, G, B, A come first (in that order), then the
+// others in file order.
 std::vector<std::string> file_channels(const Imf::Header& h) {
+  const std::string prefix = h.hasName() ? h.name() + "." : "";
   std::vector<std::string> out;
   for (const char* rgba : {"R", "G", "B", "A"})
-    if (has_channel(h, rgba)) out.push_back(rgba);
-  for (auto it = h.channels().begin(); it != h.channels().end(); ++it)
-    if (std::find(out.begin(), out.end(), it.name()) == out.end()) out.push_back(it.name());
+    if (has_channel(h, file_channel(h, rgba))) out.push_back(rgba);
+  for (auto it = h.channels().begin(); it != h.channels().end(); ++it) {
+    std::string name = it.name();
+    if (!prefix.empty() && name.rfind(prefix, 0) == 0) name = name.substr(prefix.size());
+    if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
+  }
   return out;
 }
 
@@ -157,12 +169,15 @@ void check_exr_budget(const std::string& path, const PartShape& shape, size_t ch
 // `out`, room for width x height x channels values.
 void read_part_into(const std::string& path, Imf::MultiPartInputFile& in, int part,
                     const PartInfo& info, const std::vector<std::string>& channels, float* out) {
-  for (const std::string& name : channels)
-    if (!has_channel(*info.header, name))
+  std::vector<std::string> names;
+  for (const std::string& name : channels) {
+    names.push_back(file_channel(*info.header, name));
+    if (!has_channel(*info.header, names.back()))
       throw IoError(
           fmt::format("{}: expected a channel '{}' in part {}, got none", path, name, part));
+  }
   Imf::InputPart input(in, part);
-  input.setFrameBuffer(exr_frame_buffer(channels, out, info.width, info.min_x, info.min_y));
+  input.setFrameBuffer(exr_frame_buffer(names, out, info.width, info.min_x, info.min_y));
   input.readPixels(int(info.min_y), int(info.min_y + info.height - 1));
 }
 
@@ -278,7 +293,7 @@ Texture read_exr_file(const std::string& path, ExrShape shape_from, uint64_t bud
   const std::vector<std::string> channels =
       channel_text.empty() ? file_channels(head) : split_exr_channels(channel_text);
   for (size_t c = 0; c < channels.size(); ++c)
-    if (!has_channel(head, channels[c]) ||
+    if (!has_channel(head, file_channel(head, channels[c])) ||
         std::find(channels.begin(), channels.begin() + c, channels[c]) != channels.begin() + c)
       throw IoError(fmt::format(
           "{}: expected skybake:channels to name distinct channels of the file, got '{}'", path,

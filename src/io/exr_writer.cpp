@@ -80,12 +80,15 @@ int exr_write_threads(const Imf::Header& header) {
 }
 
 // The header every part shares: channels, compression, metadata and shape.
+// A part of a multi-part file is named `part`, its channels prefixed with it.
 Imf::Header base_header(const Texture& tex, int width, int height, ExrPrecision precision,
-                        const std::string& layout) {
+                        const std::string& layout, const std::string& part = "") {
   Imf::Header header(width, height);
   header.compression() = Imf::ZIP_COMPRESSION;
+  if (!part.empty()) header.setName(part);
   const Imf::PixelType type = precision == ExrPrecision::half ? Imf::HALF : Imf::FLOAT;
-  for (const std::string& name : tex.channels) header.channels().insert(name, Imf::Channel(type));
+  for (const std::string& name : exr_part_channels(part, tex.channels))
+    header.channels().insert(name, Imf::Channel(type));
   for (const auto& [key, value] : tex.metadata) insert_typed_attribute(header, kExrPrefix + key, value);
   header.insert(kExrPrefix + "shape", Imf::StringAttribute(shape_attribute(tex)));
   header.insert(kExrPrefix + "channels", Imf::StringAttribute(join_exr_channels(tex.channels)));
@@ -164,7 +167,8 @@ void write_parts(const std::string& path, std::vector<Imf::Header>& headers,
                                    exr_write_threads(headers[0]));
       for (size_t i = 0; i < headers.size(); ++i) {
         Imf::OutputPart part(out, int(i));
-        part.setFrameBuffer(write_buffer(headers[i], channels, pixels[i], halves));
+        part.setFrameBuffer(write_buffer(headers[i], exr_part_channels(headers[i].name(), channels),
+                                         pixels[i], halves));
         part.writePixels(headers[i].dataWindow().max.y + 1);
       }
     }
@@ -210,9 +214,9 @@ void write_exr(const std::string& path, const Texture& tex, ExrPrecision precisi
     const bool volume = tex.is_volume();
     const int parts = volume ? tex.depth : tex.layers;
     for (int i = 0; i < parts; ++i) {
-      specs.push_back(
-          base_header(tex, tex.width, tex.height, precision, volume ? "slices" : "layers"));
-      specs.back().setName(fmt::format("{}{}", volume ? "slice" : "layer", i));
+      specs.push_back(base_header(tex, tex.width, tex.height, precision,
+                                  volume ? "slices" : "layers",
+                                  fmt::format("{}{}", volume ? "slice" : "layer", i)));
       pixels.push_back(volume ? tex.texel(0, 0, i, 0) : tex.texel(0, 0, 0, i));
     }
   } else {

@@ -63,9 +63,15 @@ constexpr const char* kMetaPrefix = "skybake.";
 // exactly `path` in `format`. Checks everything (shape, chain, channel count,
 // metadata keys, check_finite of every level) before the file is opened, so a
 // refused texture creates no file. Throws IoError on a bad input or a failed
-// write; Error on a reserved metadata key ("channels"). Single-threaded.
+// write; Error on a reserved metadata key ("channels"). Block formats are
+// encoded with encode_bc (parallel; bytes independent of the thread count).
 void write_ktx2(const std::string& path, const std::vector<Texture>& mips, Ktx2Format format,
                 FiniteCheck level0 = FiniteCheck::run);
+// The same from levels held elsewhere (as write_dds takes them); a block
+// format's slices go through `cache` when given (block_compression.hpp).
+using MipLevels = std::vector<const Texture*>;
+void write_ktx2(const std::string& path, const MipLevels& mips, Ktx2Format format,
+                FiniteCheck level0 = FiniteCheck::run, BcSliceCache* cache = nullptr);
 
 struct Ktx2LevelIndex {
   uint64_t byte_offset = 0, byte_length = 0, uncompressed_byte_length = 0;

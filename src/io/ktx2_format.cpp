@@ -71,7 +71,8 @@ Ktx2Format ktx2_format_from_name(const std::string& name, const std::string& con
     if (bare == f.name) return f.format;
     names.push_back(f.name);
   }
-  const std::string* best = closest_name(bare, names, 2);
+  const std::string* best = same_format_name(bare, names);
+  if (!best) best = closest_name(bare, names, 2);
   throw IoError(fmt::format("{}: expected one of {}, got \"{}\"{}", context,
                             ktx2_format_list(false), name,
                             best ? fmt::format(" (did you mean \"{}\"?)", *best) : ""));

@@ -68,10 +68,10 @@ void check_metadata(const std::string& path, const Metadata& meta) {
 }
 
 // Refuses anything that would not make a valid file, before any I/O.
-void check_writable(const std::string& path, const std::vector<Texture>& mips,
-                    const Ktx2FormatInfo& f, FiniteCheck level0) {
+void check_writable(const std::string& path, const MipLevels& mips, const Ktx2FormatInfo& f,
+                    FiniteCheck level0) {
   if (mips.empty()) throw IoError(path + ": expected at least one mip level, got none");
-  const Texture& top = mips[0];
+  const Texture& top = *mips[0];
   if (top.width < 1 || top.height < 1 || top.depth < 1 || top.layers < 1)
     throw IoError(fmt::format("{}: expected a non-empty texture, got {}x{}x{} with {} layers", path,
                               top.width, top.height, top.depth, top.layers));
@@ -87,7 +87,7 @@ void check_writable(const std::string& path, const std::vector<Texture>& mips,
     throw IoError(fmt::format("{}: expected at most {} mip levels for {}, got {}", path, full,
                               top.shape_string(), mips.size()));
   for (size_t i = 0; i < mips.size(); ++i) {
-    const Texture& m = mips[i];
+    const Texture& m = *mips[i];
     const Shape s = level_shape(top, int(i));
     if (m.width != s.width || m.height != s.height || m.depth != s.depth || m.layers != top.layers)
       throw IoError(fmt::format(
@@ -133,8 +133,8 @@ std::vector<uint8_t> key_value_data(const Texture& top) {
 
 // Header, index, level index, descriptor, key/value data and the padding
 // before the first (smallest) level: everything before the level data.
-std::vector<uint8_t> file_head(const std::vector<Texture>& mips, const Ktx2FormatInfo& f) {
-  const Texture& top = mips[0];
+std::vector<uint8_t> file_head(const MipLevels& mips, const Ktx2FormatInfo& f) {
+  const Texture& top = *mips[0];
   const uint32_t levels = uint32_t(mips.size());
   const std::vector<uint8_t> dfd = encode_dfd(dfd_for_vk_format(uint32_t(f.format)));
   const std::vector<uint8_t> kvd = key_value_data(top);
@@ -163,7 +163,7 @@ std::vector<uint8_t> file_head(const std::vector<Texture>& mips, const Ktx2Forma
   // Levels are stored smallest first; the index lists level 0 first.
   uint64_t offset = data_start;
   for (uint32_t p = levels; p-- > 0;) {
-    const Texture& m = mips[p];
+    const Texture& m = *mips[p];
     const uint64_t bytes = ktx2_level_bytes(f, uint64_t(m.width), uint64_t(m.height),
                                             uint64_t(m.depth), uint64_t(m.layers));
     uint8_t* entry = &h[ktx2::kHeaderBytes + ktx2::kLevelIndexEntryBytes * p];
@@ -179,17 +179,19 @@ std::vector<uint8_t> file_head(const std::vector<Texture>& mips, const Ktx2Forma
 
 // One level's bytes in file order (layers, slices, rows), padded with
 // zeros to `padded` bytes.
-std::vector<uint8_t> level_bytes(const Texture& m, const Ktx2FormatInfo& f, size_t padded) {
+std::vector<uint8_t> level_bytes(const Texture& m, const Ktx2FormatInfo& f, size_t padded,
+                                 BcSliceCache* cache) {
   const int nc = m.channel_count();
   std::vector<uint8_t> out;
   out.reserve(padded);
   if (f.encoding == Ktx2Encoding::bc) {
     // Block compression works on 2D slices; a 3D level is its slices in
     // order (block depth 1).
+    std::vector<uint8_t> scratch;
     for (int layer = 0; layer < m.layers; ++layer)
       for (int z = 0; z < m.depth; ++z) {
-        const std::vector<uint8_t> blocks =
-            encode_bc(m.texel(0, 0, z, layer), m.width, m.height, nc, f.bc);
+        const std::vector<uint8_t>& blocks =
+            encode_bc_slice(cache, scratch, m.texel(0, 0, z, layer), m.width, m.height, nc, f.bc);
         out.insert(out.end(), blocks.begin(), blocks.end());
       }
   } else {
@@ -205,6 +207,13 @@ std::vector<uint8_t> level_bytes(const Texture& m, const Ktx2FormatInfo& f, size
 
 void write_ktx2(const std::string& path, const std::vector<Texture>& mips, Ktx2Format format,
                 FiniteCheck level0) {
+  MipLevels levels;
+  for (const Texture& m : mips) levels.push_back(&m);
+  write_ktx2(path, levels, format, level0);
+}
+
+void write_ktx2(const std::string& path, const MipLevels& mips, Ktx2Format format,
+                FiniteCheck level0, BcSliceCache* cache) {
   const Ktx2FormatInfo& f = ktx2_format_info(format);
   check_writable(path, mips, f, level0);
   const std::vector<uint8_t> head = file_head(mips, f);
@@ -216,12 +225,12 @@ void write_ktx2(const std::string& path, const std::vector<Texture>& mips, Ktx2F
   const uint64_t align = ktx2_level_alignment(f);
   try {
     for (size_t p = mips.size(); p-- > 0 && out;) {  // smallest level first
-      const Texture& m = mips[p];
+      const Texture& m = *mips[p];
       const uint64_t bytes = ktx2_level_bytes(f, uint64_t(m.width), uint64_t(m.height),
                                               uint64_t(m.depth), uint64_t(m.layers));
       // Padded to the next level's alignment; the largest level ends the file.
       const std::vector<uint8_t> buf =
-          level_bytes(m, f, size_t(p == 0 ? bytes : align_up(bytes, align)));
+          level_bytes(m, f, size_t(p == 0 ? bytes : align_up(bytes, align)), cache);
       out.write(reinterpret_cast<const char*>(buf.data()), std::streamsize(buf.size()));
     }
   } catch (...) {  // the block encoder's plugin missing: no partial file

@@ -10,11 +10,15 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <string>
+#include <utility>
+#include <variant>
 
 #include <fmt/format.h>
 #include <zlib.h>
 
 #include "core/error.hpp"
+#include "io/preview_font.hpp"
 
 namespace skybake {
 
@@ -82,20 +86,23 @@ uint8_t srgb8(double linear) {
   return uint8_t(std::lround(s * 255.0));
 }
 
-// Draws panel `k` into the RGB8 image.
+// Draws panel `k` into the RGB8 image; channel c mapped by e[c].
 void draw_panel(std::vector<uint8_t>& rgb, const PreviewLayout& layout, const Texture& tex,
-                const PreviewOptions& opt, const Exposure& e, int k) {
+                const PreviewOptions& opt, const std::vector<Exposure>& e, int k) {
   const int shown = shown_channels(tex, opt);
   const int tiles = opt.tile_2x2 ? 2 : 1;
   const int sub_panels = opt.split_channels ? shown : 1;
   const int x0 = (k % layout.columns) * layout.cell_width;
-  const int y0 = (k / layout.columns) * layout.cell_height;
+  const int y0 = (k / layout.columns) * layout.cell_height + layout.label_height;
+  const int w = tex.width * layout.scale_x, h = tex.height * layout.scale_y;  // one tile
   std::vector<uint8_t> mapped(shown);
-  for (int y = 0; y < tex.height; ++y)
-    for (int x = 0; x < tex.width; ++x) {
-      const float* v = panel_texel(tex, layout.panels[k], x, y);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int tx_ = x / layout.scale_x, ty_ = y / layout.scale_y;
+      const float* v =
+          panel_texel(tex, layout.panels[k], tx_, opt.height_up ? tex.height - 1 - ty_ : ty_);
       for (int c = 0; c < shown; ++c)
-        mapped[c] = srgb8(tone_curve(e.offset + e.scale * v[c], opt.tonemap));
+        mapped[c] = srgb8(tone_curve(e[c].offset + e[c].scale * v[c], opt.tonemap));
       for (int s = 0; s < sub_panels; ++s) {
         uint8_t px[3] = {mapped[0], mapped[0], mapped[0]};  // one channel: grey
         if (opt.split_channels)
@@ -104,12 +111,77 @@ void draw_panel(std::vector<uint8_t>& rgb, const PreviewLayout& layout, const Te
           px[1] = mapped[1], px[2] = shown > 2 ? mapped[2] : 0;
         for (int ty = 0; ty < tiles; ++ty)
           for (int tx = 0; tx < tiles; ++tx) {
-            const size_t px_x = x0 + (s * tiles + tx) * tex.width + x;
-            const size_t px_y = y0 + ty * tex.height + y;
+            const size_t px_x = x0 + (s * tiles + tx) * w + x;
+            const size_t px_y = y0 + ty * h + y;
             std::copy(px, px + 3, &rgb[(px_y * layout.width + px_x) * 3]);
           }
       }
     }
+}
+
+// Pixels of the label band: two lines of 5-pixel glyphs at scale 2, 2 pixels
+// around each line.
+constexpr int kLabelScale = 2;
+constexpr int kLabelLine = 5 * kLabelScale + 2;
+
+// Smallest and largest value of channel c over the shown panels.
+std::pair<float, float> channel_range(const Texture& tex, const PreviewLayout& layout, int c) {
+  float lo = tex.data.empty() ? 0.0f : panel_texel(tex, layout.panels[0], 0, 0)[c], hi = lo;
+  for (int panel : layout.panels)
+    for (int y = 0; y < tex.height; ++y)
+      for (int x = 0; x < tex.width; ++x) {
+        const float v = panel_texel(tex, panel, x, y)[c];
+        lo = std::min(lo, v), hi = std::max(hi, v);
+      }
+  return {lo, hi};
+}
+
+// A split channel's mapping: the common one, or [lo, hi] -> [0, 1] for a
+// narrow [0, 1] channel under stretch_narrow (its label says so).
+bool stretches(const PreviewOptions& opt, float lo, float hi) {
+  return opt.stretch_narrow && !opt.exposure && lo >= 0.0f && hi <= 1.0f && hi > lo &&
+         hi - lo < 0.5f;
+}
+
+// The first label line: the channel's name and what its metadata says of
+// it before any ':' ("G erosion"), upper case.
+std::string channel_title(const Texture& tex, int c) {
+  std::string title = tex.channels[c];
+  const auto it = tex.metadata.find("channel." + tex.channels[c]);
+  if (it != tex.metadata.end())
+    if (const std::string* text = std::get_if<std::string>(&it->second))
+      title += " " + text->substr(0, text->find(':'));
+  return title;
+}
+
+// Draws `line` in the band of the sub-panel at (x, y), `w` pixels wide: at
+// the label scale when it fits, else at 1, cut at the sub-panel's edge.
+void draw_label_line(std::vector<uint8_t>& rgb, const PreviewLayout& layout, int x, int y, int w,
+                     std::string line) {
+  const int scale = preview_text_width(line, kLabelScale) + 2 <= w ? kLabelScale : 1;
+  const size_t fits = size_t(std::max(0, (w - 2 + 1) / (4 * scale)));
+  if (line.size() > fits) line.resize(fits);
+  draw_preview_text(rgb, layout.width, layout.height, x + 1, y + 1, line, scale, 255);
+}
+
+void draw_labels(std::vector<uint8_t>& rgb, const PreviewLayout& layout, const Texture& tex,
+                 const PreviewOptions& opt, const std::vector<std::string>& ranges) {
+  const int tiles = opt.tile_2x2 ? 2 : 1;
+  const int w = tex.width * layout.scale_x * tiles;
+  for (int k = 0; k < int(layout.panels.size()); ++k) {
+    const int x0 = (k % layout.columns) * layout.cell_width;
+    int y0 = (k / layout.columns) * layout.cell_height;
+    if (!opt.panel_labels.empty()) {
+      const size_t panel = size_t(layout.panels[k]);
+      if (panel < opt.panel_labels.size())
+        draw_label_line(rgb, layout, x0, y0, layout.cell_width, opt.panel_labels[panel]);
+      y0 += kLabelLine;
+    }
+    for (int c = 0; c < int(ranges.size()); ++c) {
+      draw_label_line(rgb, layout, x0 + c * w, y0, w, channel_title(tex, c));
+      draw_label_line(rgb, layout, x0 + c * w, y0 + kLabelLine, w, ranges[c]);
+    }
+  }
 }
 
 void append_u32_be(std::string& out, uint32_t v) {
@@ -219,6 +291,12 @@ void write_png_rgb8(const std::string& path, const std::vector<uint8_t>& rgb, in
 
 }  // namespace
 
+std::string preview_range_label(double lo, double hi, bool stretched) {
+  if (lo == hi) return fmt::format("{} EVERYWHERE", float(lo));
+  if (stretched) return fmt::format("{:.2f}-{:.2f} STRETCHED", lo, hi);
+  return "";
+}
+
 std::vector<int> preview_slices(int depth, int max_slices) {
   const int n = max_slices > 0 ? std::min(depth, max_slices) : depth;
   std::vector<int> z(n);
@@ -237,8 +315,13 @@ PreviewLayout preview_layout(const Texture& tex, const PreviewOptions& opt) {
   layout.rows = (n + layout.columns - 1) / layout.columns;
   const int tiles = opt.tile_2x2 ? 2 : 1;
   const int sub_panels = opt.split_channels ? shown_channels(tex, opt) : 1;
-  layout.cell_width = tex.width * tiles * sub_panels;
-  layout.cell_height = tex.height * tiles;
+  // Whole pixels per texel, each axis to min_side (ceil(min_side / side)).
+  layout.scale_x = std::max(1, (opt.min_side + tex.width - 1) / tex.width);
+  layout.scale_y = std::max(1, (opt.min_side + tex.height - 1) / tex.height);
+  layout.label_height = (opt.label_channels && opt.split_channels ? 2 * kLabelLine : 0) +
+                        (opt.panel_labels.empty() ? 0 : kLabelLine);
+  layout.cell_width = tex.width * layout.scale_x * tiles * sub_panels;
+  layout.cell_height = tex.height * layout.scale_y * tiles + layout.label_height;
   layout.width = layout.columns * layout.cell_width;
   layout.height = layout.rows * layout.cell_height;
   return layout;
@@ -254,10 +337,20 @@ void write_png_preview(const std::string& path, const Texture& tex, const Previe
                               tex.shape_string()));
   if (opt.finite == FiniteCheck::run) check_finite(tex, path);
   const PreviewLayout layout = preview_layout(tex, opt);
-  const Exposure e =
-      opt.exposure ? Exposure{*opt.exposure} : auto_exposure(tex, layout, shown_channels(tex, opt));
+  const int shown = shown_channels(tex, opt);
+  const Exposure common = opt.exposure ? Exposure{*opt.exposure} : auto_exposure(tex, layout, shown);
+  std::vector<Exposure> e(size_t(shown), common);
+  std::vector<std::string> ranges;
+  if (opt.label_channels && opt.split_channels)
+    for (int c = 0; c < shown; ++c) {
+      const auto [lo, hi] = channel_range(tex, layout, c);
+      const bool stretched = stretches(opt, lo, hi);
+      if (stretched) e[c] = {1.0 / (double(hi) - lo), -double(lo) / (double(hi) - lo)};
+      ranges.push_back(preview_range_label(lo, hi, stretched));
+    }
   std::vector<uint8_t> rgb(size_t(layout.width) * layout.height * 3, 0);
   for (int k = 0; k < int(layout.panels.size()); ++k) draw_panel(rgb, layout, tex, opt, e, k);
+  if (layout.label_height > 0) draw_labels(rgb, layout, tex, opt, ranges);
 
   write_png_rgb8(path, rgb, layout.width, layout.height);
 }

@@ -112,6 +112,11 @@ LoadedTexture load_ktx2(const std::string& path, uint64_t budget) {
 
 }  // namespace
 
+const std::vector<std::string>& texture_file_formats() {
+  static const std::vector<std::string> formats = {"exr", "dds", "ktx2", "vdb"};
+  return formats;
+}
+
 LoadedTexture read_texture_file(const std::string& path, uint64_t budget) {
   const std::string ext = fs::path(path).extension().string();
   if (!fs::exists(path)) throw IoError(fmt::format("{}: no such file", path));

@@ -22,6 +22,10 @@ struct LoadedTexture {
   nlohmann::json details = nlohmann::json::object();  // format-specific header fields
 };
 
+// The formats read_texture_file reads, by extension without the dot:
+// "exr", "dds", "ktx2", "vdb" (for messages and help text).
+const std::vector<std::string>& texture_file_formats();
+
 // Throws IoError for unknown extensions and unreadable files, and for a file
 // whose header announces more than `budget` bytes of what its reader holds
 // at once (io/read_budget.hpp: info and check-tiling pass --max-memory).

@@ -83,7 +83,7 @@ Texture bake_curl(const CurlSpec& spec, const BakeContext& ctx) {
 
   Metadata& m = tex.metadata;
   set_meta(m, "product", "curl");
-  set_meta(m, "seed", double(spec.seed));  // uint32: exact in a double
+  set_meta(m, "seed", int(spec.seed));  // at most 2^31 - 1 (the schemas): an int
   set_meta(m, "tiling", "periodic on x, y");
   set_meta(m, "period", spec.period);
   set_meta(m, "octaves", spec.octaves);

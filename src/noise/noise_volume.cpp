@@ -190,7 +190,7 @@ Texture bake_noise_shape(const NoiseShapeSpec& spec, const BakeContext& ctx) {
 
   Metadata& m = tex.metadata;
   set_meta(m, "product", "noise_shape");
-  set_meta(m, "seed", double(spec.seed));  // uint32: exact in a double
+  set_meta(m, "seed", int(spec.seed));  // at most 2^31 - 1 (the schemas): an int
   set_meta(m, "tiling", "periodic on x, y, z");
   set_meta(m, "remap", remap_name(spec.remap));
   set_meta(m, "channel.R",
@@ -234,7 +234,7 @@ Texture bake_noise_detail(const NoiseDetailSpec& spec, const BakeContext& ctx) {
 
   Metadata& m = tex.metadata;
   set_meta(m, "product", "noise_detail");
-  set_meta(m, "seed", double(spec.seed));  // uint32: exact in a double
+  set_meta(m, "seed", int(spec.seed));  // at most 2^31 - 1 (the schemas): an int
   set_meta(m, "tiling", "periodic on x, y, z");
   const char* names[3] = {"R", "G", "B"};
   for (int c = 0; c < 3; ++c) {

@@ -215,9 +215,19 @@ class SceneBake {
   void write(size_t i) {
     const GraphNode& node = graph_.nodes[i];
     const Texture& tex = *textures_[i];
-    std::vector<ManifestFile> files = write_outputs(tex, *node.info, node.spec, summary_.scene_dir);
+    // An output's time is computing it and writing its files: block
+    // compression can take longer than the bake itself.
+    const auto t_write = Clock::now();
+    WriteProgress writing;
+    if (options_.on_progress)  // the files' own line: encoding shows, not a bar stuck at 100%
+      writing = [this, product = node.info->name](const std::string& file, double f) {
+        options_.on_progress(product + " writing " + file, f);
+      };
+    std::vector<ManifestFile> files =
+        write_outputs(tex, *node.info, node.spec, summary_.scene_dir, writing);
+    const double seconds = bake_seconds_ + seconds_since(t_write);
     OutputRecord rec{node.info->name, "baked", reasons_[i],
-                     make_entry(node, tex, std::move(files), bake_seconds_)};
+                     make_entry(node, tex, std::move(files), seconds)};
     const auto t_measure = Clock::now();
     // Error records are measured on tables in skybake's layout.
     if (node.info->measure_error && output_convention(node.spec) == TableConvention::skybake)

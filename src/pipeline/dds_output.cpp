@@ -55,7 +55,8 @@ std::vector<ProductProblem> format_problems(const OutputSpec& spec, const Produc
 }
 
 std::vector<ProductProblem> header_problems(const OutputSpec& spec, DdsFormat format) {
-  if (output_dds_header(spec) != DdsHeader::legacy) return {};
+  // Only a legacy header the preset asks for: the default is legacy only where it can be.
+  if (option_string(spec, "dds_header", "") != "legacy") return {};
   if (!dds_has_legacy_form(format))
     return {{"/dds_header",
              fmt::format("{} has no legacy (pre-DX10) pixel format; use dds_header \"dx10\" or "
@@ -84,18 +85,15 @@ DdsFormat output_dds_format(const OutputSpec& spec, const ProductInfo& info, int
   return DdsFormat::R32G32B32A32_FLOAT;
 }
 
-DdsHeader output_dds_header(const OutputSpec& spec) {
-  return option_string(spec, "dds_header", "dx10") == "legacy" ? DdsHeader::legacy
-                                                                : DdsHeader::dx10;
+DdsHeader output_dds_header(const OutputSpec& spec, DdsFormat format, int layers) {
+  const std::string header = option_string(spec, "dds_header", "");
+  if (header.empty()) return dds_default_header(format, layers);
+  return header == "legacy" ? DdsHeader::legacy : DdsHeader::dx10;
 }
 
 std::vector<ProductProblem> dds_output_problems(const OutputSpec& spec, const ProductInfo& info) {
   const bool dds = std::find(spec.formats.begin(), spec.formats.end(), "dds") != spec.formats.end();
-  if (!dds) {
-    if (spec.options.contains("dds_header"))
-      return {{"/dds_header", "is only used with \"dds\" in formats"}};
-    return {};
-  }
+  if (!dds) return {};  // dds_format and dds_header without DDS: warnings
   const int channels = output_channels(spec);
   const DdsFormat format = output_dds_format(spec, info, channels);
   std::vector<ProductProblem> problems = format_problems(spec, info, format, channels);

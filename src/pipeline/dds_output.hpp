@@ -19,16 +19,18 @@ namespace skybake {
 // R32G32B32A32_FLOAT.
 DdsFormat output_dds_format(const OutputSpec& spec, const ProductInfo& info, int channels);
 
-// dds_header: "dx10" (default) or "legacy".
-DdsHeader output_dds_header(const OutputSpec& spec);
+// dds_header: "dx10" or "legacy" when given; else dds_default_header of the
+// format for a texture of `layers` layers (legacy for the 8-bit and block
+// formats tools outside engines read, DX10 for the rest).
+DdsHeader output_dds_header(const OutputSpec& spec, DdsFormat format, int layers);
 
 // The DDS rules of one output, with pointers relative to the output object:
 // a dds_format with fewer channels than the product; a block format on a
 // product that is not 8-bit [0, 1] data (the float tables), or whose channel
 // count differs from the product's; a legacy header for a format without
 // one, or for a product written as a 2D array (skyview's views, the sky
-// preview's panels); dds_header without "dds" in formats. Empty when the
-// output writes no DDS.
+// preview's panels). Empty when the output writes no DDS (its DDS keys then
+// have no effect: a warning of the preset loader).
 std::vector<ProductProblem> dds_output_problems(const OutputSpec& spec, const ProductInfo& info);
 
 }  // namespace skybake

@@ -41,8 +41,8 @@ Ktx2Format output_ktx2_format(const OutputSpec& spec, const ProductInfo& info, i
 std::vector<ProductProblem> ktx2_output_problems(const OutputSpec& spec, const ProductInfo& info) {
   const bool ktx2 =
       std::find(spec.formats.begin(), spec.formats.end(), "ktx2") != spec.formats.end();
-  if (!spec.options.contains("ktx2_format")) return {};
-  if (!ktx2) return {{"/ktx2_format", "is only used with \"ktx2\" in formats"}};
+  // Without KTX2, ktx2_format has no effect: a warning of the preset loader.
+  if (!spec.options.contains("ktx2_format") || !ktx2) return {};
   const int channels = output_channels(spec);
   const Ktx2FormatInfo& f = ktx2_format_info(output_ktx2_format(spec, info, channels));
   if (channels > f.components)

@@ -3,6 +3,9 @@
 // parameters in the output object
 // (schemas/products/noise_*.schema.json, curl.schema.json). Their spec
 // validation (noise/noise_volume.hpp spec_problems) runs at preset load.
+#include <algorithm>
+#include <optional>
+
 #include <fmt/format.h>
 
 #include "noise/curl_texture.hpp"
@@ -16,11 +19,61 @@ namespace skybake {
 
 namespace {
 
+// The fBm a problem's field names, where it names one: "perlin",
+// "perlin_worley", "worley[i]" of the volumes, "octaves" of curl.
+std::optional<WorleyFbmSpec> fbm_of(const NoiseShapeSpec& s, const std::string& field) {
+  if (field == "perlin") return WorleyFbmSpec{s.perlin_period, s.perlin_octaves};
+  if (field == "perlin_worley") return s.perlin_worley;
+  for (size_t i = 0; i < s.worley.size(); ++i)
+    if (field == fmt::format("worley[{}]", i)) return s.worley[i];
+  return std::nullopt;
+}
+std::optional<WorleyFbmSpec> fbm_of(const NoiseDetailSpec& s, const std::string& field) {
+  for (size_t i = 0; i < s.worley.size(); ++i)
+    if (field == fmt::format("worley[{}]", i)) return s.worley[i];
+  return std::nullopt;
+}
+std::optional<WorleyFbmSpec> fbm_of(const CurlSpec& s, const std::string& field) {
+  if (field == "octaves") return WorleyFbmSpec{s.period, s.octaves};
+  return std::nullopt;
+}
+
+// A default fBm whose finest octave is too fine for the size the preset
+// wrote: the preset never named it, so say it is the default and what fits
+// (the coarsest octaves kept, else one octave at the finest period the size
+// allows).
+std::string default_fbm_message(const std::string& field, const WorleyFbmSpec& f, int size) {
+  const int limit = std::max(1, std::min(size / 2, 256));
+  WorleyFbmSpec fit = f;
+  while (fit.octaves > 1 && (long(fit.period) << (fit.octaves - 1)) > limit) --fit.octaves;
+  if (fit.period > limit) fit = {limit, 1};
+  const long finest = long(f.period) << (f.octaves - 1);
+  const std::string value =
+      field == "octaves" ? fmt::format("\"period\": {}, \"octaves\": {}", fit.period, fit.octaves)
+                         : fmt::format("{{\"period\": {}, \"octaves\": {}}}", fit.period, fit.octaves);
+  return fmt::format(
+      "the default {} (period {}, octaves {}: finest period {}) does not fit size {}, whose "
+      "finest period is at most {}: write {}{}{}, or a size of at least {}",
+      field == "octaves" ? "fBm" : field, f.period, f.octaves, finest, size, limit,
+      field == "octaves" ? "" : "it as ", value,
+      field.rfind("worley[", 0) == 0 ? " (an entry of \"worley\" left {} keeps its default)" : "",
+      2 * finest);
+}
+
+// The spec's problems as the preset's; one about an fBm that is the
+// product's default (the schema fills defaults in, so a default is told by
+// its value) says so and what to write instead.
 template <typename Spec>
 std::vector<ProductProblem> problems_of(const Spec& spec) {
   std::vector<ProductProblem> out;
-  for (const SpecProblem& p : spec_problems(spec))
-    out.push_back({p.field == "size" ? "/size" : pointer_from_field(p.field), p.message});
+  for (const SpecProblem& p : spec_problems(spec)) {
+    const std::string pointer = p.field == "size" ? "/size" : pointer_from_field(p.field);
+    const std::optional<WorleyFbmSpec> fbm = fbm_of(spec, p.field);
+    const std::optional<WorleyFbmSpec> fallback = fbm_of(Spec{}, p.field);
+    const bool is_default = fbm && fallback && fbm->period == fallback->period &&
+                            fbm->octaves == fallback->octaves;
+    out.push_back({pointer, is_default ? default_fbm_message(p.field, *fbm, spec.size) : p.message});
+  }
   return out;
 }
 

@@ -1,6 +1,9 @@
 #include "pipeline/output_writer.hpp"
 
+#include <algorithm>
 #include <memory>
+#include <optional>
+#include <variant>
 
 #include <fmt/format.h>
 
@@ -40,10 +43,54 @@ VdbWriteOptions vdb_options(const Texture& tex, const ProductInfo& info, const O
   return options;
 }
 
+// Pixels a preview panel has at least along each axis (png_preview.hpp min_side).
+constexpr int kPreviewMinSide = 64;
+
+// The label of each panel a texture's metadata describes (a sky preview's
+// panel_<i>, its sun elevation and camera altitude): "SUNSET: SUN 0 DEG,
+// CAMERA AT 200 M"; none when it describes none.
+std::vector<std::string> panel_labels(const Texture& tex) {
+  std::vector<std::string> labels;
+  for (int i = 0;; ++i) {
+    const std::string key = fmt::format("panel_{}", i);
+    const auto name = tex.metadata.find(key);
+    if (name == tex.metadata.end() || !std::holds_alternative<std::string>(name->second)) break;
+    std::string label = std::get<std::string>(name->second);
+    std::replace(label.begin(), label.end(), '_', ' ');
+    const auto sun = tex.metadata.find(key + "_sun_elevation_deg");
+    if (sun != tex.metadata.end() && std::holds_alternative<double>(sun->second))
+      label += fmt::format(": SUN {} DEG", std::get<double>(sun->second));
+    const auto alt = tex.metadata.find(key + "_camera_altitude_m");
+    if (alt != tex.metadata.end() && std::holds_alternative<double>(alt->second)) {
+      const double m = std::get<double>(alt->second);
+      label += m < 1e4 ? fmt::format(", CAMERA AT {:.0f} M", m)
+                       : fmt::format(", CAMERA AT {:.0f} KM", m / 1e3);
+    }
+    labels.push_back(label);
+  }
+  return labels;
+}
+
+// What the formats of one output share: the lower mip levels, built once
+// for DDS and KTX2 alike, and the block-compressed slices of every level,
+// encoded once for both (BC encoding is most of their writing).
+struct SharedLevels {
+  std::optional<std::vector<Texture>> lower;
+  BcSliceCache bc;
+
+  MipLevels levels(const Texture& tex, bool mips) {
+    MipLevels out{&tex};
+    if (!mips) return out;
+    if (!lower) lower = build_lower_mips(tex, MipEdge::wrap);
+    for (const Texture& level : *lower) out.push_back(&level);
+    return out;
+  }
+};
+
 // Writes `tex` to `tmp` in one format; returns the encoding it used. The
 // caller has run check_finite on `tex` (write_outputs: once for every format).
 std::string write_format(const std::string& format, const std::string& tmp, const Texture& tex,
-                         const ProductInfo& info, const OutputSpec& spec) {
+                         const ProductInfo& info, const OutputSpec& spec, SharedLevels& shared) {
   if (format == "exr") {
     const bool half = spec.precision == "half";
     write_exr(tmp, tex, half ? ExrPrecision::half : ExrPrecision::float32, ExrVolumeLayout::atlas,
@@ -55,18 +102,14 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
   if (format == "dds") {
     const DdsFormat dds = output_dds_format(spec, info, tex.channel_count());
     const bool mips = spec.options.value("mips", info.default_mips);
-    const std::vector<Texture> lower = mips ? build_lower_mips(tex, MipEdge::wrap)
-                                            : std::vector<Texture>();
-    MipLevels levels{&tex};
-    for (const Texture& level : lower) levels.push_back(&level);
-    write_dds(tmp, levels, dds, output_dds_header(spec), FiniteCheck::already_checked);
+    write_dds(tmp, shared.levels(tex, mips), dds, output_dds_header(spec, dds, tex.layers),
+              FiniteCheck::already_checked, &shared.bc);
     return dxgi_format_name(dds);
   }
   if (format == "ktx2") {
     const Ktx2Format ktx2 = output_ktx2_format(spec, info, tex.channel_count());
     const bool mips = spec.options.value("mips", info.default_mips);
-    write_ktx2(tmp, mips ? build_mip_chain(tex, MipEdge::wrap) : std::vector<Texture>{tex}, ktx2,
-               FiniteCheck::already_checked);
+    write_ktx2(tmp, shared.levels(tex, mips), ktx2, FiniteCheck::already_checked, &shared.bc);
     return ktx2_format_name(ktx2);
   }
   if (format == "vdb") {
@@ -78,6 +121,12 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
     preview.tile_2x2 = info.preview_tiled;
     preview.split_channels = info.preview_split;
     preview.finite = FiniteCheck::already_checked;
+    // Small textures enlarged for the eye (cloud_types: 8 x 128); profiles
+    // over height drawn rising upward.
+    preview.min_side = kPreviewMinSide;
+    preview.height_up = !info.axes.empty() && info.axes.back() == "height";
+    preview.label_channels = preview.stretch_narrow = info.preview_split;
+    preview.panel_labels = panel_labels(tex);
     if (info.preview_split) {  // channels side by side, two slices stacked: stays readable
       preview.max_slices = 2;
       preview.max_columns = 1;
@@ -90,6 +139,11 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
 
 }  // namespace
 
+const std::vector<std::string>& output_formats() {
+  static const std::vector<std::string> formats = {"exr", "dds", "ktx2", "vdb", "png"};
+  return formats;
+}
+
 std::vector<std::string> output_files(const OutputSpec& spec) {
   std::vector<std::string> files;
   for (const std::string& format : spec.formats)
@@ -99,11 +153,14 @@ std::vector<std::string> output_files(const OutputSpec& spec) {
 
 std::vector<ManifestFile> write_outputs(const Texture& tex, const ProductInfo& info,
                                         const OutputSpec& spec,
-                                        const std::filesystem::path& scene_dir) {
+                                        const std::filesystem::path& scene_dir,
+                                        const WriteProgress& on_file) {
   std::vector<std::unique_ptr<AtomicFile>> pending;
   std::vector<ManifestFile> files;
+  SharedLevels shared;
   const std::vector<std::string> names = output_files(spec);
   for (size_t i = 0; i < spec.formats.size(); ++i) {
+    if (on_file) on_file(names[i], double(i) / double(spec.formats.size()));
     pending.push_back(std::make_unique<AtomicFile>(scene_dir / names[i]));
     ManifestFile record;
     record.path = names[i];
@@ -113,7 +170,7 @@ std::vector<ManifestFile> write_outputs(const Texture& tex, const ProductInfo& i
       // Once for every format, by the first one's writer as before (the same
       // message, naming its file); the writers then skip it.
       if (i == 0) check_finite(tex, tmp.string());
-      record.encoding = write_format(spec.formats[i], tmp.string(), tex, info, spec);
+      record.encoding = write_format(spec.formats[i], tmp.string(), tex, info, spec, shared);
       // Size and content as written, so freshness notices a truncated or edited file.
       record.size = stat_file(tmp).size;
       record.hash = hash_file(tmp);

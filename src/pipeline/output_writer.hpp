@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -13,11 +14,19 @@
 
 namespace skybake {
 
+// Every format write_outputs writes, in the order help text lists them:
+// "exr", "dds", "ktx2", "vdb", "png" (each product allows some of them).
+const std::vector<std::string>& output_formats();
+
 // The file names an output writes, one per format, relative to the scene folder.
 std::vector<std::string> output_files(const OutputSpec& spec);
 
+// `on_file`, when given, hears each file's name before it is written, with
+// the fraction of the output's files written so far.
+using WriteProgress = std::function<void(const std::string& file, double fraction)>;
 std::vector<ManifestFile> write_outputs(const Texture& tex, const ProductInfo& info,
                                         const OutputSpec& spec,
-                                        const std::filesystem::path& scene_dir);
+                                        const std::filesystem::path& scene_dir,
+                                        const WriteProgress& on_file = {});
 
 }  // namespace skybake

@@ -218,6 +218,20 @@ std::vector<PresetProblem> no_effect_warnings(const json& written, const Scene& 
     if (out.contains("mips") && !dds && !ktx2)
       warn(at + "/mips", "mips are the DDS mip chain (and KTX2's), and this output writes no DDS "
                          "and no KTX2");
+    for (const auto& [key, format] : {std::pair<const char*, const char*>{"exr_compression", "exr"},
+                                      {"dds_format", "dds"},
+                                      {"dds_header", "dds"},
+                                      {"ktx2_format", "ktx2"},
+                                      {"grid_names", "vdb"},
+                                      {"vdb_compression", "vdb"}})
+      if (out.contains(key) && !contains(spec.formats, format))
+        warn(at + "/" + key, fmt::format("{} is only used with \"{}\" in formats, and this "
+                                         "output writes {}",
+                                         key, format, fmt::join(spec.formats, ", ")));
+    if (out.contains("max_error") && !info.measure_error)
+      warn(at + "/max_error", fmt::format("the bake measures no error of {} (only of atmosphere "
+                                          "tables), so max_error has nothing to limit",
+                                          info.name));
     if (spec.options.contains("tolerance")) {
       const bool converging = spec.options["tolerance"].get<double>() > 0.0;
       for (const char* key : {"max_orders", "tail"})

@@ -195,4 +195,67 @@ TEST(Validate, KeysWithNoEffectAreWarningsAndErrorsUnderStrict) {
   EXPECT_EQ(r.err, "");
 }
 
+// One rule for keys that change nothing: a format's keys without the format
+// and max_error on a product whose error is not measured warn like mips
+// without DDS, rather than fail (docs/presets.md "Keys that have no effect").
+TEST(Validate, FormatKeysWithoutTheirFormatWarnLikeEveryKeyWithNoEffect) {
+  const fs::path dir = fresh_dir("validate_format_keys");
+  const std::string file = write(
+      dir, "keys.json",
+      {{"name", "keys"},
+       {"planet", {{"radius_km", 6360}}},
+       {"atmosphere", {{"top_radius_km", 6460}}},
+       {"clouds", json::object()},
+       {"outputs",
+        {{{"product", "transmittance"},
+          {"formats", {"png"}},
+          {"exr_compression", "zip"},
+          {"dds_format", "R16G16B16A16_FLOAT"},
+          {"dds_header", "dx10"},
+          {"ktx2_format", "R16G16B16A16_SFLOAT"},
+          {"max_error", 0.5}},
+         {{"product", "noise_detail"},
+          {"formats", {"dds"}},
+          {"grid_names", {"a", "b"}},  // not one per channel, but no VDB is written
+          {"vdb_compression", "zip"}},
+         {{"product", "weather"}, {"size", {64, 64}}, {"formats", {"dds"}}, {"max_error", 0.1}}}}});
+  const std::vector<std::string> expected = {
+      "/outputs/0/exr_compression: has no effect: exr_compression is only used with \"exr\" in "
+      "formats, and this output writes png",
+      "/outputs/0/dds_format: has no effect: dds_format is only used with \"dds\"",
+      "/outputs/0/dds_header: has no effect: dds_header is only used with \"dds\"",
+      "/outputs/0/ktx2_format: has no effect: ktx2_format is only used with \"ktx2\"",
+      "/outputs/1/grid_names: has no effect: grid_names is only used with \"vdb\"",
+      "/outputs/1/vdb_compression: has no effect: vdb_compression is only used with \"vdb\"",
+      "/outputs/2/max_error: has no effect: the bake measures no error of weather"};
+  auto r = run_skybake({"validate", file});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<std::string> l = lines(r.err);
+  ASSERT_EQ(l.size(), expected.size()) << r.err;
+  for (size_t i = 0; i < l.size(); ++i)
+    EXPECT_EQ(l[i].rfind("skybake: warning: " + file + ": " + expected[i], 0), 0u) << l[i];
+  r = run_skybake({"validate", "--strict", file});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err.rfind("skybake: error: " + file + ": " + expected[0], 0), 0u) << r.err;
+}
+
+// Folders and globs, as bake takes them: a folder's scene presets,
+// recursively, and what a pattern matches (docs/presets.md).
+TEST(Validate, AcceptsFoldersAndGlobsAsBakeDoes) {
+  const skybake::test::RunResult folder = run_skybake({"validate", source_path("presets").string()});
+  EXPECT_EQ(folder.exit_code, 0) << folder.err;
+  EXPECT_NE(folder.out.find("earth.json (scene 'earth'"), std::string::npos) << folder.out;
+  EXPECT_NE(folder.out.find("extreme/"), std::string::npos) << folder.out;
+  EXPECT_EQ(folder.out.find("atmospheres/earth.json"), std::string::npos)
+      << "a folder expands to its scene presets: " << folder.out;
+  const skybake::test::RunResult glob =
+      run_skybake({"validate", source_path("presets").string() + "/earth*.json"});
+  EXPECT_EQ(glob.exit_code, 0) << glob.err;
+  EXPECT_EQ(lines(glob.out).size(), 4u) << glob.out;  // earth, fair weather, precomputed, storm
+  const fs::path dir = fresh_dir("validate_nothing");
+  const skybake::test::RunResult none = run_skybake({"validate", (dir / "*.json").string()});
+  EXPECT_EQ(none.exit_code, 2) << none.err;
+  EXPECT_NE(none.err.find("no such preset file, folder or matching pattern"), std::string::npos);
+}
+
 }  // namespace

@@ -1,6 +1,8 @@
 #include "core/metadata.hpp"
 
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <limits>
 
 #include <gmock/gmock.h>
@@ -91,6 +93,36 @@ TEST(MetadataJson, OtherShapesAreRefusedWithTheKey) {
     } catch (const Error& e) {
       EXPECT_THAT(e.what(), HasSubstr("metadata/k: expected"));
     }
+  }
+}
+
+// A person reads the shortest text that parses back to the same double:
+// 0.09 as "0.09", not its 17-digit expansion "0.089999999999999997".
+TEST(Metadata, TextIsTheShortestThatReadsBackExactly) {
+  EXPECT_EQ(meta_text(MetaValue(0.09)), "0.09");
+  EXPECT_EQ(meta_text(MetaValue(2.0)), "2");
+  EXPECT_EQ(meta_text(MetaValue(-0.2)), "-0.2");
+  EXPECT_EQ(meta_text(MetaValue(glm::dvec3(5.8e-6, 1.35e-5, 3.31e-5))),
+            "[5.8e-06, 1.35e-05, 3.31e-05]");
+  EXPECT_EQ(meta_text(MetaValue(glm::dvec2(1.0, 1e-300))), "[1, 1e-300]");
+  EXPECT_EQ(meta_text(MetaValue(7)), "7");
+  // Every double reads back exactly, and no shorter text would: dropping
+  // the last significant digit changes the value.
+  uint64_t bits = 0x3FB70A3D70A3D70Aull;  // near 0.09
+  for (int i = 0; i < 2000; ++i) {
+    bits = bits * 6364136223846793005ull + 1442695040888963407ull;
+    double v;
+    const uint64_t finite = (bits & 0x800FFFFFFFFFFFFFull) | (uint64_t((bits >> 52) % 2046 + 1) << 52);
+    std::memcpy(&v, &finite, sizeof v);
+    const std::string text = meta_text(MetaValue(v));
+    ASSERT_EQ(std::strtod(text.c_str(), nullptr), v) << text;
+    const size_t e = text.find('e');
+    std::string mantissa = text.substr(0, e);
+    const std::string exponent = e == std::string::npos ? "" : text.substr(e);
+    if (mantissa.find('.') == std::string::npos || mantissa.size() < 3) continue;
+    mantissa.pop_back();
+    if (mantissa.back() == '.') mantissa.pop_back();
+    EXPECT_NE(std::strtod((mantissa + exponent).c_str(), nullptr), v) << text;
   }
 }
 

@@ -9,6 +9,7 @@
 
 #include "gl/gl_context.hpp"
 #include "io/dds.hpp"
+#include "io/dds_format_table.hpp"
 
 namespace skybake::gltest {
 namespace {
@@ -124,9 +125,14 @@ bool gl_format_from_dxgi(uint32_t dxgi_format, GlPixelFormat* out) {
 GlTexture upload_dds(const std::string& path, const SamplerState& sampler, bool array) {
   GlContext::shared();
   const DdsHeaderInfo h = read_dds_header(path);
+  // A legacy header names the format by its pre-DX10 pixel format
+  // (docs/runtime.md "Loading DDS files"); the data then starts at byte 128.
+  const DdsFormatInfo* legacy = h.has_dx10 ? nullptr : find_legacy_format(h.pixel_format);
+  const uint32_t dxgi = legacy ? uint32_t(legacy->format) : h.dxgi_format;
+  const size_t header_bytes = h.has_dx10 ? dds::kHeaderBytes : dds::kLegacyHeaderBytes;
   GlPixelFormat px;
-  if (!h.has_dx10 || !gl_format_from_dxgi(h.dxgi_format, &px))
-    throw GlError(path + ": no GL format for DXGI format " + std::to_string(h.dxgi_format));
+  if ((!h.has_dx10 && !legacy) || !gl_format_from_dxgi(dxgi, &px))
+    throw GlError(path + ": no GL format for DXGI format " + std::to_string(dxgi));
   std::ifstream in(path, std::ios::binary);
   const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const bool volume = (h.caps2 & dds::kCaps2Volume) != 0;
@@ -146,14 +152,14 @@ GlTexture upload_dds(const std::string& path, const SamplerState& sampler, bool 
   size_t chain_bytes = 0;
   for (int l = 0; l < levels; ++l)
     chain_bytes += level_bytes(l) * (volume ? size_t(std::max(depth >> l, 1)) : 1);
-  const size_t needed = dds::kHeaderBytes + chain_bytes * (volume ? 1 : size_t(layers));
+  const size_t needed = header_bytes + chain_bytes * (volume ? 1 : size_t(layers));
   if (bytes.size() < needed)
     throw GlError(path + ": " + std::to_string(bytes.size()) + " bytes, expected at least " +
                   std::to_string(needed));
   const int slices = volume ? depth : layers;
   GlTexture out = create_storage(target_of(volume, layers > 1 || array), px.internal_format, width, height, slices);
   for (int s = 0; s < slices; ++s) {
-    const size_t offset = dds::kHeaderBytes + (volume ? size_t(s) * level_bytes(0) : size_t(s) * chain_bytes);
+    const size_t offset = header_bytes + (volume ? size_t(s) * level_bytes(0) : size_t(s) * chain_bytes);
     if (px.block_bytes > 0)
       upload_compressed_slice(out, width, height, s, px.internal_format, level_bytes(0),
                               bytes.data() + offset);

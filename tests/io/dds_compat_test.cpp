@@ -6,10 +6,8 @@
 // independent reader of our legacy RGBA8, R8 and BC files.
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -21,6 +19,7 @@
 #include "io/block_compression.hpp"
 #include "io/dds.hpp"
 #include "support/file_bytes.hpp"
+#include "support/pillow.hpp"
 #include "support/run.hpp"
 
 namespace skybake {
@@ -261,43 +260,34 @@ TEST(DdsLegacy, FormatsWithoutALegacyFormAndArraysAreRefused) {
   EXPECT_TRUE(dds_has_legacy_form(DdsFormat::BC5_UNORM));
 }
 
-// ---- Pillow, an independent reader -----------------------------------------
-
-struct PillowImage {
-  std::string mode;
-  int width = 0, height = 0;
-  std::vector<uint8_t> bytes;
-};
-
-// Debian's python3-pil through /usr/bin/python3 (not a pyenv python, which
-// has no Pillow). A missing interpreter or Pillow fails the test.
-PillowImage pillow_read(const std::string& path) {
-  const std::string command =
-      "/usr/bin/python3 -c 'import sys; from PIL import Image; im = Image.open(sys.argv[1]); "
-      "print(im.mode, im.size[0], im.size[1]); print(im.tobytes().hex())' '" +
-      path + "' 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) throw std::runtime_error("cannot run /usr/bin/python3");
-  std::string out;
-  char buf[4096];
-  while (fgets(buf, sizeof buf, pipe)) out += buf;
-  const int status = pclose(pipe);
-  if (status != 0) throw std::runtime_error("Pillow could not read " + path + ": " + out);
-  std::istringstream in(out);
-  PillowImage image;
-  std::string hex;
-  in >> image.mode >> image.width >> image.height >> hex;
-  for (size_t i = 0; i + 1 < hex.size(); i += 2)
-    image.bytes.push_back(uint8_t(std::stoi(hex.substr(i, 2), nullptr, 16)));
-  return image;
+// The default header: legacy where it describes the file and common tools
+// read it (docs/formats.md "Which tools read which file"), else DX10.
+TEST(DdsLegacy, DefaultHeaderIsLegacyForEightBitAndBlockFormatsOfOneTexture) {
+  const DdsFormat legacy[] = {DdsFormat::R8G8B8A8_UNORM, DdsFormat::R8_UNORM,
+                              DdsFormat::BC1_UNORM,      DdsFormat::BC3_UNORM,
+                              DdsFormat::BC4_UNORM,      DdsFormat::BC5_UNORM};
+  const DdsFormat dx10[] = {DdsFormat::R32G32B32A32_FLOAT, DdsFormat::R16G16B16A16_FLOAT,
+                            DdsFormat::R11G11B10_FLOAT, DdsFormat::R16_FLOAT,
+                            DdsFormat::R8G8_UNORM};
+  ASSERT_EQ(std::size(legacy) + std::size(dx10), dds_formats().size());
+  for (DdsFormat f : legacy) {
+    SCOPED_TRACE(dxgi_format_name(f));
+    EXPECT_EQ(dds_default_header(f, 1), DdsHeader::legacy);
+    EXPECT_TRUE(dds_has_legacy_form(f));
+    // A legacy header has no array size: a 2D array keeps DX10.
+    EXPECT_EQ(dds_default_header(f, 2), DdsHeader::dx10);
+  }
+  for (DdsFormat f : dx10) EXPECT_EQ(dds_default_header(f, 1), DdsHeader::dx10) << dxgi_format_name(f);
 }
+
+// ---- Pillow, an independent reader -----------------------------------------
 
 // Compares Pillow's 8-bit pixels of `path` with our reader's floats, channel
 // by channel, within `tolerance` 8-bit steps (1e-3: the float32 rounding of
 // k / 255 * 255).
 void expect_pillow_matches(const std::string& path, const std::string& mode, int our_channels,
                            int compared, double tolerance) {
-  const PillowImage pil = pillow_read(path);
+  const test::PillowImage pil = test::pillow_read(path);
   const Texture ours = read_dds(path).mips[0];
   ASSERT_EQ(pil.mode, mode) << path;
   ASSERT_EQ(pil.width, ours.width);

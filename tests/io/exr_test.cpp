@@ -4,10 +4,14 @@
 // determinism and refusal of non-finite values.
 #include "io/exr.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <set>
+#include <string>
+#include <utility>
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
@@ -147,8 +151,64 @@ TEST(Exr, ArrayIsOnePartPerLayer) {
     for (int y = 0; y < 2; ++y)
       for (int x = 0; x < 4; ++x)
         for (int c = 0; c < 3; ++c)
-          EXPECT_EQ(parts[l].at(x, y, tex.channels[c]), tex.at(x, y, 0, l, c));
+          EXPECT_EQ(parts[l].at(x, y, "layer" + std::to_string(l) + "." + tex.channels[c]),
+                    tex.at(x, y, 0, l, c));
   }
+}
+
+// OpenEXR's layer naming: every channel of a multi-part file is prefixed
+// with its part's name, so no name repeats across the file (Blender refuses
+// a file whose parts repeat plain R, G, B: docs/formats.md "Which tools read
+// which file"); a single-part file keeps the plain names.
+TEST(Exr, MultipartChannelNamesArePrefixedWithThePartAndUniqueInTheFile) {
+  const Texture array = make_texture(4, 2, 1, 3, {"R", "G", "B"});
+  const Texture volume = make_texture(3, 2, 4, 1, {"density"});
+  const std::string a = tmp_path("naming", "array.exr"), v = tmp_path("naming", "slices.exr");
+  write_exr(a, array, ExrPrecision::half);
+  write_exr(v, volume, ExrPrecision::float32, ExrVolumeLayout::multipart);
+  for (const auto& [path, prefix] : {std::pair{a, std::string("layer")}, std::pair{v, std::string("slice")}}) {
+    SCOPED_TRACE(path);
+    std::set<std::string> seen;
+    const auto parts = read_with_oiio(path);
+    for (size_t p = 0; p < parts.size(); ++p) {
+      const std::string part = prefix + std::to_string(p);
+      EXPECT_EQ(parts[p].spec.get_string_attribute("oiio:subimagename"), part);
+      for (const std::string& name : parts[p].spec.channelnames) {
+        EXPECT_EQ(name.rfind(part + ".", 0), 0u) << name;
+        EXPECT_TRUE(seen.insert(name).second) << name << " repeats";
+      }
+    }
+    EXPECT_EQ(seen.size(), path == a ? 9u : 4u);
+  }
+  const std::string single = tmp_path("naming", "image.exr");
+  write_exr(single, make_texture(4, 2, 1, 1, {"R", "G"}), ExrPrecision::float32);
+  std::vector<std::string> names = read_with_oiio(single).at(0).spec.channelnames;
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"G", "R"}));
+}
+
+// A foreign multi-part file with plain channel names in every part (as other
+// writers make them) reads as a 2D array too.
+TEST(Exr, ReadExrAcceptsAForeignMultipartFileWithPlainNames) {
+  const std::string path = tmp_path("foreign_parts", "t.exr");
+  auto out = OIIO::ImageOutput::create(path);
+  ASSERT_TRUE(out);
+  OIIO::ImageSpec specs[2] = {OIIO::ImageSpec(2, 1, 2, OIIO::TypeDesc::FLOAT),
+                              OIIO::ImageSpec(2, 1, 2, OIIO::TypeDesc::FLOAT)};
+  for (int i = 0; i < 2; ++i) {
+    specs[i].channelnames = {"R", "G"};
+    specs[i].attribute("oiio:subimagename", "part" + std::to_string(i));
+  }
+  ASSERT_TRUE(out->open(path, 2, specs));
+  const float layer0[4] = {1, 2, 3, 4}, layer1[4] = {5, 6, 7, 8};
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, layer0));
+  ASSERT_TRUE(out->open(path, specs[1], OIIO::ImageOutput::AppendSubimage));
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, layer1));
+  ASSERT_TRUE(out->close());
+  const Texture tex = read_exr(path);
+  EXPECT_EQ(tex.shape_string(), "2x1[2]");
+  EXPECT_EQ(tex.channels, (std::vector<std::string>{"R", "G"}));
+  EXPECT_EQ(tex.at(1, 0, 0, 1, 1), 8.0f);
 }
 
 TEST(Exr, VolumeAtlasPlacesSlicesInAnExactGrid) {
@@ -186,7 +246,8 @@ TEST(Exr, VolumeMultipartIsOnePartPerSlice) {
     EXPECT_EQ(parts[z].spec.get_string_attribute("oiio:subimagename"), "slice" + std::to_string(z));
     EXPECT_EQ(parts[z].spec.get_string_attribute("skybake:layout"), "slices");
     for (int y = 0; y < 2; ++y)
-      for (int x = 0; x < 3; ++x) EXPECT_EQ(parts[z].at(x, y, "density"), tex.at(x, y, z, 0, 0));
+      for (int x = 0; x < 3; ++x)
+        EXPECT_EQ(parts[z].at(x, y, "slice" + std::to_string(z) + ".density"), tex.at(x, y, z, 0, 0));
   }
 }
 

@@ -3,6 +3,7 @@
 // (IEC 61966-2-1, recomputed here), monotonic tone mapping, exact 2x2 tiling
 // and deterministic bytes without time stamps.
 #include "io/png_preview.hpp"
+#include "io/preview_font.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -87,6 +88,105 @@ TEST(PngPreview, DimensionsFollowTheDocumentedLayout) {
     EXPECT_EQ(img.height, c.height) << path;
     EXPECT_EQ(img.channels, 3) << path;
   }
+}
+
+// min_side enlarges each short axis by whole pixels per texel (a 1 x 8
+// profile at 4 becomes 4 x 8; 2 x 3 at 5 becomes blocks of 3 x 2, 6 x 6),
+// and height_up draws texture row 0 at the bottom.
+TEST(PngPreview, SmallTexturesAreEnlargedAndHeightsRiseUpward) {
+  Texture profile(1, 8, 1, 1, {"R"});
+  for (int y = 0; y < 8; ++y) profile.at(0, y, 0, 0, 0) = float(y) / 7.0f;  // row 0 lowest
+  PreviewOptions opt;
+  opt.min_side = 4;
+  const std::string path = tmp_path("enlarged", "profile.png");
+  write_png_preview(path, profile, opt);
+  Rgb8 img = read_png(path);
+  ASSERT_EQ(img.width, 4);
+  ASSERT_EQ(img.height, 8);
+  auto grey = [](const Rgb8& im, int x, int y) { return im.at(x, y, 0); };
+  for (int x = 0; x < 4; ++x) EXPECT_EQ(grey(img, x, 0), grey(img, 0, 0));  // one texel, 4 px
+  EXPECT_LT(grey(img, 0, 0), grey(img, 0, 7));  // row 0 (0.0) on top, as stored
+  opt.height_up = true;
+  write_png_preview(path, profile, opt);
+  img = read_png(path);
+  EXPECT_GT(grey(img, 0, 0), grey(img, 0, 7));  // row 7 (1.0) on top: heights rise
+  EXPECT_EQ(grey(img, 0, 0), 255);
+  EXPECT_EQ(grey(img, 0, 7), 0);
+
+  Texture small(2, 3, 1, 1, {"R"});
+  small.at(1, 2, 0, 0, 0) = 1.0f;
+  opt = PreviewOptions{};
+  opt.min_side = 5;  // ceil(5 / 2) = 3 across, ceil(5 / 3) = 2 down
+  write_png_preview(path, small, opt);
+  img = read_png(path);
+  ASSERT_EQ(img.width, 6);
+  ASSERT_EQ(img.height, 6);
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 6; ++x)
+      EXPECT_EQ(grey(img, x, y), x >= 3 && y >= 4 ? 255 : 0) << x << " " << y;
+  // Textures already as large keep one pixel per texel.
+  EXPECT_EQ(preview_layout(constant(7, 5, 1, 1, 3, 0.2f), opt).width, 7);
+}
+
+// Labels (label_channels): a band above each channel names it and says what
+// its second line means: "0 EVERYWHERE" for an all-zero channel, whose
+// panel stays black, and "<min>-<max> STRETCHED" for a narrow [0, 1]
+// channel that stretch_narrow maps to the full range.
+TEST(PngPreview, ChannelLabelsSayConstantAndStretchedChannels) {
+  EXPECT_EQ(preview_range_label(0.0, 0.0, false), "0 EVERYWHERE");
+  EXPECT_EQ(preview_range_label(0.5, 0.5, false), "0.5 EVERYWHERE");
+  EXPECT_EQ(preview_range_label(0.7, 0.94, true), "0.70-0.94 STRETCHED");
+  EXPECT_EQ(preview_range_label(0.0, 1.0, false), "");
+
+  Texture tex(128, 16, 1, 1, {"R", "G"});
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 128; ++x) tex.at(x, y, 0, 0, 1) = 0.7f + 0.24f * float(x) / 127.0f;
+  PreviewOptions opt;
+  opt.split_channels = opt.label_channels = opt.stretch_narrow = true;
+  const PreviewLayout layout = preview_layout(tex, opt);
+  ASSERT_GT(layout.label_height, 0);
+  const std::string path = tmp_path("labels", "t.png");
+  write_png_preview(path, tex, opt);
+  const Rgb8 img = read_png(path);
+  ASSERT_EQ(img.width, 256);
+  ASSERT_EQ(img.height, 16 + layout.label_height);
+  const int band = layout.label_height;
+  for (int y = band; y < img.height; ++y) {
+    for (int x = 0; x < 128; ++x) ASSERT_EQ(img.at(x, y, 0), 0) << "R is 0 everywhere";
+    EXPECT_EQ(img.at(128, y, 0), 0);    // G's minimum maps to black
+    EXPECT_EQ(img.at(255, y, 0), 255);  // and its maximum to white
+  }
+  // The band holds exactly the two lines of each channel, drawn by the font.
+  std::vector<uint8_t> expected(size_t(256) * band * 3, 0);
+  draw_preview_text(expected, 256, band, 1, 1, "R", 2, 255);
+  draw_preview_text(expected, 256, band, 1, 1 + band / 2, "0 EVERYWHERE", 2, 255);
+  draw_preview_text(expected, 256, band, 129, 1, "G", 2, 255);
+  draw_preview_text(expected, 256, band, 129, 1 + band / 2, "0.70-0.94 STRETCHED", 1, 255);
+  for (int y = 0; y < band; ++y)
+    for (int x = 0; x < 256; ++x)
+      ASSERT_EQ(img.at(x, y, 0), expected[(size_t(y) * 256 + x) * 3]) << x << " " << y;
+}
+
+// Panel labels: one line above each panel, by the panel's layer (or slice).
+TEST(PngPreview, PanelLabelsStandAboveTheirPanels) {
+  Texture tex(60, 8, 1, 3, {"R", "G", "B"});
+  PreviewOptions opt;
+  opt.panel_labels = {"SUN 60", "SUN 10", "SUN -3"};
+  opt.max_columns = 2;
+  const PreviewLayout layout = preview_layout(tex, opt);
+  ASSERT_GT(layout.label_height, 0);
+  const std::string path = tmp_path("panel_labels", "t.png");
+  write_png_preview(path, tex, opt);
+  const Rgb8 img = read_png(path);
+  ASSERT_EQ(img.width, 120);
+  ASSERT_EQ(img.height, 2 * (8 + layout.label_height));
+  std::vector<uint8_t> expected(size_t(120) * img.height * 3, 0);
+  draw_preview_text(expected, 120, img.height, 1, 1, "SUN 60", 2, 255);
+  draw_preview_text(expected, 120, img.height, 61, 1, "SUN 10", 2, 255);
+  draw_preview_text(expected, 120, img.height, 1, 1 + 8 + layout.label_height, "SUN -3", 2, 255);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < 120; ++x)
+      ASSERT_EQ(img.at(x, y, 0), expected[(size_t(y) * 120 + x) * 3]) << x << " " << y;
 }
 
 TEST(PngPreview, ConstantHalfWithoutTonemapIsSrgbHalf) {

@@ -95,7 +95,7 @@ TEST(NoiseShape, DefaultShapeChannelsAndMetadata) {
   EXPECT_EQ(t.shape_string(), "128x128x128");
   EXPECT_EQ(t.channels, (std::vector<std::string>{"R", "G", "B", "A"}));
   EXPECT_EQ(meta_string(t.metadata, "product"), "noise_shape");
-  EXPECT_EQ(meta_double(t.metadata, "seed"), 0.0);
+  EXPECT_EQ(meta_int(t.metadata, "seed"), 0);
   EXPECT_EQ(meta_string(t.metadata, "remap"), "worley_new_min");
   EXPECT_EQ(meta_int(t.metadata, "period.G"), 8);
   EXPECT_EQ(meta_int(t.metadata, "period.B"), 16);

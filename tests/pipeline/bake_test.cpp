@@ -123,6 +123,35 @@ TEST_F(Bake, FirstBakeBakesEverythingNotBakedYet) {
   EXPECT_TRUE(temporaries(scene_dir()).empty());
 }
 
+// Writing an output's files (block compression can take longer than the
+// bake) shows on the progress line: each file is named as it is written,
+// with the share of the output's files done, after the bake's own reports.
+TEST_F(Bake, ProgressNamesEachFileWhileItIsWritten) {
+  std::vector<std::pair<std::string, double>> reports;
+  options_.on_progress = [&reports](const std::string& label, double f) {
+    reports.push_back({label, f});
+  };
+  bake(small_preset());
+  auto at = [&](const std::string& label) {
+    for (size_t i = 0; i < reports.size(); ++i)
+      if (reports[i].first == label) return i;
+    ADD_FAILURE() << "no report '" << label << "'";
+    return reports.size();
+  };
+  const size_t exr = at("transmittance writing transmittance.exr");
+  const size_t dds = at("transmittance writing transmittance.dds");
+  ASSERT_LT(exr, dds);
+  ASSERT_LT(dds, reports.size());
+  EXPECT_EQ(reports[exr].second, 0.0);
+  EXPECT_EQ(reports[dds].second, 0.5);
+  for (size_t i = 0; i < exr; ++i)
+    EXPECT_EQ(reports[i].first.find("multiscattering"), std::string::npos)
+        << "transmittance is written before multiscattering is baked";
+  const size_t ms = at("multiscattering writing multiscattering.exr");
+  EXPECT_GT(ms, dds);
+  EXPECT_EQ(reports.back().first, "multiscattering writing multiscattering.exr");
+}
+
 TEST_F(Bake, SecondBakeIsUpToDateAndDoesNoWork) {
   bake(small_preset());
   const std::string manifest_before = test::read_file(scene_dir() / "manifest.json");

@@ -168,6 +168,30 @@ TEST(CloudProducts, EditingTheCloudsSectionRebakesAndInlineEqualsReferenced) {
   EXPECT_NE(edited["input_hash"], first["input_hash"]);
 }
 
+// A seed is an int wherever a person reads it: the manifest's JSON integer,
+// `skybake info`; the schemas keep it within what an int holds.
+TEST(CloudProducts, SeedIsAnIntegerInTheManifestAndInfo) {
+  const fs::path dir = test::fresh_dir("cloud_seed");
+  json clouds = storm_clouds_inline();
+  clouds["seed"] = 2147483647;
+  const fs::path scene =
+      write_scene(dir, "seed", clouds, {{{"product", "cirrus"}, {"size", {64, 64}}, {"formats", {"exr"}}}});
+  const auto r = test::run_skybake({"bake", scene.string(), "-o", dir.string(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json manifest = read_json(dir / "seed" / "manifest.json");
+  const json& seed = manifest["outputs"][0]["metadata"]["seed"];
+  EXPECT_TRUE(seed.is_number_integer()) << seed.dump();
+  EXPECT_EQ(seed.get<int64_t>(), 2147483647);
+  const auto info = test::run_skybake({"info", (dir / "seed" / "cirrus.exr").string()});
+  EXPECT_NE(info.out.find("seed"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find(" 2147483647\n"), std::string::npos) << info.out;
+  clouds["seed"] = 2147483648LL;
+  const fs::path big = write_scene(dir, "big", clouds, {{{"product", "cirrus"}}});
+  const auto refused = test::run_skybake({"validate", big.string()});
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.err.find("/clouds/seed: must be <= 2147483647"), std::string::npos) << refused.err;
+}
+
 TEST(CloudProducts, RampOutOfOrderIsRefusedWithItsPointerAndNothingWritten) {
   const fs::path dir = test::fresh_dir("cloud_bad_ramp");
   const json clouds = {{"cloud_types", {{"stratus", {{"density", {0.05, 0.02, 0.09, 0.11}}}}}}};

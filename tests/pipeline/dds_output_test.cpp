@@ -57,9 +57,7 @@ TEST(DdsOutput, FloatTablesFollowPrecisionAndDdsFormatWins) {
   EXPECT_EQ(output_dds_format(spec, info, 1), DdsFormat::R16_FLOAT);
   spec.options["dds_format"] = "R11G11B10_FLOAT";
   EXPECT_EQ(output_dds_format(spec, info, 3), DdsFormat::R11G11B10_FLOAT);
-  EXPECT_EQ(output_dds_header(spec), DdsHeader::dx10);
-  spec.options["dds_header"] = "legacy";
-  EXPECT_EQ(output_dds_header(spec), DdsHeader::legacy);
+  EXPECT_EQ(output_dds_header(spec, DdsFormat::R11G11B10_FLOAT, 1), DdsHeader::dx10);
 }
 
 TEST(DdsOutput, EachEightBitProductTakesTheBlockFormatOfItsChannels) {
@@ -100,8 +98,9 @@ TEST(DdsOutput, EachEightBitProductTakesTheBlockFormatOfItsChannels) {
 
 // ---- a whole bake ------------------------------------------------------------
 
-// Cloud textures in block formats, curl in R8G8 through unorm8 and a legacy
-// BC4 volume, small enough for a test.
+// Cloud textures in block formats (legacy headers by default, one forced to
+// DX10), curl in R8G8 through unorm8 (DX10 by default) and a BC4 volume with
+// a legacy header asked for, small enough for a test.
 fs::path write_preset(const fs::path& dir) {
   const nlohmann::json preset = {
       {"name", "bc"},
@@ -120,7 +119,7 @@ fs::path write_preset(const fs::path& dir) {
         {{"product", "curl"}, {"size", {32, 32}}, {"formats", {"dds"}}, {"channels", "rg"},
          {"period", 2}, {"octaves", 2}},
         {{"product", "weather"}, {"size", {64, 64}}, {"formats", {"dds"}},
-         {"dds_format", "BC1_UNORM"}},
+         {"dds_format", "BC1_UNORM"}, {"dds_header", "dx10"}},
         {{"product", "cloud_types"}, {"size", {16}}, {"formats", {"dds"}},
          {"dds_format", "BC5_UNORM"}, {"type_width", 4}}}}};
   fs::create_directories(dir);
@@ -144,11 +143,11 @@ TEST(DdsOutputBake, BlockAndLegacyFilesAreWhatTheOptionsSayForOneAndTwoThreads) 
     int channels;
   };
   const Expect expected[] = {
-      {"noise_shape.dds", DdsFormat::BC3_UNORM, DdsHeader::dx10, 6, 4},
+      {"noise_shape.dds", DdsFormat::BC3_UNORM, DdsHeader::legacy, 6, 4},
       {"noise_detail.dds", DdsFormat::BC4_UNORM, DdsHeader::legacy, 5, 1},
       {"curl.dds", DdsFormat::R8G8_UNORM, DdsHeader::dx10, 6, 2},
       {"weather.dds", DdsFormat::BC1_UNORM, DdsHeader::dx10, 7, 4},
-      {"cloud_types.dds", DdsFormat::BC5_UNORM, DdsHeader::dx10, 1, 2},
+      {"cloud_types.dds", DdsFormat::BC5_UNORM, DdsHeader::legacy, 1, 2},
   };
   for (const Expect& e : expected) {
     SCOPED_TRACE(e.file);

@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <regex>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -203,6 +205,20 @@ void check_html() {
     ++svgs;
   EXPECT_EQ(svgs, 4u);
   EXPECT_NE(html.find("<img src=\"sky_preview.png\""), std::string::npos);
+  // Entities are escaped once: no "&amp;ge;" for "≥".
+  std::smatch m;
+  EXPECT_FALSE(std::regex_search(html, m, std::regex("&amp;[a-z]+;"))) << m.str();
+  // Prose holds numbers and words, not JSON: no objects, no bracketed lists
+  // of numbers ({"size":[192,108],...}, [0.2588...,...]).
+  EXPECT_EQ(html.find("{&quot;"), std::string::npos);
+  EXPECT_EQ(html.find("{\""), std::string::npos);
+  EXPECT_FALSE(std::regex_search(html, m, std::regex("\\[-?[0-9]"))) << m.str();
+  // The multiscattering headline says where its largest error is.
+  EXPECT_NE(html.find("multiscattering: the largest errors lie at the terminator"),
+            std::string::npos);
+  // A quick run marks no target as missed: it says it cannot judge them.
+  EXPECT_EQ(html.find("class=\"notmet\""), std::string::npos);
+  EXPECT_NE(html.find("A quick run (--quick) cannot judge the targets below"), std::string::npos);
 }
 
 void check_json_summary() {
