@@ -251,7 +251,13 @@ TEST(Validate, AcceptsFoldersAndGlobsAsBakeDoes) {
   const skybake::test::RunResult glob =
       run_skybake({"validate", source_path("presets").string() + "/earth*.json"});
   EXPECT_EQ(glob.exit_code, 0) << glob.err;
-  EXPECT_EQ(lines(glob.out).size(), 4u) << glob.out;  // earth, fair weather, precomputed, storm
+  size_t earth_presets = 0;  // what the pattern matches, counted here
+  for (const auto& e : fs::directory_iterator(source_path("presets"))) {
+    const std::string name = e.path().filename().string();
+    earth_presets += name.rfind("earth", 0) == 0 && e.path().extension() == ".json";
+  }
+  EXPECT_GE(earth_presets, 4u);
+  EXPECT_EQ(lines(glob.out).size(), earth_presets) << glob.out;
   const fs::path dir = fresh_dir("validate_nothing");
   const skybake::test::RunResult none = run_skybake({"validate", (dir / "*.json").string()});
   EXPECT_EQ(none.exit_code, 2) << none.err;
