@@ -1,6 +1,5 @@
 #!/usr/bin/env bash
-# What the error measurement costs a bake (docs/decisions.md "The bake
-# measures what an engine reads"): each shipped scene preset (presets/*.json)
+# What the error measurement costs a bake (docs/decisions/error-records.md): each shipped scene preset (presets/*.json)
 # and each case of presets/extreme/ is baked from an empty folder on one
 # thread (so other processes' load affects both columns alike), and the
 # bake_log.json times are summed per scene: bake_seconds (the bakers) against

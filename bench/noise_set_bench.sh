@@ -12,7 +12,7 @@
 #
 # Give several executables (a build of main before and after a change, with
 # its libskybake_*.so plugins next to it) to compare them in one run. The
-# targets (docs/decisions.md "The cloud-noise set's CPU"): all formats at most
+# targets (docs/decisions/noise-set-speed.md): all formats at most
 # 0.6 CPU s, DDS alone at most 0.3. Not a test: figures depend on the machine
 # and its load (printed with them).
 set -euo pipefail

@@ -43,8 +43,7 @@ planet = {"radius_km": 6360, "ground_albedo": [0.3, 0.3, 0.3]}
 families = {
     # From Earth's default table up: a 256x64 table is a 6-9 ms bake, the
     # first loop of its process, whose speed-up measures how soon the other
-    # vCPU wakes more than the bake (docs/decisions.md "Threads: bakes long
-    # enough to measure").
+    # vCPU wakes more than the bake (docs/decisions/speed-targets.md).
     "transmittance": ({}, [[256, 64], [512, 128], [1024, 256]]),
     "multiscattering": ({"directions": 64}, [[16, 16], [32, 16], [32, 32]]),
     "skyview": ({}, [[96, 54], [192, 54], [192, 108]]),

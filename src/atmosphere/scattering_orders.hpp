@@ -45,7 +45,7 @@
 // the stored DeltaS / p_R of such taps too large, and reads in the sun's
 // vertical plane (where nu sits at its bound) up to 18% too bright toward
 // the sun (tests/atmosphere/scattering_orders_test.cpp,
-// OrdersAboveOneReadBackAsTheOrdersOwnTable; docs/decisions.md). With the
+// OrdersAboveOneReadBackAsTheOrdersOwnTable; docs/decisions/bruneton-daytime-accuracy.md). With the
 // unclamped divisor every (mu, mu_s) texel divides a slice by the same p_R, and the read
 // returns lerp(DeltaS) to the curvature of 1 / p_R between slices.
 //

@@ -2,7 +2,7 @@
 // check sends the compiler to its scalar loop), written so that the
 // compiler vectorizes it (SSE2: two doubles per instruction, AVX2's twin
 // four, no call per value): the transmittance table's quadrature spends most of its time in
-// exp (docs/decisions.md "Transmittance at 0.5 us per texel").
+// exp (docs/decisions/transmittance-quadrature.md).
 //
 // Precondition: |x| <= 708 (2^k must be a normal number; a clamp here
 // would keep the compiler from vectorizing the loop), callers check it.

@@ -25,7 +25,7 @@ namespace {
 // but each page's first write from the program still exits to the
 // hypervisor, about 5 us a page (1.3 ms per MB); done here, those exits are
 // split between the threads instead of falling on the zero fill's one
-// (docs/decisions.md "Threads: a fresh texture's first write").
+// (docs/decisions/fresh-pages.md).
 void touch_pages(uintptr_t a, uintptr_t b, uintptr_t page) {
   for (uintptr_t x = a; x < b; x += page) {
     volatile char* c = reinterpret_cast<volatile char*>(x);
@@ -41,8 +41,7 @@ constexpr uintptr_t kHugePage = uintptr_t(2) << 20;
 // mapping where 4 KB pages are 512: the kernel zeroes the same bytes, but
 // the faults, and under a hypervisor that shadows the guest's page tables
 // the exit on each page's first write (about 5 us a page on the development
-// VM), are 512 times fewer (docs/decisions.md "Threads: huge pages for
-// fresh buffers"). Where THP is off ("never") the call changes nothing;
+// VM), are 512 times fewer (docs/decisions/fresh-pages.md). Where THP is off ("never") the call changes nothing;
 // where it is "always" the pages were to be huge anyway.
 bool advise_huge_pages(uintptr_t a, uintptr_t b) {
 #if defined(MADV_HUGEPAGE)

@@ -5,7 +5,7 @@
 // it to the process. For a 32 MB volume that is 8192 faults, 15-20 ms of CPU
 // measured, more than zeroing the memory itself; done by
 // the thread that allocates, it is a serial prefix of every parallel bake
-// (docs/decisions.md "Threads: the serial parts of a bake").
+// (docs/decisions/fresh-pages.md).
 #pragma once
 
 #include <cstddef>
@@ -43,7 +43,7 @@ void free_fresh_pages(void* p, size_t bytes) noexcept;
 // element (`TexelVector(n)`, `resize(n)`) is left as the memory holds it,
 // 0.0f, instead of by a memset on the constructing thread: for a 32 MB
 // volume that memset was about a tenth of a one-thread bake, all of it
-// serial (docs/decisions.md "Threads: huge pages for fresh buffers"). The
+// serial (docs/decisions/fresh-pages.md). The
 // one way to see the difference: a vector shrunk and then grown again
 // within its capacity keeps the old values in the regrown elements, so
 // grow a TexelVector with resize(n, 0.0f) or assign.

@@ -3,7 +3,7 @@
 // regular files of bounded size, and their nesting is bounded before any
 // recursive parser, converter or destructor sees them (a few thousand levels
 // exhaust the stack of rapidjson's parser and of every recursive walk of the
-// tree). The limits and their reasons are in docs/decisions.md, "Hostile
+// tree). The limits and their reasons are in docs/decisions/hostile-json.md, "Hostile
 // inputs".
 #pragma once
 

@@ -254,7 +254,7 @@ void filter_rows(const std::vector<uint8_t>& rgb, int width, int height, std::st
 }
 
 // zlib's level 3: on the shipped previews within -5%..+9% of level 6's size
-// for a third of its time (docs/decisions.md "The cloud-noise set's CPU").
+// for a third of its time (docs/decisions/noise-set-speed.md).
 constexpr int kZlibLevel = 3;
 
 // An RGB8 PNG: signature, IHDR, sRGB, one IDAT (zlib at a fixed level, so the

@@ -7,7 +7,7 @@
 // grid offsets against where each section really ends, so that what OpenVDB
 // then allocates is bounded by the file's size (about 35 bytes of tree per
 // byte of file: an internal node's table per 8 KiB of masks, a leaf's 2 KiB
-// buffer per 73 bytes). docs/decisions.md, "Hostile inputs", has the details.
+// buffer per 73 bytes). docs/decisions/hostile-texture-files.md, "Hostile inputs", has the details.
 #pragma once
 
 #include <string>

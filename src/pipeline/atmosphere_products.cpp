@@ -195,7 +195,7 @@ ProductInfo atmosphere_lut_product(std::string name, std::string summary,
   p.atmosphere_table = true;
   p.reads_mie_phase = true;
   // Float32 tables: zip saves 12-23% of the bytes for a third more CPU on
-  // Earth's Hillaire set (docs/decisions.md "EXR compression").
+  // Earth's Hillaire set (docs/decisions/exr-compression.md).
   p.default_exr_compression = "none";
   return p;
 }

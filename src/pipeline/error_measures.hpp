@@ -1,5 +1,5 @@
 // The error every bake records for its atmosphere tables (manifest "error",
-// docs/decisions.md "The bake measures what an engine reads"): each table is
+// docs/decisions/error-records.md): each table is
 // read the way an engine reads it, its lookup_* function with the
 // interpolation, at deterministic off-texel query points
 // (verify/query_points.hpp: the first n of the points `skybake report`

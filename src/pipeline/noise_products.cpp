@@ -163,7 +163,7 @@ ProductInfo noise_product(std::string name, std::string summary, std::vector<std
   p.allowed_formats = {"dds", "exr", "ktx2", "vdb", "png"};
   p.default_dds_format = "unorm8";
   // Float noise has little redundancy: zip saves 1-4% for about 7x the
-  // bake's CPU (docs/decisions.md "EXR compression").
+  // bake's CPU (docs/decisions/exr-compression.md).
   p.default_exr_compression = "none";
   p.default_vdb_compression = "none";  // Blosc: -14% for 2x the VDB write's CPU
   p.check = std::move(check_fn);

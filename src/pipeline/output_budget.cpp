@@ -22,7 +22,7 @@ constexpr std::uint64_t kMaxCloudTypes = 64;
 
 // Per format, measured on Release builds with 2 threads, one format at a
 // time; KTX2 takes DDS's factor (the same mip chain and one level's
-// encoding buffer at a time) (docs/decisions.md "Budgets before allocation" has the sizes and
+// encoding buffer at a time) (docs/decisions/output-budgets.md has the sizes and
 // resident sets). Products whose texture is small next to what they read
 // (irradiance, gathering_sum, single_mie, the cloud columns) keep the
 // minimum; their dependencies are budgeted as outputs of their own or are at

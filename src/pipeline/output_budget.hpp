@@ -2,7 +2,7 @@
 // the smallest size its baker accepts, the channels and layers of its texture,
 // and the memory its bake peaks at. load_scene refuses an output (or a scene)
 // over the budgets here with the JSON pointer and the rule, so a bake never
-// starts what it cannot finish (docs/decisions.md "Budgets before allocation").
+// starts what it cannot finish (docs/decisions/output-budgets.md).
 #pragma once
 
 #include <cstdint>

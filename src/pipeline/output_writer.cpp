@@ -25,8 +25,7 @@ namespace skybake {
 namespace {
 
 // The output's grid_names, else for a density volume "density" for the
-// first channel and the channel names for the others (docs/decisions.md
-// "VDB grid names"); fog-volume class for density volumes.
+// first channel and the channel names for the others (docs/decisions/vdb-grids.md); fog-volume class for density volumes.
 VdbWriteOptions vdb_options(const Texture& tex, const ProductInfo& info, const OutputSpec& spec) {
   VdbWriteOptions options;
   options.finite = FiniteCheck::already_checked;

@@ -56,8 +56,7 @@ struct ProductInfo {
   // DXGI name, "unorm8" (R8_UNORM for one channel, else R8G8B8A8_UNORM), or
   // empty (float32 RGBA, or half with precision "half").
   std::string default_dds_format;
-  // exr_compression when the output gives none (docs/decisions.md "EXR
-  // compression": chosen per product family by measurement).
+  // exr_compression when the output gives none (docs/decisions/exr-compression.md: chosen per product family by measurement).
   std::string default_exr_compression = "zip";
   // vdb_compression when the output gives none (same measurements).
   std::string default_vdb_compression = "blosc";

@@ -45,7 +45,7 @@ double colour_max(const Texture& t) {
 
 // Without `max_error` in the output: the smallest of 0.1, 0.2, 0.5, 1, 2, 5,
 // 10, 20 at or above 10x the largest max_rel the shipped presets measure for
-// the product (docs/decisions.md "Warnings"), so the default flags a table
+// the product (docs/decisions/warnings.md), so the default flags a table
 // an order of magnitude worse than the shipped planets' at their settings.
 const std::map<std::string, double> kDefaultMaxError = {
     {"transmittance", 0.5},      {"multiscattering", 20.0}, {"skyview", 0.1},

@@ -1,4 +1,4 @@
-// What a bake warns about (docs/decisions.md "Warnings"): the one place that
+// What a bake warns about (docs/decisions/warnings.md): the one place that
 // decides, from a baked texture, its metadata and its measured error or
 // tiling record, whether an output is worth a warning. A warning has a
 // stable code, a message with its numbers, and the numbers themselves:

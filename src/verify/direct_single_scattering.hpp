@@ -1,7 +1,6 @@
 // Single scattering integrated from scratch, reading no table: the error
 // reference of the bake's measurement of the precomputed-scattering tables
-// (pipeline/error_measures.hpp, docs/decisions.md "The bake measures what an
-// engine reads"). The tables read the sun's transmittance from the
+// (pipeline/error_measures.hpp, docs/decisions/error-records.md). The tables read the sun's transmittance from the
 // transmittance LUT and smooth the shadow over the sun's disk; this
 // integrates the sun's optical depth along every sun ray (compute_optical_
 // depth_to_top) for a point sun whose light the planet's shadow cuts

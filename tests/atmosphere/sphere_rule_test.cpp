@@ -191,8 +191,7 @@ double interpolation_max_rel(const Atmosphere& atm, const Texture& transmittance
 // The tiny planet's Psi_ms for a sun below the horizon falls steeply in the
 // first few hundred metres: with rows evenly spaced (the next one ~1 km up)
 // a 32 x 32 table misses 10 % at the report's 128 points; rows at
-// h = H x^2 meet it (docs/decisions.md "Multiple-scattering table: altitude
-// axis").
+// h = H x^2 meet it (docs/decisions/multiscattering-table-axes.md).
 TEST(SymmetricGaussRule, TinyPlanetQuadraticAltitudeTableWithinTenPercent) {
   const Atmosphere atm = fixtures::tiny_planet_atmosphere();
   const Texture t = bake_transmittance_lut(atm, {128, 64, 40}, {});

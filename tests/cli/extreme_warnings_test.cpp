@@ -1,4 +1,4 @@
-// Stiff and extreme cases never fail silently (docs/decisions.md "Warnings"):
+// Stiff and extreme cases never fail silently (docs/decisions/warnings.md):
 // every preset of presets/extreme/ raises exactly the warnings listed here,
 // per output, in the manifest and as one stderr line each; `--strict` turns
 // them into exit 1 after the files are recorded; the shipped Earth, Mars and

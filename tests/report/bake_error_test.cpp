@@ -1,5 +1,5 @@
 // The error a bake records is what `skybake report --quick` measures
-// (docs/decisions.md "The bake measures what an engine reads"):
+// (docs/decisions/error-records.md):
 // - its references in the bake's layers meet the report's adaptive
 //   quadrature at the bake's own query points, far below the tables' errors;
 // - on every shipped preset, the manifest's max_rel and rms_rel of a few

@@ -8,7 +8,7 @@
 // the views of `skybake report` (camera 200 m up, 8 azimuths x elevations
 // {5, 20, 60} degrees, suns at {60, 20, 5} degrees: report/sky_radiance.cpp).
 // The report measures 0.80% with 65536 paths; what the table needs to get
-// there is in docs/decisions.md (p_R divisor, horizon sub-steps). The path
+// there is in docs/decisions/bruneton-daytime-accuracy.md (p_R divisor, horizon sub-steps). The path
 // tracer's noise is taken out as the report does (rel_rmse_denoised,
 // E[(L - X)^2] = (L - E X)^2 + se^2), so the test asks the table, not the
 // noise.
