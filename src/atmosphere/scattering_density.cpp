@@ -84,88 +84,126 @@ Texture bake_scattering_density(const Atmosphere& atm, const Texture& transmitta
   return out;
 }
 
+namespace {
+
+// What every (r, mu_s) pair of one density bake reads.
+struct DensityBake {
+  const Atmosphere& atm;
+  const Texture& transmittance_lut;
+  const ScatteringShape& shape;
+  const ScatteringOrder& previous;
+  const GroundIrradiance& ground;
+  ScatteringPhases phases;
+  SphereGrid grid;
+  ScatteringTexelGrid texels;
+  MieKernel mie_kernel;
+  // Moments of the grid itself (the normalization of the Rayleigh weights).
+  double grid_w0 = 0.0, grid_w2[6] = {0, 0, 0, 0, 0, 0};
+  // The band parts at each r texel, shared by its mu_s texels.
+  std::vector<std::vector<std::vector<BandPart>>> parts;
+};
+
+// Rayleigh: sum_j (1 + (v.w_j)^2) L_j dw_j = A + v^T B v (3/(16 pi) cancels):
+// A = moment0, B from moment2 (outer6 entries).
+struct FieldMoments {
+  glm::dvec3 moment0{0.0}, moment2[6];
+};
+
+FieldMoments field_moments(const SphereGrid& grid, const std::vector<glm::dvec3>& L) {
+  FieldMoments f;
+  for (int e = 0; e < 6; ++e) f.moment2[e] = glm::dvec3(0.0);
+  for (size_t j = 0; j < grid.directions.size(); ++j) {
+    const glm::dvec3 Lw = L[j] * grid.solid_angle[j];
+    double o[6];
+    outer6(grid.directions[j], o);
+    f.moment0 += Lw;
+    for (int e = 0; e < 6; ++e) f.moment2[e] += o[e] * Lw;
+  }
+  return f;
+}
+
+// Rayleigh's J at view v, for scattering coefficient sigma_r.
+glm::dvec3 rayleigh_density(const DensityBake& b, const FieldMoments& f, const glm::dvec3& sigma_r,
+                            const glm::dvec3& v) {
+  glm::dvec3 q = f.moment0;
+  for (int c = 0; c < 3; ++c) {
+    const double mc[6] = {f.moment2[0][c], f.moment2[1][c], f.moment2[2][c],
+                          f.moment2[3][c], f.moment2[4][c], f.moment2[5][c]};
+    q[c] += quadratic_form(mc, v);
+  }
+  return sigma_r * q / (b.grid_w0 + quadratic_form(b.grid_w2, v));
+}
+
+// Every (mu, nu) texel of the pair (r texel z, mu_s texel l).
+void bake_density_pair(const DensityBake& b, MieBatch& batch, int z, int l, Texture& out) {
+  const ScatteringShape& shape = b.shape;
+  const double r = b.texels.r[z], mu_s = b.texels.mu_s[l];
+  const std::vector<glm::dvec3> L = compute_incident_radiance(
+      b.atm, b.transmittance_lut, shape, b.previous, b.ground, r, mu_s, b.grid, b.parts[z]);
+  glm::dvec3 sigma_r, sigma_m;
+  scattering_by_group(b.atm, r - b.atm.bottom_radius_m, sigma_r, sigma_m);
+  const bool rayleigh = b.phases.has_rayleigh && sigma_r != glm::dvec3(0.0);
+  const bool mie = b.phases.has_mie && sigma_m != glm::dvec3(0.0);
+  if (mie) batch.set_field(L);
+  const FieldMoments moments = field_moments(b.grid, L);
+  const double sin_sun = safe_sqrt(1.0 - mu_s * mu_s);
+  for (int y = 0; y < shape.mu_size; ++y) {
+    // texels.params(x, y, z) of the row's nu slices, with what they share once.
+    const double mu = b.texels.mu[size_t(z) * shape.mu_size + y];
+    const double spread = ScatteringTexelGrid::spread(mu, mu_s);
+    const double sin_view = safe_sqrt(1.0 - mu * mu);
+    double nu_before = 0.0;
+    for (int m = 0; m < shape.nu_size; ++m) {
+      const int x = m * shape.mu_s_size + l;
+      const double nu = std::clamp(b.texels.nu[m], mu * mu_s - spread, mu * mu_s + spread);
+      // A slice clamped to the nu of the one before is its view: its J.
+      if (m > 0 && nu == nu_before) {
+        std::copy_n(out.texel(x - shape.mu_s_size, y, z), 3, out.texel(x, y, z));
+        continue;
+      }
+      nu_before = nu;
+      const glm::dvec3 v = view_direction(mu, mu_s, nu, sin_view, sin_sun);
+      glm::dvec3 J(0.0);
+      if (rayleigh) J += rayleigh_density(b, moments, sigma_r, v);
+      if (mie) {
+        double sum[4];
+        batch.sums(b.mie_kernel, v, sum);
+        J += sigma_m * glm::dvec3(sum[0], sum[1], sum[2]) / sum[3];
+      }
+      float* texel = out.texel(x, y, z);
+      for (int c = 0; c < 3; ++c) texel[c] = float(J[c]);
+    }
+  }
+}
+
+}  // namespace
+
 void bake_scattering_density(const Atmosphere& atm, const Texture& transmittance_lut,
                              const ScatteringShape& shape, const ScatteringOrder& previous,
                              const GroundIrradiance& ground, int bands, const BakeContext& ctx,
                              Texture& out) {
   const ScatteringPhases phases = scattering_phases(atm);
-  const SphereGrid grid = sphere_grid(bands);
-  const ScatteringTexelGrid texels = scattering_texel_grid(atm, shape);
-  const MieKernel mie_kernel(phases);
-  const size_t n = grid.directions.size();
-  // Moments of the grid itself (the normalization of the Rayleigh weights).
-  double grid_w0 = 0.0, grid_w2[6] = {0, 0, 0, 0, 0, 0};
-  for (size_t j = 0; j < n; ++j) {
+  DensityBake b{atm,    transmittance_lut,  shape,
+                previous, ground,           phases,
+                sphere_grid(bands), scattering_texel_grid(atm, shape), MieKernel(phases),
+                0.0,      {0, 0, 0, 0, 0, 0}, {}};
+  for (size_t j = 0; j < b.grid.directions.size(); ++j) {
     double o[6];
-    outer6(grid.directions[j], o);
-    grid_w0 += grid.solid_angle[j];
-    for (int e = 0; e < 6; ++e) grid_w2[e] += o[e] * grid.solid_angle[j];
+    outer6(b.grid.directions[j], o);
+    b.grid_w0 += b.grid.solid_angle[j];
+    for (int e = 0; e < 6; ++e) b.grid_w2[e] += o[e] * b.grid.solid_angle[j];
   }
   reuse_rgb_table(out, shape);
-  // The band parts at each r texel, shared by its mu_s texels.
-  std::vector<std::vector<std::vector<BandPart>>> parts(shape.r_size);
-  tbb::parallel_for(0, shape.r_size,
-                    [&](int z) { parts[z] = grid_band_parts(atm, texels.r[z], grid, previous); });
+  b.parts.resize(size_t(shape.r_size));
+  tbb::parallel_for(0, shape.r_size, [&](int z) {
+    b.parts[z] = grid_band_parts(atm, b.texels.r[z], b.grid, previous);
+  });
   const int pairs = shape.r_size * shape.mu_s_size;
   ProgressCounter progress(ctx, size_t(pairs));
   tbb::parallel_for(tbb::blocked_range<int>(0, pairs), [&](const tbb::blocked_range<int>& range) {
-    MieBatch batch(grid);
+    MieBatch batch(b.grid);
     for (int pair = range.begin(); pair != range.end(); ++pair) {
-      const int z = pair / shape.mu_s_size, l = pair % shape.mu_s_size;
-      const double r = texels.r[z], mu_s = texels.mu_s[l];
-      const std::vector<glm::dvec3> L = compute_incident_radiance(
-          atm, transmittance_lut, shape, previous, ground, r, mu_s, grid, parts[z]);
-      glm::dvec3 sigma_r, sigma_m;
-      scattering_by_group(atm, r - atm.bottom_radius_m, sigma_r, sigma_m);
-      const bool rayleigh = phases.has_rayleigh && sigma_r != glm::dvec3(0.0);
-      const bool mie = phases.has_mie && sigma_m != glm::dvec3(0.0);
-      // Rayleigh: sum_j (1 + (v.w_j)^2) L_j dw_j = A + v^T B v (3/(16 pi) cancels).
-      glm::dvec3 moment0(0.0), moment2[6];
-      for (int e = 0; e < 6; ++e) moment2[e] = glm::dvec3(0.0);
-      if (mie) batch.set_field(L);
-      for (size_t j = 0; j < n; ++j) {
-        const glm::dvec3 Lw = L[j] * grid.solid_angle[j];
-        double o[6];
-        outer6(grid.directions[j], o);
-        moment0 += Lw;
-        for (int e = 0; e < 6; ++e) moment2[e] += o[e] * Lw;
-      }
-      const double sin_sun = safe_sqrt(1.0 - mu_s * mu_s);
-      for (int y = 0; y < shape.mu_size; ++y) {
-        // texels.params(x, y, z) of the row's nu slices, with what they share once.
-        const double mu = texels.mu[size_t(z) * shape.mu_size + y];
-        const double spread = ScatteringTexelGrid::spread(mu, mu_s);
-        const double sin_view = safe_sqrt(1.0 - mu * mu);
-        double nu_before = 0.0;
-        for (int m = 0; m < shape.nu_size; ++m) {
-          const int x = m * shape.mu_s_size + l;
-          const double nu = std::clamp(texels.nu[m], mu * mu_s - spread, mu * mu_s + spread);
-          // A slice clamped to the nu of the one before is its view: its J.
-          if (m > 0 && nu == nu_before) {
-            std::copy_n(out.texel(x - shape.mu_s_size, y, z), 3, out.texel(x, y, z));
-            continue;
-          }
-          nu_before = nu;
-          const glm::dvec3 v = view_direction(mu, mu_s, nu, sin_view, sin_sun);
-          glm::dvec3 J(0.0);
-          if (rayleigh) {
-            glm::dvec3 q = moment0;
-            for (int c = 0; c < 3; ++c) {
-              const double mc[6] = {moment2[0][c], moment2[1][c], moment2[2][c],
-                                    moment2[3][c], moment2[4][c], moment2[5][c]};
-              q[c] += quadratic_form(mc, v);
-            }
-            J += sigma_r * q / (grid_w0 + quadratic_form(grid_w2, v));
-          }
-          if (mie) {
-            double sum[4];
-            batch.sums(mie_kernel, v, sum);
-            J += sigma_m * glm::dvec3(sum[0], sum[1], sum[2]) / sum[3];
-          }
-          float* texel = out.texel(x, y, z);
-          for (int c = 0; c < 3; ++c) texel[c] = float(J[c]);
-        }
-      }
+      bake_density_pair(b, batch, pair / shape.mu_s_size, pair % shape.mu_s_size, out);
       progress.tick();
     }
   });

@@ -65,6 +65,66 @@ LoadedTexture read_for_tiling(const std::string& file, uint64_t budget, std::str
   }
 }
 
+// The JSON record of one file's measure.
+nlohmann::json tiling_json(const std::string& file, const LoadedTexture& loaded,
+                           const TilingReport& report, const std::string& note) {
+  nlohmann::json axes = nlohmann::json::array();
+  for (const AxisTiling& a : report.axes)
+    axes.push_back({{"level", a.level},
+                    {"layer", a.layer},
+                    {"axis", std::string(1, a.axis)},
+                    {"channel", a.channel},
+                    {"texels", a.texels},
+                    {"verdict", tiling_verdict_name(a.verdict)},
+                    {"reason", a.reason},
+                    {"values", score_json(a.values)},
+                    {"slopes", score_json(a.slopes)},
+                    {"contrast", number(a.contrast)},
+                    {"ratio", number(a.ratio)},
+                    {"tiles", a.tiles}});
+  nlohmann::json entry = {{"file", file},
+                          {"tiles", report.tiles},
+                          {"verdict", tiling_verdict_name(report.verdict)},
+                          {"shape", loaded.texture.shape_string()},
+                          {"mip_levels", 1 + loaded.lower_levels.size()},
+                          {"worst_ratio", number(report.worst_ratio)},
+                          {"axes", axes}};
+  if (!note.empty()) entry["note"] = note;
+  return entry;
+}
+
+// One line per judged axis (a mip level none of whose axes is judged takes one line).
+void print_axes(const Texture& tex, const TilingReport& report) {
+  for (size_t i = 0; i < report.axes.size(); ++i) {
+    const AxisTiling& a = report.axes[i];
+    size_t end = i;
+    while (end < report.axes.size() && report.axes[end].level == a.level &&
+           report.axes[end].verdict == TilingVerdict::not_judged)
+      ++end;
+    if (end > i && (end == report.axes.size() || report.axes[end].level != a.level) &&
+        (i == 0 || report.axes[i - 1].level != a.level)) {
+      std::printf("  level %d  not judged: %s\n", a.level, a.reason.c_str());
+      i = end - 1;
+      continue;
+    }
+    const std::string where =
+        fmt::format("level {}{}  axis {}  {:<4} {:>5} texels", a.level,
+                    tex.layers > 1 ? fmt::format("  layer {}", a.layer) : "", a.axis, a.channel,
+                    a.texels);
+    if (a.verdict == TilingVerdict::tiles && a.reason == "constant") {
+      std::printf("  %s  constant  ok\n", where.c_str());
+    } else if (a.verdict == TilingVerdict::tiles || a.verdict == TilingVerdict::seam) {
+      std::printf("  %s  values %.3g (limit %.3g)  slopes %.3g (limit %.3g)  contrast %.3g  %s\n",
+                  where.c_str(), a.values.seam, a.values.limit, a.slopes.seam, a.slopes.limit,
+                  a.contrast, a.verdict == TilingVerdict::seam ? "SEAM" : "ok");
+    } else {
+      std::printf("  %s  %s: %s\n", where.c_str(),
+                  a.verdict == TilingVerdict::cannot_tell ? "CANNOT TELL" : "not judged",
+                  a.reason.c_str());
+    }
+  }
+}
+
 }  // namespace
 
 int run_check_tiling(const CheckTilingArgs& args) {
@@ -79,65 +139,14 @@ int run_check_tiling(const CheckTilingArgs& args) {
     if (report.verdict == TilingVerdict::seam ||
         (report.verdict == TilingVerdict::cannot_tell && overall == TilingVerdict::tiles))
       overall = report.verdict;
-    nlohmann::json axes = nlohmann::json::array();
-    for (const AxisTiling& a : report.axes)
-      axes.push_back({{"level", a.level},
-                      {"layer", a.layer},
-                      {"axis", std::string(1, a.axis)},
-                      {"channel", a.channel},
-                      {"texels", a.texels},
-                      {"verdict", tiling_verdict_name(a.verdict)},
-                      {"reason", a.reason},
-                      {"values", score_json(a.values)},
-                      {"slopes", score_json(a.slopes)},
-                      {"contrast", number(a.contrast)},
-                      {"ratio", number(a.ratio)},
-                      {"tiles", a.tiles}});
-    nlohmann::json entry = {{"file", file},
-                            {"tiles", report.tiles},
-                            {"verdict", tiling_verdict_name(report.verdict)},
-                            {"shape", tex.shape_string()},
-                            {"mip_levels", 1 + loaded.lower_levels.size()},
-                            {"worst_ratio", number(report.worst_ratio)},
-                            {"axes", axes}};
-    if (!note.empty()) entry["note"] = note;
-    files.push_back(std::move(entry));
+    files.push_back(tiling_json(file, loaded, report, note));
     if (args.json) continue;
     const size_t levels = 1 + loaded.lower_levels.size();
     std::printf("%s  %s (%s%s, tolerance %.3g)\n", headline(report.verdict), file.c_str(),
                 tex.shape_string().c_str(),
                 levels > 1 ? fmt::format(", {} mip levels", levels).c_str() : "", args.tolerance);
     if (!note.empty()) std::printf("  note: %s\n", note.c_str());
-    if (args.quiet) continue;
-    for (size_t i = 0; i < report.axes.size(); ++i) {
-      const AxisTiling& a = report.axes[i];
-      // A mip level none of whose axes is judged takes one line.
-      size_t end = i;
-      while (end < report.axes.size() && report.axes[end].level == a.level &&
-             report.axes[end].verdict == TilingVerdict::not_judged)
-        ++end;
-      if (end > i && (end == report.axes.size() || report.axes[end].level != a.level) &&
-          (i == 0 || report.axes[i - 1].level != a.level)) {
-        std::printf("  level %d  not judged: %s\n", a.level, a.reason.c_str());
-        i = end - 1;
-        continue;
-      }
-      const std::string where =
-          fmt::format("level {}{}  axis {}  {:<4} {:>5} texels", a.level,
-                      tex.layers > 1 ? fmt::format("  layer {}", a.layer) : "", a.axis, a.channel,
-                      a.texels);
-      if (a.verdict == TilingVerdict::tiles && a.reason == "constant") {
-        std::printf("  %s  constant  ok\n", where.c_str());
-      } else if (a.verdict == TilingVerdict::tiles || a.verdict == TilingVerdict::seam) {
-        std::printf("  %s  values %.3g (limit %.3g)  slopes %.3g (limit %.3g)  contrast %.3g  %s\n",
-                    where.c_str(), a.values.seam, a.values.limit, a.slopes.seam, a.slopes.limit,
-                    a.contrast, a.verdict == TilingVerdict::seam ? "SEAM" : "ok");
-      } else {
-        std::printf("  %s  %s: %s\n", where.c_str(),
-                    a.verdict == TilingVerdict::cannot_tell ? "CANNOT TELL" : "not judged",
-                    a.reason.c_str());
-      }
-    }
+    if (!args.quiet) print_axes(tex, report);
   }
   if (args.json)
     std::cout << nlohmann::json{{"tiles", overall == TilingVerdict::tiles},
