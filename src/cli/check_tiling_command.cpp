@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/texture_args.hpp"
 #include "cli/commands.hpp"
 #include "cli/errors.hpp"
 #include "core/error.hpp"
@@ -128,10 +129,10 @@ void print_axes(const Texture& tex, const TilingReport& report) {
 }  // namespace
 
 int run_check_tiling(const CheckTilingArgs& args) {
-  require_files(args.files);
+  const std::vector<std::string> inputs = expand_texture_files(args.files);
   TilingVerdict overall = TilingVerdict::tiles;
   nlohmann::json files = nlohmann::json::array();
-  for (const std::string& file : args.files) {
+  for (const std::string& file : inputs) {
     std::string note;
     const LoadedTexture loaded = read_for_tiling(file, args.max_memory, note);
     const Texture& tex = loaded.texture;

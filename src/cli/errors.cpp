@@ -79,13 +79,6 @@ std::string no_command_message(const std::vector<std::string>& commands) {
   return fmt::format("no command given (commands: {})", fmt::join(commands, ", "));
 }
 
-void require_files(const std::vector<std::string>& files) {
-  for (const std::string& file : files) {
-    if (fs::is_directory(file)) throw IoError(file + ": is a folder, not a file");
-    if (!fs::exists(file)) throw IoError(file + ": no such file");
-  }
-}
-
 std::vector<fs::path> expand_presets(const std::vector<std::string>& entries) {
   for (const std::string& entry : entries)
     if (!is_pattern(entry) && !fs::exists(entry)) throw IoError(entry + ": no such file");

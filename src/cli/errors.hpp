@@ -34,11 +34,6 @@ std::string unknown_command_message(const std::string& arg,
 // "no command given (commands: bake, validate, ...)".
 std::string no_command_message(const std::vector<std::string>& commands);
 
-// Input files named on the command line must exist: IoError "<path>: no such
-// file" (exit 4) before anything is read; a folder is "<path>: is a folder,
-// not a file".
-void require_files(const std::vector<std::string>& files);
-
 // Preset entries (files, folders, glob patterns): a file or folder that does
 // not exist is an IoError as above; a pattern that matches nothing is left
 // to expand_catalog (a usage error). Returns the expanded, sorted presets.

@@ -10,6 +10,7 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/texture_args.hpp"
 #include "cli/commands.hpp"
 #include "cli/errors.hpp"
 #include "core/error.hpp"
@@ -51,9 +52,9 @@ std::string table_convention_text(const Texture& tex) {
 }  // namespace
 
 int run_info(const InfoArgs& args) {
-  require_files(args.files);
+  const std::vector<std::string> inputs = expand_texture_files(args.files);
   nlohmann::json all = nlohmann::json::array();
-  for (const std::string& file : args.files) {
+  for (const std::string& file : inputs) {
     const LoadedTexture loaded = read_texture_file(file, args.max_memory);
     const Texture& tex = loaded.texture;
     const nlohmann::json stats = channel_stats(tex);

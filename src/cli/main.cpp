@@ -221,7 +221,7 @@ CLI::App* add_info_command(CLI::App& app, InfoArgs& args) {
   CLI::App* cmd =
       app.add_subcommand("info", "Read back " + formats_help(skybake::texture_file_formats(), "or") +
                                      " files and print shape and metadata.");
-  cmd->add_option("files", args.files, "Files written by skybake")->required();
+  cmd->add_option("files", args.files, "Files written by skybake, folders of them or quoted glob patterns")->required();
   add_max_memory_option(cmd, args.max_memory);
   add_json_flag(cmd, args.json, "Print as JSON on stdout");
   return cmd;
@@ -232,7 +232,7 @@ CLI::App* add_check_tiling_command(CLI::App& app, CheckTilingArgs& args) {
       "check-tiling", "Check that baked 2D/3D textures tile (" +
                           formats_help(skybake::texture_file_formats(), "or") +
                           " files); exit 1 if not.");
-  cmd->add_option("files", args.files, "Texture files written by skybake")->required();
+  cmd->add_option("files", args.files, "Texture files written by skybake, folders of them or quoted glob patterns")->required();
   cmd->add_option("-t,--tolerance", args.tolerance,
                   "The seam's jump score may exceed the median interior face's by this "
                   "fraction, or by 4 spreads of the interior faces if more")

@@ -89,6 +89,34 @@ TEST(CheckTiling, ShippedNoisePresetsTileInEveryFile) {
   }
 }
 
+// A folder and a pattern stand for the texture files they hold, as bake's
+// preset arguments do: the same files, measured the same.
+TEST(CheckTiling, FoldersAndPatternsAreTheirTextureFiles) {
+  const fs::path dir = baked_noise() / "clouds_hzd";
+  std::vector<std::string> named = texture_files(dir);
+  for (const std::string& f : test::list_files(dir))
+    if (fs::path(f).extension() == ".ktx2") named.push_back((dir / f).string());
+  std::sort(named.begin(), named.end());
+  ASSERT_FALSE(named.empty());
+  const auto listed = [](const test::RunResult& r) {
+    const json out = json::parse(r.out);
+    std::vector<std::string> files;
+    for (const json& f : out["files"]) files.push_back(f["file"].get<std::string>());
+    return files;
+  };
+  const auto folder = check({dir.string()}, true);
+  EXPECT_EQ(folder.exit_code, 0) << folder.err;
+  EXPECT_EQ(listed(folder), named);
+  const auto pattern = check({(dir / "*.dds").string()}, true);
+  EXPECT_EQ(pattern.exit_code, 0) << pattern.err;
+  for (const std::string& f : listed(pattern)) EXPECT_EQ(fs::path(f).extension(), ".dds") << f;
+  const auto info = test::run_skybake({"info", "--json", dir.string()});
+  EXPECT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_EQ(listed(info), named);
+  const auto none = check({(dir / "*.nothing").string()});
+  EXPECT_EQ(none.exit_code, 2) << none.err;
+}
+
 TEST(CheckTiling, ShippedCloudsPresetsTileInEveryFile) {
   const fs::path dir = test::fresh_dir("check_tiling_clouds");
   std::vector<std::string> files;

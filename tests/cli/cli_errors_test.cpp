@@ -111,7 +111,9 @@ TEST(CliErrors, MissingInputFileIsAFileError) {
   expect_error(run_skybake({"info", "bad.dds", "nothing.exr"}, dir), 4,
                "nothing.exr: no such file");
   fs::create_directories(dir / "folder.exr");
-  expect_error(run_skybake({"info", "folder.exr"}, dir), 4, "folder.exr: is a folder, not a file");
+  // A folder is read as its texture files: one with none is a usage error.
+  expect_error(run_skybake({"info", "folder.exr"}, dir), 2,
+               "folder.exr: a folder with no exr, dds, ktx2, vdb file");
   // A pattern that matches nothing is a usage error, not a missing file.
   expect_error(run_skybake({"bake", "no/*.json"}, dir), 2,
                "no/*.json: no such preset file, folder or matching pattern");
