@@ -1,6 +1,6 @@
 // Research tool, not a benchmark: how far the aerial-perspective record's
 // reference (pipeline/atmosphere_errors.cpp) is from a much denser march at
-// the record's own query points, per preset (docs/decisions/error-record-references.md). Each preset's
+// the record's own query points, per preset (docs/decisions/error-records.md). Each preset's
 // graph is baked in memory; for its aerial_perspective table it prints, max /
 // rms relative over the queries and channels (core/error_stats.hpp):
 //   record    the table against the record's reference (the manifest's figure)

@@ -1,5 +1,5 @@
 // CPU time of each atmosphere table's bake and of its error record
-// (docs/decisions/error-record-cost.md), one thread,
+// (docs/decisions/error-records.md), one thread,
 // in one process: each preset's graph is baked in memory (no files), every
 // BakeFn and MeasureFn timed with the thread's CPU clock, REPEAT times, and
 // the medians printed. Steadier than bench/error_cost.sh's wall times on a

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The best multiple-scattering table any Psi(r, mu_s) could be, for the
-report's sky-view comparison (docs/decisions/psi-oracle.md). Research script, not part of the build or the
+report's sky-view comparison (docs/decisions/converged-psi-ms.md). Research script, not part of the build or the
 tests.
 
 Run (from the repository, after building the target psi_oracle_dump):

@@ -1,7 +1,7 @@
 // Research tool, not part of the product: dumps the report's sky views as a
 // linear function of a multiple-scattering table (report/psi_weights.hpp),
 // with the path-traced references, for bench/psi_oracle.py, which finds the
-// best table any Psi(r, mu_s) could be (docs/decisions/psi-oracle.md).
+// best table any Psi(r, mu_s) could be (docs/decisions/converged-psi-ms.md).
 //
 //   build/bench/psi_oracle_dump PRESET OUT.json [WIDTHxHEIGHT] [PATHS] [SEED_SETS]
 //        WIDTHxHEIGHT: the table's size (default: the preset's operating point)

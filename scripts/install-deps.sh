@@ -20,7 +20,7 @@ packages=(
 )
 # What the tests, benchmarks and sanitizer checks add: test frameworks, the
 # independent readers (OpenImageIO, OpenEXR's and OpenVDB's tools, nvtt,
-# Pillow, Blender: docs/decisions/blender-test-dependency.md), the shader
+# Pillow, Blender: docs/decisions/test-tiers.md), the shader
 # compiler and a software GL, clang with its sanitizer and fuzzer runtime;
 # Slurm and munge for the build-farm end-to-end test.
 if [ "$mode" = all ]; then

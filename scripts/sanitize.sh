@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The sanitizer part of the test command (scripts/test.sh runs it after the
-# suite; docs/decisions/fuzzing-and-sanitizers.md):
+# suite; docs/decisions/test-tiers.md):
 #  1. every libFuzzer harness of fuzz/ (clang, ASan + UBSan) replays its seed
 #     corpus and then makes a bounded, deterministic run (-seed=1, FUZZ_RUNS
 #     executions, default 10000): the same inputs on every machine, so a

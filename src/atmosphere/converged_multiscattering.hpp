@@ -91,7 +91,7 @@ glm::dvec3 compute_converged_multiscattering(const Atmosphere& atm,
 // per channel: min and max over the grid's half cells. Every Psi that is a
 // mean of j over directions with weights >= 0 lies in it (both estimators;
 // the mean too, each phase integrating to one): a bound on what any such
-// estimator can give (docs/decisions/psi-oracle.md). q needs the relative estimator's kernels.
+// estimator can give (docs/decisions/converged-psi-ms.md). q needs the relative estimator's kernels.
 // Both 0 below the field's mu_s_min. Thread-safe.
 struct SourceRange {
   glm::dvec3 min{0.0}, max{0.0};

@@ -1,4 +1,4 @@
-// The geometric tail of a series of scattering orders (docs/decisions/geometric-tail.md; the derivation is in
+// The geometric tail of a series of scattering orders (docs/decisions/bruneton-stiff-media.md; the derivation is in
 // scattering_orders.hpp): in a dense, weakly absorbing sky the orders tend to
 // DeltaS_{k+1} = lambda DeltaS_k, lambda the dominant eigenvalue of the
 // order-to-order map, one per channel, so the orders after the last one N

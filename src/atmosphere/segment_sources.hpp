@@ -1,7 +1,7 @@
 // One segment of the sky's march (sky_integrator.hpp) with its source known
 // at the segment's two ends instead of at its midpoint: the aerial record's
 // reference on optically thick air (IntegrationOptions::sources_at_ends,
-// docs/decisions/error-record-references.md).
+// docs/decisions/error-records.md).
 //
 // Per channel, with constant extinction sigma over the segment of length dt
 // (optical depth x = sigma dt, transmittance t = exp(-x), weight

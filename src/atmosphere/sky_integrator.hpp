@@ -75,7 +75,7 @@ struct IntegrationOptions {
   // at the midpoint; the medium stays sampled at the midpoint. In optically
   // thick segments the light comes from near the segment's start, where a
   // midpoint read is far off (the aerial record's reference,
-  // pipeline/atmosphere_errors.cpp; docs/decisions/error-record-references.md). n + 1 reads of each table for n
+  // pipeline/atmosphere_errors.cpp; docs/decisions/error-records.md). n + 1 reads of each table for n
   // segments. Takes the block path (block_exponentials).
   bool sources_at_ends = false;
   // Where set (null: none), the block march leaves out the reads whose
@@ -125,7 +125,7 @@ ScatteringResult integrate_scattered_luminance(const Atmosphere& atm,
 // the march's h^2 error cancels to leading order. The error records'
 // reference (pipeline/atmosphere_errors.cpp): 3n segments where the plain
 // march needed 300 for a several times larger error
-// (docs/decisions/error-record-references.md).
+// (docs/decisions/error-records.md).
 glm::dvec3 extrapolated_scattered_luminance(const Atmosphere& atm, const Texture& transmittance_lut,
                                             const Texture* multiscattering_lut,
                                             glm::dvec3 position_m, glm::dvec3 view_dir,

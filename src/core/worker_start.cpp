@@ -18,7 +18,7 @@ namespace {
 // report none, such as the development VM), a new worker woken by the
 // thread that created it can land on that thread's CPU and share it until
 // the periodic load balancing moves it, about 10 ms later: a bake shorter
-// than that ran at one thread's speed on two (docs/decisions/worker-start.md). Once moved, the worker is woken where it last
+// than that ran at one thread's speed on two (docs/decisions/fresh-pages.md). Once moved, the worker is woken where it last
 // ran. Does nothing where it is not on `cpu` or may run nowhere else.
 void move_off(int cpu) {
   if (cpu < 0 || sched_getcpu() != cpu) return;

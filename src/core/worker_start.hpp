@@ -6,11 +6,11 @@
 // 0.4 ms of CPU, bench/startup_bench.sh) and the worker starts (0.1 ms
 // on idle cores, up to 2 ms under load). A 256x64 transmittance table is a
 // 13 ms bake: that alone held its 1 -> 2 thread speed-up to 1.15x
-// (docs/decisions/worker-start.md).
+// (docs/decisions/fresh-pages.md).
 //
 // A started worker may also start on the CPU of the thread that created it,
 // and stay there, sharing it, while another CPU idles: see worker_start.cpp
-// and docs/decisions/worker-start.md.
+// and docs/decisions/fresh-pages.md.
 #pragma once
 
 namespace skybake {

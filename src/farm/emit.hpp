@@ -8,7 +8,7 @@
 
 namespace skybake {
 
-// What one ninja edge runs (docs/decisions/farm-edges.md).
+// What one ninja edge runs (docs/decisions/product-graph.md).
 enum class NinjaEdges {
   kScene,    // `skybake bake PRESET...`: every product of --chunk scenes, one process
   kProduct,  // `skybake bake PRESET --only PRODUCT`: one process per product

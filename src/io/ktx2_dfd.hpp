@@ -17,7 +17,7 @@
 //
 // What skybake writes (docs/formats.md "KTX2"): transfer function linear,
 // primaries BT.709 (what the Khronos reference mapping from vkFormat assumes;
-// docs/decisions/ktx2-files.md), straight alpha (flags 0), sample positions 0.
+// docs/decisions/dds-files.md), straight alpha (flags 0), sample positions 0.
 // Uncompressed formats use the RGBSDA model with one sample per channel:
 // float channels are flagged FLOAT | SIGNED with lower -1.0f and upper 1.0f
 // (as 32-bit float bit patterns), unorm channels have lower 0 and upper 255.

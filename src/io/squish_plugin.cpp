@@ -8,7 +8,7 @@ namespace {
 
 // Colour fit: libsquish's cluster fit (its default quality) with uniform
 // channel weights (metric nullptr), since our channels are data, not
-// perceived colour (docs/decisions/block-compression.md).
+// perceived colour (docs/decisions/dds-files.md).
 int squish_flags(int format) {
   switch (format) {
     case skybake::bc_plugin_bc1: return squish::kDxt1 | squish::kColourClusterFit;

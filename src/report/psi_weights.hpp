@@ -1,5 +1,5 @@
 // The report's sky views as a linear function of a multiple-scattering
-// table (docs/decisions/psi-oracle.md). Hillaire's runtime adds E sigma_s Psi_ms(r, mu_s) to each
+// table (docs/decisions/converged-psi-ms.md). Hillaire's runtime adds E sigma_s Psi_ms(r, mu_s) to each
 // march step of the sky-view bake, reading Psi_ms bilinearly, and the
 // report reads the layer bilinearly too: every rendered view is
 //   L_v,c = single_v,c + sum_k weights_v,k,c x_k,c

@@ -7,7 +7,7 @@
 // points are the first of the report's. References: the fewest steps or
 // directions at which the measured max_rel and rms_rel of the shipped and
 // extreme presets stop moving in their third digit, each checked against a
-// much denser rule (docs/decisions/error-record-references.md,
+// much denser rule (docs/decisions/error-records.md,
 // "Error records at a tenth of the bake").
 #pragma once
 
@@ -32,7 +32,7 @@ constexpr int kMultiscatteringQueries = 24;
 // Earth, 1.2e-2 under 100x Rayleigh (tests/atmosphere/
 // psi_ms_reference_test.cpp), 1-2% of the tables' own errors there; the
 // 6-azimuth, 40-segment rule halved that for twice the time, which put the
-// record above a tenth of the table's AVX2 bake (docs/decisions/error-record-cost.md).
+// record above a tenth of the table's AVX2 bake (docs/decisions/error-records.md).
 constexpr PointQuadrature kMultiscatteringReference = {6, 24, 4, 32};
 
 constexpr int kSkyviewQueries = 128;
@@ -53,7 +53,7 @@ constexpr int kAerialQueries = 256;
 // denser march, 2% / 13% of the table's own error, this one at 80 steps is
 // 1e-2 / 1e-3; on every shipped and extreme preset it is within 1.5% of the
 // table's error, for the CPU of the 100 midpoint steps (tests/pipeline/
-// error_references_test.cpp; docs/decisions/error-record-references.md).
+// error_references_test.cpp; docs/decisions/error-records.md).
 constexpr int kAerialReferenceSteps = 80;
 constexpr int kAerialMinSteps = 8;
 

@@ -7,7 +7,7 @@
 // It integrates the same integral as compute_multiscattering (reading the
 // same transmittance table for the sun) with a different quadrature, so the
 // record compares the table with a rule it does not share
-// (docs/decisions/error-record-references.md):
+// (docs/decisions/error-records.md):
 // - Zenith cosines: split at the horizon's cosine mu_h(r) as the symmetric
 //   Gauss rule is (sphere_rule.hpp), but on each side mu = mu_h -+ c s^2
 //   (c the side's width) with Gauss-Legendre nodes in s on [0, 1]. A ray's
@@ -29,7 +29,7 @@
 //   start where it is optically thick).
 // Where the AVX2 loops run (core/simd_switches.hpp), a ring's media and
 // expm1s are taken in blocks (medium_block.hpp, core/exp_block.hpp): within
-// 1e-13 of the one-value loops, which keep libm's bits (docs/decisions/error-record-cost.md); its per-segment terms
+// 1e-13 of the one-value loops, which keep libm's bits (docs/decisions/error-records.md); its per-segment terms
 // (ring_segments.hpp) and the four azimuths' sun reads (ring_sun_sums.hpp)
 // four segments at a time, the same bits as one at a time.
 #pragma once

@@ -1,5 +1,5 @@
 // The aerial perspective's two slice layouts at the same 32 x 32 x 32
-// froxels and range (docs/decisions/skyview-default-layout.md): skybake's
+// froxels and range (docs/decisions/table-convention-key.md): skybake's
 // linear slices, d_k = (k + 0.5) / n R, and Hillaire's squared slices,
 // d_k = ((k + 0.5) / n)^2 R ("convention": "hillaire_demo", here with
 // skybake's alpha for the comparison's sake: A compared as transmittance).

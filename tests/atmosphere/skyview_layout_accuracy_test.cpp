@@ -1,5 +1,5 @@
 // The sky-view's two azimuth layouts at the same 192 x 108 texels
-// (docs/decisions/skyview-default-layout.md): skybake's full circle,
+// (docs/decisions/table-convention-key.md): skybake's full circle,
 // u = phi / (2 pi), and Hillaire's half circle, u = sqrt(0.5 - 0.5 cos phi)
 // with the sun at u = 0 ("convention": "hillaire_demo"). The sky is
 // symmetric about the sun's vertical plane, so the half circle holds each

@@ -17,7 +17,7 @@
 //   relative estimator is below both the mean's error and Hillaire's; the
 //   mean spreads the aureole over every view and is worse than Hillaire's
 //   there. (Halving Hillaire's error on Mars is out of reach of every
-//   estimator that is a mean of the source over directions: docs/decisions/psi-oracle.md.)
+//   estimator that is a mean of the source over directions: docs/decisions/converged-psi-ms.md.)
 #include <gtest/gtest.h>
 
 #include "report/converged_targets.hpp"
