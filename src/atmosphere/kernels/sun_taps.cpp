@@ -69,6 +69,18 @@ struct SunRowLanes {
         stride(table.stride) {}
 };
 
+// The suns' zenith cosines at the node (NodeSuns): std::min(std::max(v,
+// -1), 1) is ClampLanes(v, -1, 1).
+template <class D>
+struct NodeSunLanes {
+  Lanes<D> r, s, inv_r;
+  NodeSunLanes(D d, const NodeSuns& suns)
+      : r(hn::Set(d, suns.r)), s(hn::Set(d, suns.s)), inv_r(hn::Set(d, suns.inv_r)) {}
+  Lanes<D> mu_s(D d, Lanes<D> mu_s_start, Lanes<D> nu) const {
+    return ClampLanes(d, hn::Mul(hn::Add(hn::Mul(r, mu_s_start), hn::Mul(s, nu)), inv_r), -1.0, 1.0);
+  }
+};
+
 // The first pass of TransmittanceReader::to_sun for the lanes' cosines at
 // the row: the table's column i0, the weight w and the sun's visible
 // fraction. Taps' operations, on the hoisted constants.
@@ -193,7 +205,7 @@ void MuSTaps(const MuSAxis::Constants& c, const double* mu_s, int n, int* i0, do
 // work arrays hold n rounded up to whole groups; whole groups go through
 // loops without the short group's checks.
 void AddSunProducts(const SunTapTable& table, const TransmittanceReader::Row& row,
-                    const double* mu_s, int n, const glm::dvec3& a_rayleigh,
+                    const NodeSuns& suns, int n, const glm::dvec3& a_rayleigh,
                     const glm::dvec3& a_mie, double* const sums[6], SunTapScratch& scratch) {
   // At most four lanes: the texels' loads and transpose (TexelPairs) were
   // faster than gathers of eight.
@@ -208,11 +220,16 @@ void AddSunProducts(const SunTapTable& table, const TransmittanceReader::Row& ro
   double* const w = scratch.w.data();
   double* const visible = scratch.visible.data();
   const SunRowLanes<D> q(d, table, row);
+  const NodeSunLanes<D> at(d, suns);
   for (size_t k = 0; k < whole; k += lanes)
-    SunTaps(d, q, hn::LoadU(d, mu_s + k), i0 + k, w + k, visible + k);
-  if (whole < size_t(n))
-    SunTaps(d, q, LoadGroup(d, mu_s, whole, size_t(n) - whole), i0 + whole, w + whole,
-            visible + whole);
+    SunTaps(d, q, at.mu_s(d, hn::LoadU(d, suns.mu_s + k), hn::LoadU(d, suns.nu + k)), i0 + k,
+            w + k, visible + k);
+  if (whole < size_t(n)) {
+    const size_t count = size_t(n) - whole;
+    SunTaps(d, q,
+            at.mu_s(d, LoadGroup(d, suns.mu_s, whole, count), LoadGroup(d, suns.nu, whole, count)),
+            i0 + whole, w + whole, visible + whole);
+  }
   Lanes<D> a[6];
   const double a_values[6] = {a_rayleigh.r, a_rayleigh.g, a_rayleigh.b, a_mie.r, a_mie.g, a_mie.b};
   for (int c = 0; c < 6; ++c) a[c] = hn::Set(d, a_values[c]);
@@ -250,9 +267,9 @@ void mu_s_taps(const MuSAxis::Constants& c, const double* mu_s, int n, int* i0, 
 }
 
 void add_sun_products(const SunTapTable& table, const TransmittanceReader::Row& row,
-                      const double* mu_s, int n, const glm::dvec3& a_rayleigh,
+                      const NodeSuns& suns, int n, const glm::dvec3& a_rayleigh,
                       const glm::dvec3& a_mie, double* const sums[6], SunTapScratch& scratch) {
-  HWY_DYNAMIC_DISPATCH(AddSunProducts)(table, row, mu_s, n, a_rayleigh, a_mie, sums, scratch);
+  HWY_DYNAMIC_DISPATCH(AddSunProducts)(table, row, suns, n, a_rayleigh, a_mie, sums, scratch);
 }
 
 }  // namespace skybake
