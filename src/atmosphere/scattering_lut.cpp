@@ -421,17 +421,12 @@ void SingleScatteringRay::at_sun2(const TransmittanceReader& reader, const doubl
 void SingleScatteringRay::at_suns(const TransmittanceReader& reader, const double* mu_s,
                                   const double* nu, int n, glm::dvec3 sun, SingleScattering* out,
                                   Scratch& scratch) const {
-  scratch.mu_s.resize(n);
   scratch.sums.assign(6 * size_t(n), 0.0);
   double* const sums[6] = {&scratch.sums[0],     &scratch.sums[n],     &scratch.sums[2 * n],
                            &scratch.sums[3 * n], &scratch.sums[4 * n], &scratch.sums[5 * n]};
-  for (const Node& node : nodes) {
-    // clamp_cosine as min / max: the same value, no branch.
-    for (int k = 0; k < n; ++k)
-      scratch.mu_s[k] = std::min(std::max((r * mu_s[k] + node.s * nu[k]) * node.inv_r, -1.0), 1.0);
-    reader.add_sun_products(node.sun_row, scratch.mu_s.data(), n, node.a_rayleigh, node.a_mie,
-                            sums, scratch.taps);
-  }
+  for (const Node& node : nodes)
+    reader.add_sun_products(node.sun_row, NodeSuns{mu_s, nu, r, node.s, node.inv_r}, n,
+                            node.a_rayleigh, node.a_mie, sums, scratch.taps);
   for (int k = 0; k < n; ++k) {
     out[k].rayleigh = {sums[0][k], sums[1][k], sums[2][k]};
     out[k].mie = {sums[3][k], sums[4][k], sums[5][k]};
@@ -555,10 +550,10 @@ glm::dvec3 ScatteringOrder::radiance_at(const Atmosphere& atm, const ScatteringS
   return L;
 }
 
-void TransmittanceReader::add_sun_products(const Row& row, const double* mu_s, int n,
+void TransmittanceReader::add_sun_products(const Row& row, const NodeSuns& suns, int n,
                                            const glm::dvec3& a_rayleigh, const glm::dvec3& a_mie,
                                            double* const sums[6], SunTapScratch& scratch) const {
-  skybake::add_sun_products({rt_, lut_.width, stride_}, row, mu_s, n, a_rayleigh, a_mie, sums,
+  skybake::add_sun_products({rt_, lut_.width, stride_}, row, suns, n, a_rayleigh, a_mie, sums,
                             scratch);
 }
 

@@ -241,6 +241,16 @@ struct SunTapScratch {
   std::vector<double> w, visible;
 };
 
+// The suns seen from one node of a ray (SingleScatteringRay::at_sun): sun k
+// is at zenith cosine mu_s[k] and scattering angle cosine nu[k] at the
+// ray's start (radius r); at the node, s along the ray and 1 / inv_r from
+// the centre, its zenith cosine is clamp_cosine((r mu_s[k] + s nu[k]) inv_r).
+struct NodeSuns {
+  const double* mu_s;
+  const double* nu;
+  double r, s, inv_r;
+};
+
 // lookup_transmittance_to_top and lookup_transmittance (transmittance_lut.hpp)
 // with the work that depends on r alone hoisted into a Row, for inner loops
 // that read many mu at one r. The same values up to rounding (tests).
@@ -278,9 +288,10 @@ class TransmittanceReader {
   }
   glm::dvec3 to_top(double r, double mu) const { return to_top(row(r), mu); }
   // sums[c][k] += a_rayleigh[c] T_k and sums[3 + c][k] += a_mie[c] T_k with
-  // T_k = to_sun(row, mu_s[k]) (the same values: kernels/sun_taps.hpp), for
-  // k < n: single scattering's hottest loop (SingleScatteringRay::at_suns).
-  void add_sun_products(const Row& row, const double* mu_s, int n, const glm::dvec3& a_rayleigh,
+  // T_k = to_sun(row, mu_s_k), mu_s_k sun k's zenith cosine at the node
+  // (NodeSuns; the same values: kernels/sun_taps.hpp), for k < n: single
+  // scattering's hottest loop (SingleScatteringRay::at_suns).
+  void add_sun_products(const Row& row, const NodeSuns& suns, int n, const glm::dvec3& a_rayleigh,
                         const glm::dvec3& a_mie, double* const sums[6],
                         SunTapScratch& scratch) const;
   // Between (r, mu) and the point at distance d along the ray.
@@ -339,7 +350,7 @@ struct SingleScatteringRay {
   // them at once (TransmittanceReader::add_sun_products): out[k] equals
   // at_sun(mu_s[k], nu[k]). The work arrays are the caller's, reused.
   struct Scratch {
-    std::vector<double> mu_s, sums;
+    std::vector<double> sums;
     SunTapScratch taps;
   };
   void at_suns(const TransmittanceReader& reader, const double* mu_s, const double* nu, int n,

@@ -111,9 +111,14 @@ HWY_INLINE void NodeReadPair(const Rgb4* slice, const NodeRow& q, const Rgb4& wS
 }  // namespace
 
 // The taps run kAhead texels ahead of the reads, so that the reads do not
-// wait on the divider's latency and the two overlap.
-void AddNodeSliceReads(const NodeRow& row, const SunCosineTapsFloat& taps, const Rgb4* slice,
-                       const Rgb4& wS, int end, Rgb4* sum) {
+// wait on the divider's latency and the two overlap. The loops read local
+// copies of the constants: through the references, the compiler reloaded
+// them after every store (a store of floats might have changed them).
+void AddNodeSliceReads(const NodeRow& row_in, const SunCosineTapsFloat& taps_in,
+                       const Rgb4* slice, const Rgb4& wS_in, int end, Rgb4* sum) {
+  const NodeRow row = row_in;
+  const SunCosineTapsFloat taps = taps_in;
+  const Rgb4 wS = wS_in;
   const hn::ScalableTag<float> df;
   const hn::CappedTag<float, 4> d4;
   constexpr int kAhead = 16;

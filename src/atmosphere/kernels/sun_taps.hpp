@@ -22,10 +22,11 @@ struct SunTapTable {
 void mu_s_taps(const MuSAxis::Constants& c, const double* mu_s, int n, int* i0, double* w);
 
 // sums[c][k] += a_rayleigh[c] T_k and sums[3 + c][k] += a_mie[c] T_k for
-// k < n, T_k = TransmittanceReader::to_sun(row, mu_s[k]); the work arrays
-// are the caller's, reused.
+// k < n, T_k = TransmittanceReader::to_sun(row, mu_s_k), mu_s_k sun k's
+// zenith cosine at the node (NodeSuns, clamp_cosine as min / max: the same
+// value); the work arrays are the caller's, reused.
 void add_sun_products(const SunTapTable& table, const TransmittanceReader::Row& row,
-                      const double* mu_s, int n, const glm::dvec3& a_rayleigh,
+                      const NodeSuns& suns, int n, const glm::dvec3& a_rayleigh,
                       const glm::dvec3& a_mie, double* const sums[6], SunTapScratch& scratch);
 
 }  // namespace skybake
