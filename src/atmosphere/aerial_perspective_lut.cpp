@@ -182,6 +182,11 @@ glm::dvec4 lookup_aerial_perspective(const Texture& lut, double depth_range_m, g
     const glm::dvec4 first = sample_bilinear(lut, screen_uv.x, screen_uv.y, 0, 0, false);
     return glm::mix(glm::dvec4(0.0, 0.0, 0.0, 1.0), first, f);
   }
+  return sample_aerial_slices(lut, screen_uv, s);
+}
+
+glm::dvec4 sample_aerial_slices(const Texture& lut, glm::dvec2 screen_uv, double s) {
+  const int n = lut.depth;
   const int z0 = std::min(int(s), n - 1), z1 = std::min(z0 + 1, n - 1);
   const double f = std::min(s - z0, 1.0);
   const glm::dvec4 a = sample_bilinear(lut, screen_uv.x, screen_uv.y, z0, 0, false);

@@ -103,4 +103,9 @@ Texture bake_aerial_perspective_lut(const Atmosphere& atm, const Texture& transm
 glm::dvec4 lookup_aerial_perspective(const Texture& lut, double depth_range_m, glm::dvec2 screen_uv,
                                      double distance_m);
 
+// The froxel texture read between slices at slice coordinate s >= 0 (slice k
+// centred at s = k), bilinear in (u, v), clamped at the last slice: the read
+// shared by every slice layout.
+glm::dvec4 sample_aerial_slices(const Texture& lut, glm::dvec2 screen_uv, double s);
+
 }  // namespace skybake

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "atmosphere/aerial_perspective_lut.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/table_convention.hpp"
 #include "atmosphere/transmittance_lut.hpp"
@@ -56,11 +57,7 @@ glm::dvec4 lookup_demo_aerial_perspective(const Texture& lut, double depth_range
     const glm::dvec4 first = sample_bilinear(lut, screen_uv.x, screen_uv.y, 0, 0, false);
     return first * std::clamp(d / d0, 0.0, 1.0);
   }
-  const int z0 = std::min(int(s), n - 1), z1 = std::min(z0 + 1, n - 1);
-  const double f = std::min(s - z0, 1.0);
-  const glm::dvec4 a = sample_bilinear(lut, screen_uv.x, screen_uv.y, z0, 0, false);
-  const glm::dvec4 b = sample_bilinear(lut, screen_uv.x, screen_uv.y, z1, 0, false);
-  return glm::mix(a, b, f);
+  return sample_aerial_slices(lut, screen_uv, s);
 }
 
 }  // namespace skybake

@@ -200,9 +200,27 @@ ProductInfo atmosphere_lut_product(std::string name, std::string summary,
   return p;
 }
 
-namespace {
-
+// The iteration holds about ten tables of the field's shape (RGB float32).
 constexpr double kMaxConvergedTexels = 4.0 * 1024 * 1024;
+
+std::vector<ProductProblem> converged_field_problems(const OutputSpec& spec) {
+  BrunetonSpec b = converged_multiscattering_spec(spec).bruneton;
+  b.mu_s_min = -0.5;  // replaced at bake time by converged_mu_s_min, always in (-1, 0]
+  try {
+    check_bruneton_spec(b);
+  } catch (const Error& e) {
+    return {{"/scattering_shape", e.what()}};
+  }
+  const double texels = double(b.r_size) * b.mu_size * b.mu_s_size * b.nu_size;
+  if (texels > kMaxConvergedTexels)
+    return {{"/scattering_shape",
+             fmt::format("expected at most {} texels in the 4D table, got {}x{}x{}x{} = {:.0f}",
+                         kMaxConvergedTexels, b.r_size, b.mu_size, b.mu_s_size, b.nu_size,
+                         texels)}};
+  return {};
+}
+
+namespace {
 
 // The converged model's 4D iteration must be one bake_bruneton accepts; the
 // direction rule belongs to the hillaire2020 integral, which it does not run.
@@ -219,21 +237,7 @@ std::vector<ProductProblem> converged_multiscattering_problems(const OutputSpec&
              "applies to model \"converged\" only (model \"hillaire2020\" computes its "
              "Psi_ms from L_2nd and f_ms)"}};
   if (!multiscattering_is_converged(spec) && !skyview_uses_multiple4d(spec)) return {};
-  BrunetonSpec b = converged_multiscattering_spec(spec).bruneton;
-  b.mu_s_min = -0.5;  // replaced at bake time by converged_mu_s_min, always in (-1, 0]
-  try {
-    check_bruneton_spec(b);
-  } catch (const Error& e) {
-    return {{"/scattering_shape", e.what()}};
-  }
-  // The iteration holds about ten tables of this shape (RGB float32).
-  const double texels = double(b.r_size) * b.mu_size * b.mu_s_size * b.nu_size;
-  if (texels > kMaxConvergedTexels)
-    return {{"/scattering_shape",
-             fmt::format("expected at most {} texels in the 4D table, got {}x{}x{}x{} = {:.0f}",
-                         kMaxConvergedTexels, b.r_size, b.mu_size, b.mu_s_size, b.nu_size,
-                         texels)}};
-  return {};
+  return converged_field_problems(spec);
 }
 
 ProductInfo atmosphere_product(std::string name, std::string summary, std::vector<std::string> axes,

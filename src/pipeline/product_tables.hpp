@@ -30,4 +30,9 @@ ProductInfo atmosphere_lut_product(std::string name, std::string summary,
                                    std::vector<int> max_size, std::vector<std::string> dependencies,
                                    BakeFn bake, double ns_per_texel);
 
+// The problems of an output's converged Psi_ms field (its `scattering_shape`
+// and the options of converged_multiscattering_spec): a 4D shape
+// bake_bruneton accepts, within the iteration's memory (atmosphere_products.cpp).
+std::vector<ProductProblem> converged_field_problems(const OutputSpec& spec);
+
 }  // namespace skybake

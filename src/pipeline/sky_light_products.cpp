@@ -1,11 +1,9 @@
 // Sky light products: the sky's irradiance as L2 spherical harmonics for
 // every (sun zenith, altitude) (atmosphere/sky_irradiance.hpp,
 // docs/runtime.md "Sky irradiance").
-#include <fmt/format.h>
 
 #include "atmosphere/order_progress.hpp"
 #include "atmosphere/sky_irradiance.hpp"
-#include "core/error.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/product_options.hpp"
 #include "pipeline/product_tables.hpp"
@@ -53,22 +51,7 @@ Texture bake_sky_irradiance_product(const Scene& scene, const OutputSpec& spec,
 // The field's 4D table must be one bake_bruneton accepts.
 std::vector<ProductProblem> sky_irradiance_problems(const OutputSpec& spec) {
   if (sky_irradiance_reads_multiscattering(spec)) return {};
-  BrunetonSpec b = converged_multiscattering_spec(spec).bruneton;
-  b.mu_s_min = -0.5;  // replaced at bake time by converged_mu_s_min, always in (-1, 0]
-  try {
-    check_bruneton_spec(b);
-  } catch (const Error& e) {
-    return {{"/scattering_shape", e.what()}};
-  }
-  // The iteration holds about ten tables of this shape (RGB float32), as
-  // the multiscattering product's converged model.
-  constexpr double kMaxFieldTexels = 4.0 * 1024 * 1024;
-  const double texels = double(b.r_size) * b.mu_size * b.mu_s_size * b.nu_size;
-  if (texels > kMaxFieldTexels)
-    return {{"/scattering_shape",
-             fmt::format("expected at most {} texels in the 4D table, got {}x{}x{}x{} = {:.0f}",
-                         kMaxFieldTexels, b.r_size, b.mu_size, b.mu_s_size, b.nu_size, texels)}};
-  return {};
+  return converged_field_problems(spec);
 }
 
 }  // namespace
