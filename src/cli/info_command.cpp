@@ -72,13 +72,18 @@ int run_info(const InfoArgs& args) {
                    {"metadata", meta},
                    {"details", loaded.details}});
     if (!convention.empty()) all.back()["convention"] = convention;
+    // A Psi_ms fitted to Hillaire's demo march (atmosphere/hillaire_demo_march_fit.hpp).
+    const bool march_fit = tex.metadata.count("demo_march_fit") > 0;
+    if (march_fit) all.back()["demo_march_fit"] = true;
     if (args.json) continue;
     std::printf("%s\n  format    %s (%s)\n  shape     %s (width x height%s%s), %d mip level%s\n",
                 file.c_str(), loaded.format.c_str(), loaded.encoding.c_str(),
                 tex.shape_string().c_str(), tex.depth > 1 ? " x depth" : "",
                 tex.layers > 1 ? " [layers]" : "", loaded.mip_levels,
                 loaded.mip_levels == 1 ? "" : "s");
-    if (!convention.empty()) std::printf("  convention %s\n", convention.c_str());
+    if (!convention.empty())
+      std::printf("  convention %s%s\n", convention.c_str(),
+                  march_fit ? ", Psi_ms fitted to his march (demo_march_fit)" : "");
     std::printf("  channels\n");
     for (const auto& s : stats)
       std::printf("    %-8s min %-12.6g max %-12.6g mean %.6g\n",

@@ -34,17 +34,20 @@ Texture bake_transmittance(const Scene& scene, const OutputSpec& spec, const Pro
 
 Texture bake_multiscattering(const Scene& scene, const OutputSpec& spec, const ProductInputs& in,
                              const BakeContext& ctx) {
+  Texture tex;
   if (multiscattering_is_converged(spec)) {
-    Texture tex = bake_converged_multiscattering_lut(scene.atmosphere, *in.at("transmittance"),
-                                                     multiscattering_spec(spec),
-                                                     converged_multiscattering_spec(spec), ctx);
+    tex = bake_converged_multiscattering_lut(scene.atmosphere, *in.at("transmittance"),
+                                             multiscattering_spec(spec),
+                                             converged_multiscattering_spec(spec), ctx);
     // Converged orders scatter with the real phases (Hillaire's model is
     // isotropic and records none).
     set_mie_phase_metadata(scene.atmosphere, tex.metadata);
-    return tex;
+  } else {
+    tex = bake_multiscattering_lut(scene.atmosphere, *in.at("transmittance"),
+                                   multiscattering_spec(spec), ctx);
   }
-  return bake_multiscattering_lut(scene.atmosphere, *in.at("transmittance"),
-                                  multiscattering_spec(spec), ctx);
+  if (fits_demo_march(spec)) fit_to_demo_march(scene.atmosphere, *in.at("transmittance"), tex);
+  return tex;
 }
 
 // Default layers: a viewer near the ground under 8 sun positions from the

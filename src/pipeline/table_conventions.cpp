@@ -4,6 +4,9 @@
 
 #include <fmt/format.h>
 
+#include "atmosphere/hillaire_demo_march_fit.hpp"
+#include "atmosphere/transmittance_lut.hpp"
+
 namespace skybake {
 
 namespace {
@@ -48,10 +51,18 @@ void apply_scene_convention(const nlohmann::json& scene_doc, nlohmann::json& out
 void normalize_convention(OutputSpec& spec) {
   if (spec.options.value("convention", std::string()) == "skybake")
     spec.options.erase("convention");
+  if (auto it = spec.options.find("fit_demo_march"); it != spec.options.end() && *it == false)
+    spec.options.erase(it);
 }
 
 std::vector<ProductProblem> convention_problems(const OutputSpec& spec) {
-  if (output_convention(spec) != TableConvention::hillaire_demo) return {};
+  if (output_convention(spec) != TableConvention::hillaire_demo) {
+    if (fits_demo_march(spec))
+      return {{"/fit_demo_march", "fits Psi_ms to Hillaire's demo march, which reads the "
+                                  "\"hillaire_demo\" convention: set \"convention\": "
+                                  "\"hillaire_demo\" on the output or the scene"}};
+    return {};
+  }
   std::vector<ProductProblem> problems;
   const char* demo = "the \"hillaire_demo\" convention (the output's or the scene's)";
   if (spec.product == "multiscattering") {
@@ -91,7 +102,22 @@ std::vector<ProductProblem> convention_problems(const OutputSpec& spec) {
 OutputSpec skybake_layout_twin(const OutputSpec& spec) {
   OutputSpec twin = spec;
   twin.options.erase("convention");
+  twin.options.erase("fit_demo_march");
   return twin;
+}
+
+bool fits_demo_march(const OutputSpec& spec) {
+  return spec.product == "multiscattering" && spec.options.value("fit_demo_march", false);
+}
+
+void fit_to_demo_march(const Atmosphere& atm, const Texture& transmittance,
+                       Texture& multiscattering) {
+  TransmittanceLutSpec ts;
+  ts.width = transmittance.width;
+  ts.height = transmittance.height;
+  ts.convention = TableConvention::hillaire_demo;
+  const Texture t_demo = bake_transmittance_lut(atm, ts, BakeContext{});
+  apply_demo_march_fit(atm, fit_demo_march(atm, t_demo, multiscattering), multiscattering);
 }
 
 }  // namespace skybake

@@ -10,7 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "atmosphere/medium.hpp"
 #include "atmosphere/table_convention.hpp"
+#include "core/texture.hpp"
 #include "pipeline/product.hpp"
 
 namespace skybake {
@@ -27,14 +29,23 @@ bool takes_convention(const std::string& product);
 // 128 km (32 slices of 4 km).
 void apply_scene_convention(const nlohmann::json& scene_doc, nlohmann::json& out);
 
-// After: skybake's own layout is recorded as no key at all, so that naming
-// it changes no hash.
+// After: skybake's own layout, and "fit_demo_march": false, are recorded as
+// no key at all, so that naming them changes no hash.
 void normalize_convention(OutputSpec& spec);
 
 // The rules hillaire_demo puts on an output (pointers relative to it).
 std::vector<ProductProblem> convention_problems(const OutputSpec& spec);
 
-// The output in skybake's layout: what a baker that reads the table gets.
+// The output in skybake's layout: what a baker that reads the table gets
+// (without a fit to Hillaire's demo march).
 OutputSpec skybake_layout_twin(const OutputSpec& spec);
+
+// A multiscattering output with "fit_demo_march": its Psi_ms rows scaled for
+// Hillaire's demo march (atmosphere/hillaire_demo_march_fit.hpp).
+bool fits_demo_march(const OutputSpec& spec);
+// Scales `multiscattering` (his layout) so, the fit reading the transmittance
+// in his layout at the size of `transmittance` (any layout).
+void fit_to_demo_march(const Atmosphere& atm, const Texture& transmittance,
+                       Texture& multiscattering);
 
 }  // namespace skybake

@@ -65,14 +65,20 @@ TEST(HillaireRuntimeSection, QuickRunJudgesItsTargets) {
   const nlohmann::json report = nlohmann::json::object();
   const ReportInputs in{scene, level, t, ms, t, report, test::test_dir("hillaire_runtime"), {}};
   const nlohmann::json out = hillaire_runtime_report(in, settings.get<HillaireRuntimeSetup>());
-  ASSERT_EQ(out["targets"].size(), 4u);
+  ASSERT_EQ(out["targets"].size(), 6u);
   for (const char* m : {"march_30_31", "march_4_14", "march_2000", "march_30_31_midpoint",
                         "march_4_14_midpoint", "skyview_lookup"})
-    for (const char* set : {"his_tables", "skybake_paper", "skybake_converged"}) {
+    for (const char* set : {"his_tables", "skybake_paper", "skybake_converged", "skybake_fitted"}) {
       const double v = out[m][set]["worst"]["rel_rmse"];
       EXPECT_TRUE(std::isfinite(v)) << m << " " << set;
       EXPECT_LT(v, 0.5) << m << " " << set;  // 64 paths: noisy, but the sky's size
     }
+  for (const char* layout : {"full_circle_192x108", "half_circle_192x108", "full_circle_48x108",
+                             "half_circle_48x108"}) {
+    const double v = out["skyview_layouts"][layout]["worst"]["rel_rmse"];
+    EXPECT_TRUE(std::isfinite(v)) << layout;
+    EXPECT_LT(v, 0.5) << layout;
+  }
 }
 
 }  // namespace
