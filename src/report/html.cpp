@@ -197,19 +197,25 @@ std::string hillaire_runtime_section(const nlohmann::json& h, bool quick) {
       prose(h["camera_altitudes_m"]), prose(h["sun_elevations_deg"]),
       prose(h["view_elevations_deg"]), prose(h["view_azimuths"]), prose(h["views"]),
       prose(h["path_tracer"]["samples"]), prose(h["path_tracer"]["max_bounces"]));
+  const auto rgb = [](const nlohmann::json& stats) {
+    std::string cell;
+    for (const auto& c : stats["channels"])
+      cell += (cell.empty() ? "" : " / ") + pct(c["rel_rmse_denoised"]);
+    return cell;
+  };
   s += header({"his runtime path", "his own tables", "skybake, paper Psi_ms",
-               "skybake, converged Psi_ms"});
+               "skybake, converged Psi_ms", "skybake, Psi_ms fitted to his march"});
   for (const char* m : {"march_30_31", "march_4_14", "march_2000", "march_30_31_midpoint",
                         "march_4_14_midpoint", "skyview_lookup"}) {
     std::vector<std::string> cells = {m};
-    for (const char* set : {"his_tables", "skybake_paper", "skybake_converged"}) {
-      std::string cell;
-      for (const auto& c : h[m][set]["channels"])
-        cell += (cell.empty() ? "" : " / ") + pct(c["rel_rmse_denoised"]);
-      cells.push_back(cell);
-    }
+    for (const char* set : {"his_tables", "skybake_paper", "skybake_converged", "skybake_fitted"})
+      cells.push_back(rgb(h[m][set]));
     s += row(cells, "");
   }
+  s += "</table>\n<p>skybake's converged sky-view in each azimuth layout, read by skybake's "
+       "lookups, against the same path tracer:</p>\n<table>\n";
+  s += header({"layout", "R / G / B"});
+  for (const auto& [layout, stats] : h["skyview_layouts"].items()) s += row({layout, rgb(stats)}, "");
   s += "</table>\n";
   if (quick) s += kQuickTargets;
   for (const auto& t : h["targets"]) {
