@@ -25,7 +25,7 @@
 //   global_bound              one factor per channel on both tables
 //   psi_bake, psi_bound       the multiscattering table's rows alone
 // The marches: RayMarchMinMaxSPP 30-31 and 4-14 at his SampleSegmentT 0.3,
-// and 2000 samples.
+// and 2000 samples; and his aerial-perspective pass (study_aerial).
 //
 //   build/bench/hillaire_march_study [--paths N] [--reference FILE] [--nodes N]
 // --reference caches the path-traced references (read when it exists).
@@ -351,6 +351,52 @@ void study_setting(const Atmosphere& atm, const StudyTables& t, const StudySetti
   print_factors(atm, "psi_bake", k_psi);
 }
 
+// His aerial-perspective pass (RenderCameraVolumePS): slice k of 32 at
+// ((k + 0.5) / 32)^2 x 128 km, marched with 2 (k + 1) fixed samples up to
+// it; each table set against his march at 2000 fixed samples of the
+// unfitted converged tables (the integral his pass converges to), over the
+// report's cameras and suns and views 0.5 to 25 degrees up. Relative RMS and
+// bias of the in-scattered luminance per channel over views x slices.
+void study_aerial(const Atmosphere& atm, const StudyTables& t) {
+  std::printf("his aerial-perspective pass against its 2000-sample march of the converged tables "
+              "(R G B rel RMS %%, bias %%)\n");
+  const Texture* sets[2][2] = {{&t.t_demo, &t.ms_conv}, {&t.t_demo, &t.ms_fit}};
+  const char* names[2] = {"converged", "psi_fit"};
+  for (int set = 0; set < 2; ++set) {
+    glm::dvec3 sum2(0.0), sum(0.0);
+    int n = 0;
+    for (double alt : {1.0, 10e3})
+      for (double sun_deg : {60.0, 10.0, 2.0})
+        for (double e_deg : {0.5, 2.0, 10.0, 25.0})
+          for (int k = 0; k < 8; ++k) {
+            const double e = e_deg * kDeg, phi = 2.0 * kPi * (k + 0.5) / 8;
+            const glm::dvec3 pos(0.0, 0.0, atm.bottom_radius_m + alt);
+            const glm::dvec3 dir(std::cos(e) * std::cos(phi), std::cos(e) * std::sin(phi), std::sin(e));
+            const glm::dvec3 sun = sky_radiance_sun(sun_deg);
+            for (int slice = 0; slice < 32; ++slice) {
+              const double x = (slice + 0.5) / 32.0;
+              DemoMarch his, ref;
+              his.variable = ref.variable = false;
+              his.min_samples = std::max(1.0, 2.0 * (slice + 1));
+              ref.min_samples = 2000.0;
+              his.max_distance = ref.max_distance = x * x * 128e3;
+              const glm::dvec3 r =
+                  demo_integrate(atm, {&t.t_demo, &t.ms_conv}, pos, dir, sun, ref).luminance;
+              const glm::dvec3 l =
+                  demo_integrate(atm, {sets[set][0], sets[set][1]}, pos, dir, sun, his).luminance;
+              const glm::dvec3 d = l / r - 1.0;
+              sum += d;
+              sum2 += d * d;
+              ++n;
+            }
+          }
+    std::printf("  %-16s %5.2f %5.2f %5.2f  bias %+5.2f %+5.2f %+5.2f\n", names[set],
+                100.0 * std::sqrt(sum2.x / n), 100.0 * std::sqrt(sum2.y / n),
+                100.0 * std::sqrt(sum2.z / n), 100.0 * sum.x / n, 100.0 * sum.y / n,
+                100.0 * sum.z / n);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -376,5 +422,6 @@ int main(int argc, char** argv) {
   print_row("his", render(atm, t.t_his, t.ms_his, test, m2000), views);
   print_row("converged", render(atm, t.t_demo, t.ms_conv, test, m2000), views);
   print_row("conv_bruneton", render(atm, t.t_skybake, t.ms_conv, test, m2000), views);
+  study_aerial(atm, t);
   return 0;
 }

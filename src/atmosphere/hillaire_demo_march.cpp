@@ -96,7 +96,11 @@ DemoMarchResult demo_integrate(const Atmosphere& atm, const DemoTables& tables,
   DemoMarchResult out;
   if (!demo_move_to_top(atm, position, dir)) return out;
   bool on_ground = false;
-  const double t_max = demo_march_end(atm, position, dir, on_ground);
+  double t_max = demo_march_end(atm, position, dir, on_ground);
+  if (t_max > march.max_distance) {
+    t_max = march.max_distance;
+    on_ground = false;
+  }
   if (!(t_max > 0.0)) return out;
   double count = march.min_samples, count_floor = count, t_max_floor = t_max;
   if (march.variable) {

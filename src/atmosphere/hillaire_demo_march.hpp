@@ -22,6 +22,8 @@
 // Lengths in metres; his constants given in km are converted.
 #pragma once
 
+#include <cmath>
+
 #include <glm/glm.hpp>
 
 #include "atmosphere/medium.hpp"
@@ -42,6 +44,7 @@ struct DemoMarch {
   bool mie_ray_phase = true;    // the components' phases; false: isotropic
   bool lit_ground = false;      // his `ground`: the lit ground's albedo / pi at a ground hit
   double segment_t = 0.3;       // where in its segment a sample sits (his SampleSegmentT)
+  double max_distance = HUGE_VAL;  // his tMaxMax: the march stops there (a froxel's depth)
 };
 
 struct DemoMarchResult {
