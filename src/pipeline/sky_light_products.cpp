@@ -146,7 +146,7 @@ void add_sky_light_products(std::vector<ProductInfo>& r) {
       "the sky as HDR cube maps per listed view (altitude, sun), GGX-prefiltered mips for "
       "specular IBL, with their L2 SH",
       {"face", "face"}, {128, 128}, {1024, 1024}, {"transmittance", "multiscattering"},
-      bake_sky_environment_product, 60000.0);
+      bake_sky_environment_product, 16000.0);
   e.default_formats = {"ktx2", "dds"};
   e.allowed_formats = {"dds", "ktx2"};
   e.half_files = true;
