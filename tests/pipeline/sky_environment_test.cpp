@@ -132,7 +132,9 @@ TEST(SkyEnvironment, ShAgreesWithTheIrradianceProjection) {
     sq += (a - b) * (a - b);
     mean += b;
   }
-  EXPECT_LT(std::sqrt(sq / count) / (mean / count), 0.02);
+  const double rms = std::sqrt(sq / count) / (mean / count);
+  EXPECT_LT(rms, 0.01);  // 0.3% measured
+  RecordProperty("sh_irradiance_rms", std::to_string(rms));
 }
 
 std::string run_node(const std::string& command, int* status) {
