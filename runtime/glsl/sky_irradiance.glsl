@@ -72,6 +72,14 @@ vec3 sky_irradiance(sampler2DArray table, SkyIrradianceAxes axes, vec3 n, vec3 u
   return sky_irradiance_from_coefficients(c, sky_irradiance_frame(up, sun_dir) * n);
 }
 
+// A direction d (any frame) in the frame of a sky_environment cube
+// (docs/runtime.md "Sky environment": +Y the zenith `up`, +X toward the
+// sun's azimuth, +Z = X x Y), to sample the cube with.
+vec3 sky_environment_direction(vec3 d, vec3 up, vec3 sun_dir) {
+  vec3 s = sky_irradiance_frame(up, sun_dir) * d;
+  return vec3(s.x, s.z, -s.y);
+}
+
 // Cloud ambient (docs/runtime.md "Cloud ambient"): the mean radiance over the
 // sphere, Y_00 L_00, and the mean over the upper hemisphere of the L2
 // radiance, Y_00 L_00 + (Y_1 / 2) L_10.

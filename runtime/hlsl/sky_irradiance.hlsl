@@ -56,6 +56,13 @@ float3 sky_irradiance(Texture2DArray<float4> table, SamplerState table_sampler,
   return sky_irradiance_from_coefficients(c, mul(sky_irradiance_frame(up, sun_dir), n));
 }
 
+// A direction d in the frame of a sky_environment cube (+Y the zenith, +X
+// toward the sun's azimuth), to sample the cube with.
+float3 sky_environment_direction(float3 d, float3 up, float3 sun_dir) {
+  float3 s = mul(sky_irradiance_frame(up, sun_dir), d);
+  return float3(s.x, s.z, -s.y);
+}
+
 float3 sky_mean_radiance(Texture2DArray<float4> table, SamplerState table_sampler,
                          SkyIrradianceAxes axes, float altitude, float sun_zenith) {
   float3 c[6];

@@ -79,6 +79,19 @@ glm::dvec3 sun_in_plane(double sun_zenith_rad) {
 
 }  // namespace
 
+glm::dvec3 sky_source_radiance(const Atmosphere& atm, const SkyRadianceSource& source,
+                               bool sky_only, int steps, glm::dvec3 position, glm::dvec3 dir,
+                               glm::dvec3 sun_dir) {
+  if (source.field) {
+    const double mu_s = glm::dot(glm::normalize(position), sun_dir);
+    return field_ray(atm, *source.transmittance, *source.field, sky_only, position, dir, sun_dir,
+                     std::acos(std::clamp(mu_s, -1.0, 1.0)), steps);
+  }
+  const MultiscatteringMapping mapping = multiscattering_mapping_of(*source.multiscattering);
+  return psi_ms_ray(atm, *source.transmittance, *source.multiscattering, mapping,
+                    source.ground_sky, sky_only, position, dir, sun_dir, steps);
+}
+
 double sky_irradiance_sun_zenith(const SkyIrradianceSpec& spec, int x) {
   return spec.width > 1 ? spec.max_sun_zenith_rad * x / (spec.width - 1) : 0.0;
 }

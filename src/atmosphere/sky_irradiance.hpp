@@ -91,6 +91,13 @@ constexpr int kGroundSkyNodes = 129;  // 1.4 degrees apart at the horizon
 SkyRadianceSource psi_ms_source(const Atmosphere& atm, const Texture& transmittance_lut,
                                 const Texture& multiscattering_lut, const SkyIrradianceSpec& spec);
 
+// The radiance arriving at `position` (planet-centred) from direction `dir`
+// (unit, toward the source of the light) with the sun toward `sun_dir`:
+// one ray of the source, the lit ground included unless sky_only.
+glm::dvec3 sky_source_radiance(const Atmosphere& atm, const SkyRadianceSource& source,
+                               bool sky_only, int steps, glm::dvec3 position, glm::dvec3 dir,
+                               glm::dvec3 sun_dir);
+
 // The coefficients at one altitude and sun zenith, integrated from scratch.
 ShRadiance compute_sky_radiance_sh(const Atmosphere& atm, const SkyRadianceSource& source,
                                    const SkyIrradianceSpec& spec, double altitude_m,

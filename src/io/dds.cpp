@@ -121,8 +121,9 @@ uint32_t alpha_mode(const FormatInfo& format, int channels) {
   return channels == 4 ? dds::kAlphaModeCustom : dds::kAlphaModeOpaque;
 }
 
+// `cube`: the layers are cube faces, six per cube (write_dds_cube).
 std::vector<uint8_t> make_header(const MipLevels& mips, const FormatInfo& format,
-                                 DdsHeader header) {
+                                 DdsHeader header, bool cube = false) {
   const Texture& top = *mips[0];
   const bool volume = top.depth > 1;
   const bool has_mips = mips.size() > 1;
@@ -153,12 +154,12 @@ std::vector<uint8_t> make_header(const MipLevels& mips, const FormatInfo& format
                                 pf.r_bit_mask, pf.g_bit_mask, pf.b_bit_mask, pf.a_bit_mask};
   for (int i = 0; i < 8; ++i) put_u32(&h[76 + 4 * i], pf_fields[i]);
   put_u32(&h[108], caps);
-  put_u32(&h[112], volume ? dds::kCaps2Volume : 0);
+  put_u32(&h[112], volume ? dds::kCaps2Volume : cube ? dds::kCaps2CubeAllFaces : 0);
   if (!dx10) return h;
   put_u32(&h[128], uint32_t(format.format));
   put_u32(&h[132], volume ? dds::kDimensionTexture3D : dds::kDimensionTexture2D);
-  put_u32(&h[136], 0);  // miscFlag: no cube map
-  put_u32(&h[140], uint32_t(top.layers));
+  put_u32(&h[136], cube ? dds::kMiscTextureCube : 0);
+  put_u32(&h[140], uint32_t(cube ? top.layers / 6 : top.layers));  // arraySize counts cubes
   put_u32(&h[144], alpha_mode(format, top.channel_count()));
   return h;
 }
@@ -253,7 +254,8 @@ DdsHeaderInfo parse_header(const std::string& path, const std::vector<uint8_t>& 
 // Everything read_dds needs from a header, validated.
 struct Layout {
   const FormatInfo* format;
-  int width, height, depth, layers, levels;
+  int width, height, depth, layers, levels;  // layers: array slices, or six per cube
+  bool cube;
   uint32_t header_bytes;
   uint64_t data_bytes;
   uint64_t decoded_bytes;  // float32 texels of every level and layer
@@ -279,6 +281,7 @@ struct Described {
   bool volume;
   uint32_t array_size;
   uint32_t header_bytes;
+  bool cube = false;  // array_size counts cubes of six faces
 };
 
 Described describe_legacy(const std::string& path, const DdsHeaderInfo& h) {
@@ -299,6 +302,22 @@ Described describe_legacy(const std::string& path, const DdsHeaderInfo& h) {
   if (h.caps2 & dds::kCaps2CubeMap)
     throw IoError(fmt::format("{}: expected no cube map, got caps2 0x{:x}", path, h.caps2));
   return {format, (h.caps2 & dds::kCaps2Volume) != 0, 1, dds::kLegacyHeaderBytes};
+}
+
+// A DX10 cube map: a 2D texture, square faces, caps2 naming the cube and
+// all six faces (DDS_CUBEMAP_ALLFACES; skybake writes no partial cubes).
+void check_cube_header(const std::string& path, const DdsHeaderInfo& h, bool volume) {
+  if (volume)
+    throw IoError(fmt::format("{}: expected resourceDimension 3 (TEXTURE2D) for a cube map, got 4",
+                              path));
+  if ((h.caps2 & dds::kCaps2CubeAllFaces) != dds::kCaps2CubeAllFaces)
+    throw IoError(fmt::format(
+        "{}: expected caps2 with the cube map and all six faces (0x{:x}) for miscFlag "
+        "TEXTURECUBE, got 0x{:x}",
+        path, dds::kCaps2CubeAllFaces, h.caps2));
+  if (h.width != h.height)
+    throw IoError(fmt::format("{}: expected square cube faces, got {}x{}", path, h.width,
+                              h.height));
 }
 
 Described describe(const std::string& path, const DdsHeaderInfo& h) {
@@ -323,9 +342,12 @@ Described describe(const std::string& path, const DdsHeaderInfo& h) {
         fmt::format("{}: expected resourceDimension 3 (TEXTURE2D) or 4 (TEXTURE3D), "
                     "got {}",
                     path, h.resource_dimension));
-  if (h.misc_flag & dds::kMiscTextureCube)
-    throw IoError(fmt::format("{}: expected no cube map, got miscFlag 0x{:x}", path, h.misc_flag));
-  return {format, volume, h.array_size, dds::kHeaderBytes};
+  const bool cube = (h.misc_flag & dds::kMiscTextureCube) != 0;
+  if (cube) check_cube_header(path, h, volume);
+  else if (h.caps2 & dds::kCaps2CubeMap)
+    throw IoError(fmt::format("{}: expected no cube map (miscFlag 0x{:x}), got caps2 0x{:x}", path,
+                              h.misc_flag, h.caps2));
+  return {format, volume, h.array_size, dds::kHeaderBytes, cube};
 }
 
 Layout validate(const std::string& path, const DdsHeaderInfo& h) {
@@ -351,7 +373,8 @@ Layout validate(const std::string& path, const DdsHeaderInfo& h) {
     throw IoError(fmt::format("{}: expected arraySize from 1 to {}, got {}", path,
                               kMaxDdsArraySize, d.array_size));
   l.width = int(h.width), l.height = int(h.height), l.depth = int(depth);
-  l.layers = int(d.array_size);
+  l.layers = int(d.array_size) * (d.cube ? 6 : 1);
+  l.cube = d.cube;
   // DirectXTex reads mipMapCount even without DDSD_MIPMAPCOUNT; 0 means 1.
   const int full = mip_count(l.width, l.height, l.depth);
   if (h.mip_map_count > uint32_t(full))
@@ -383,6 +406,27 @@ Layout validate(const std::string& path, const DdsHeaderInfo& h) {
                     path, l.data_bytes, l.header_bytes, got,
                     got < l.data_bytes ? " (truncated file)" : " (trailing bytes)"));
   return l;
+}
+
+// The header, then every array slice's levels (write_dds, write_dds_cube).
+void write_dds_file(const std::string& path, const MipLevels& mips, const FormatInfo& f,
+                    const std::vector<uint8_t>& header, BcSliceCache* cache) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out)
+    throw IoError(fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno)));
+  out.write(reinterpret_cast<const char*>(header.data()), std::streamsize(header.size()));
+  // Array slices outermost, then mip levels; a level's depth slices are
+  // contiguous in both Texture and DDS order, so one loop serves 2D arrays
+  // (slice -> mips) and volumes (mip -> slices, with a single "slice").
+  std::unique_ptr<uint8_t[]> chunk;
+  for (int layer = 0; layer < mips[0]->layers && out; ++layer)
+    for (const Texture* m : mips) write_level(out, *m, layer, f, chunk, cache);
+  out.close();
+  if (!out) {
+    const std::string reason = std::strerror(errno);
+    std::remove(path.c_str());
+    throw IoError(fmt::format("{}: write failed: {}", path, reason));
+  }
 }
 
 const std::vector<std::string>& channel_names(int components) {
@@ -466,24 +510,18 @@ void write_dds(const std::string& path, const MipLevels& mips, DdsFormat format,
                DdsHeader header_kind, FiniteCheck level0, BcSliceCache* cache) {
   const FormatInfo& f = info(format);
   check_writable(path, mips, f, header_kind, level0);
-  const std::vector<uint8_t> header = make_header(mips, f, header_kind);
+  write_dds_file(path, mips, f, make_header(mips, f, header_kind), cache);
+}
 
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out)
-    throw IoError(fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno)));
-  out.write(reinterpret_cast<const char*>(header.data()), std::streamsize(header.size()));
-  // Array slices outermost, then mip levels; a level's depth slices are
-  // contiguous in both Texture and DDS order, so one loop serves 2D arrays
-  // (slice -> mips) and volumes (mip -> slices, with a single "slice").
-  std::unique_ptr<uint8_t[]> chunk;
-  for (int layer = 0; layer < mips[0]->layers && out; ++layer)
-    for (const Texture* m : mips) write_level(out, *m, layer, f, chunk, cache);
-  out.close();
-  if (!out) {
-    const std::string reason = std::strerror(errno);
-    std::remove(path.c_str());
-    throw IoError(fmt::format("{}: write failed: {}", path, reason));
-  }
+void write_dds_cube(const std::string& path, const MipLevels& mips, DdsFormat format,
+                    FiniteCheck level0) {
+  const FormatInfo& f = info(format);
+  check_writable(path, mips, f, DdsHeader::dx10, level0);
+  const Texture& top = *mips[0];
+  if (top.depth != 1 || top.width != top.height || top.layers % 6 != 0)
+    throw IoError(fmt::format(
+        "{}: expected square 2D faces, six per cube, got {}", path, top.shape_string()));
+  write_dds_file(path, mips, f, make_header(mips, f, DdsHeader::dx10, true), nullptr);
 }
 
 DdsHeaderInfo read_dds_header(const std::string& path) {
@@ -512,6 +550,7 @@ DdsImage read_dds(const std::string& path, uint64_t budget) {
   DdsImage image;
   image.format = l.format->format;
   image.header = h.has_dx10 ? DdsHeader::dx10 : DdsHeader::legacy;
+  image.cube = l.cube;
   for (int i = 0; i < l.levels; ++i) {
     const Shape s = level_shape({l.width, l.height, l.depth}, i);
     image.mips.emplace_back(s.width, s.height, s.depth, l.layers,

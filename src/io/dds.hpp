@@ -111,14 +111,24 @@ void write_dds(const std::string& path, const MipLevels& mips, DdsFormat format,
                DdsHeader header = DdsHeader::dx10, FiniteCheck level0 = FiniteCheck::run,
                BcSliceCache* cache = nullptr);
 
+// Writes a cube map or cube array (Microsoft Learn "Programming Guide for
+// DDS", "DDS_HEADER_DXT10"): `mips` as write_dds takes them, square 2D
+// faces, layer 6 c + f face f of cube c in the order +X, -X, +Y, -Y, +Z, -Z.
+// DX10 header: miscFlag DDS_RESOURCE_MISC_TEXTURECUBE, arraySize the number
+// of cubes, caps2 DDSCAPS2_CUBEMAP with all six face flags; the data as a
+// 2D array's (each face's levels in turn).
+void write_dds_cube(const std::string& path, const MipLevels& mips, DdsFormat format,
+                    FiniteCheck level0 = FiniteCheck::run);
+
 struct DdsImage {
   std::vector<Texture> mips;  // decoded float values; channels R, G, B, A as the format has
   DdsFormat format = DdsFormat::R32G32B32A32_FLOAT;
   DdsHeader header = DdsHeader::dx10;
+  bool cube = false;  // the layers are cube faces, six per cube (write_dds_cube's order)
 };
 
-// Reads a DDS file in one of our formats (2D, 2D array or volume; no cube
-// maps), with a DX10 header or the legacy pixel format of one of our formats
+// Reads a DDS file in one of our formats (2D, 2D array, volume, or with a
+// DX10 header a cube map or cube array whose caps2 names all six faces), with a DX10 header or the legacy pixel format of one of our formats
 // (FourCC 116, 113, 111, DXT1, DXT5, ATI1 or BC4U, ATI2 or BC5U; RGBA8, R8G8
 // or luminance R8 masks). Validates the magic, the structure sizes, the
 // dimension, and that the file holds exactly the bytes the header announces
@@ -164,6 +174,7 @@ constexpr uint32_t kDdsdLinearSize = 0x80000, kDdsdDepth = 0x800000;
 constexpr uint32_t kDdpfFourCC = 0x4;
 constexpr uint32_t kCapsComplex = 0x8, kCapsTexture = 0x1000, kCapsMipMap = 0x400000;
 constexpr uint32_t kCaps2Volume = 0x200000, kCaps2CubeMap = 0x200;
+constexpr uint32_t kCaps2CubeAllFaces = 0xFE00;  // DDSCAPS2_CUBEMAP | DDS_CUBEMAP_ALLFACES
 constexpr uint32_t kFourCCDx10 = 0x30315844;  // "DX10" little-endian
 constexpr uint32_t kDimensionTexture2D = 3, kDimensionTexture3D = 4;
 constexpr uint32_t kMiscTextureCube = 0x4;

@@ -16,7 +16,8 @@
 //
 // Shapes: 2D (pixelDepth 0, layerCount 0), 2D array (layerCount = layers when
 // Texture::layers > 1) and 3D (pixelDepth = depth when Texture::depth > 1);
-// faceCount 1, levelCount = the levels written (>= 1: never "generate mips").
+// faceCount 1 (6 for cube maps, write_ktx2_cube), levelCount = the levels
+// written (>= 1: never "generate mips").
 //
 // Key/value data, sorted by key as the specification asks:
 //   KTXorientation  "rd" (2D, arrays) or "rdi" (3D): the first texel of the
@@ -73,6 +74,13 @@ using MipLevels = std::vector<const Texture*>;
 void write_ktx2(const std::string& path, const MipLevels& mips, Ktx2Format format,
                 FiniteCheck level0 = FiniteCheck::run, BcSliceCache* cache = nullptr);
 
+// Writes a cube map or cube array (KTX 2.0 "faceCount", "Level Images"):
+// `mips` as write_ktx2 takes them, square 2D faces, layer 6 c + f face f of
+// cube c in the order +X, -X, +Y, -Y, +Z, -Z; faceCount 6, layerCount the
+// number of cubes (0 for one cube).
+void write_ktx2_cube(const std::string& path, const MipLevels& mips, Ktx2Format format,
+                     FiniteCheck level0 = FiniteCheck::run);
+
 struct Ktx2LevelIndex {
   uint64_t byte_offset = 0, byte_length = 0, uncompressed_byte_length = 0;
 };
@@ -90,6 +98,7 @@ struct Ktx2Header {
 struct Ktx2Image {
   std::vector<Texture> mips;  // decoded; channels and metadata (on mips[0]) from the key/value data
   Ktx2Format format = Ktx2Format::R32G32B32A32_SFLOAT;
+  bool cube = false;  // faceCount 6: the layers are faces, six per cube
   Ktx2Header header;
   BasicDfd dfd;
   std::vector<std::pair<std::string, std::string>> key_values;  // in file order, values raw
@@ -101,7 +110,8 @@ struct Ktx2Image {
 // (a truncated file, trailing bytes, misplaced levels or non-zero padding are
 // errors), the descriptor against the vkFormat, the key/value data's lengths,
 // order and padding, KTXorientation (only "rd" and "rdi" are read: others
-// would need the rows flipped) and skybake.* values. Refuses cube maps, 1D
+// would need the rows flipped) and skybake.* values. Reads cube maps (faceCount
+// 6, square faces) as six layers per cube. Refuses other face counts, 1D
 // textures, 3D arrays, supercompression and "generate mips" (levelCount 0).
 // Sizes are bounded before anything is allocated. Throws IoError naming the
 // file and the rule.

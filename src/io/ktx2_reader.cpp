@@ -80,9 +80,12 @@ const Ktx2FormatInfo& validate_header(const std::string& path, const Ktx2Header&
   if (h.type_size != f->type_size)
     throw IoError(fmt::format("{}: expected typeSize {} for {}, got {}", path, f->type_size,
                               f->name, h.type_size));
-  if (h.face_count != 1)
-    throw IoError(
-        fmt::format("{}: expected faceCount 1 (no cube maps), got {}", path, h.face_count));
+  if (h.face_count != 1 && h.face_count != 6)
+    throw IoError(fmt::format("{}: expected faceCount 1 or 6 (a cube map), got {}", path,
+                              h.face_count));
+  if (h.face_count == 6 && (h.pixel_width != h.pixel_height || h.pixel_depth != 0))
+    throw IoError(fmt::format("{}: expected square 2D faces for a cube map, got {}x{}x{}", path,
+                              h.pixel_width, h.pixel_height, h.pixel_depth));
   if (h.supercompression_scheme != 0)
     throw IoError(fmt::format("{}: expected supercompressionScheme 0 (none), got {}", path,
                               h.supercompression_scheme));
@@ -132,7 +135,8 @@ Layout expected_layout(const std::string& path, const Ktx2Header& h, const Ktx2F
   Layout l{};
   l.width = int(h.pixel_width), l.height = int(h.pixel_height);
   l.depth = int(std::max<uint32_t>(1, h.pixel_depth));
-  l.layers = int(std::max<uint32_t>(1, h.layer_count));
+  // A cube's faces follow each other within a layer (KTX 2.0 "Level Images").
+  l.layers = int(std::max<uint32_t>(1, h.layer_count) * h.face_count);
   l.levels = int(h.level_count);
   const uint64_t level_index_end =
       ktx2::kHeaderBytes + uint64_t(ktx2::kLevelIndexEntryBytes) * h.level_count;
@@ -373,6 +377,7 @@ Ktx2Image read_ktx2(const std::string& path, uint64_t budget) {
   h = parse_header(path, read_bytes(path, ktx2::kHeaderBytes), size);
   const Ktx2FormatInfo& f = validate_header(path, h);
   image.format = f.format;
+  image.cube = h.face_count == 6;
   const Layout l = expected_layout(path, h, f);  // bounds every size by the header's shape
   if (size != l.file_bytes)
     throw IoError(fmt::format(

@@ -133,9 +133,11 @@ std::vector<uint8_t> key_value_data(const Texture& top) {
 
 // Header, index, level index, descriptor, key/value data and the padding
 // before the first (smallest) level: everything before the level data.
-std::vector<uint8_t> file_head(const MipLevels& mips, const Ktx2FormatInfo& f) {
+// `faces`: 1, or 6 for cube maps (layers six faces per cube).
+std::vector<uint8_t> file_head(const MipLevels& mips, const Ktx2FormatInfo& f, uint32_t faces) {
   const Texture& top = *mips[0];
   const uint32_t levels = uint32_t(mips.size());
+  const uint32_t layers = uint32_t(top.layers) / faces;
   const std::vector<uint8_t> dfd = encode_dfd(dfd_for_vk_format(uint32_t(f.format)));
   const std::vector<uint8_t> kvd = key_value_data(top);
   const uint32_t dfd_offset = ktx2::kHeaderBytes + ktx2::kLevelIndexEntryBytes * levels;
@@ -150,8 +152,8 @@ std::vector<uint8_t> file_head(const MipLevels& mips, const Ktx2FormatInfo& f) {
                              uint32_t(top.width),
                              uint32_t(top.height),
                              top.depth > 1 ? uint32_t(top.depth) : 0,
-                             top.layers > 1 ? uint32_t(top.layers) : 0,
-                             1,  // faceCount
+                             layers > 1 ? layers : 0,
+                             faces,
                              levels,
                              0,  // supercompressionScheme: none
                              dfd_offset,
@@ -203,21 +205,9 @@ std::vector<uint8_t> level_bytes(const Texture& m, const Ktx2FormatInfo& f, size
   return out;
 }
 
-}  // namespace
-
-void write_ktx2(const std::string& path, const std::vector<Texture>& mips, Ktx2Format format,
-                FiniteCheck level0) {
-  MipLevels levels;
-  for (const Texture& m : mips) levels.push_back(&m);
-  write_ktx2(path, levels, format, level0);
-}
-
-void write_ktx2(const std::string& path, const MipLevels& mips, Ktx2Format format,
-                FiniteCheck level0, BcSliceCache* cache) {
-  const Ktx2FormatInfo& f = ktx2_format_info(format);
-  check_writable(path, mips, f, level0);
-  const std::vector<uint8_t> head = file_head(mips, f);
-
+// The head, then the levels smallest first (write_ktx2, write_ktx2_cube).
+void write_ktx2_file(const std::string& path, const MipLevels& mips, const Ktx2FormatInfo& f,
+                     const std::vector<uint8_t>& head, BcSliceCache* cache) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   if (!out)
     throw IoError(fmt::format("{}: cannot open for writing: {}", path, std::strerror(errno)));
@@ -244,6 +234,33 @@ void write_ktx2(const std::string& path, const MipLevels& mips, Ktx2Format forma
     std::remove(path.c_str());
     throw IoError(fmt::format("{}: write failed: {}", path, reason));
   }
+}
+
+}  // namespace
+
+void write_ktx2(const std::string& path, const std::vector<Texture>& mips, Ktx2Format format,
+                FiniteCheck level0) {
+  MipLevels levels;
+  for (const Texture& m : mips) levels.push_back(&m);
+  write_ktx2(path, levels, format, level0);
+}
+
+void write_ktx2(const std::string& path, const MipLevels& mips, Ktx2Format format,
+                FiniteCheck level0, BcSliceCache* cache) {
+  const Ktx2FormatInfo& f = ktx2_format_info(format);
+  check_writable(path, mips, f, level0);
+  write_ktx2_file(path, mips, f, file_head(mips, f, 1), cache);
+}
+
+void write_ktx2_cube(const std::string& path, const MipLevels& mips, Ktx2Format format,
+                     FiniteCheck level0) {
+  const Ktx2FormatInfo& f = ktx2_format_info(format);
+  check_writable(path, mips, f, level0);
+  const Texture& top = *mips[0];
+  if (top.depth != 1 || top.width != top.height || top.layers % 6 != 0)
+    throw IoError(fmt::format("{}: expected square 2D faces, six per cube, got {}", path,
+                              top.shape_string()));
+  write_ktx2_file(path, mips, f, file_head(mips, f, 6), nullptr);
 }
 
 }  // namespace skybake

@@ -65,9 +65,11 @@ LoadedTexture load_dds(const std::string& path, uint64_t budget) {
                  {"dxgi_format", h.dxgi_format},
                  {"resource_dimension", h.resource_dimension},
                  {"array_size", h.array_size},
+                 {"misc_flag", fmt::format("0x{:x}", h.misc_flag)},
                  {"file_size", h.file_size}};
   if (!h.has_dx10) {  // no DDS_HEADER_DXT10: the pixel format says what the data is
-    for (const char* key : {"dxgi_format", "resource_dimension", "array_size"}) out.details.erase(key);
+    for (const char* key : {"dxgi_format", "resource_dimension", "array_size", "misc_flag"})
+      out.details.erase(key);
     const DdsPixelFormat& pf = h.pixel_format;
     out.details["legacy_pixel_format"] =
         (pf.flags & dds::kDdpfFourCC)
@@ -99,6 +101,7 @@ LoadedTexture load_ktx2(const std::string& path, uint64_t budget) {
                  {"type_size", h.type_size},
                  {"pixel_depth", h.pixel_depth},
                  {"layer_count", h.layer_count},
+                 {"face_count", h.face_count},
                  {"level_count", h.level_count},
                  {"dfd_color_model", image.dfd.color_model},
                  {"dfd_color_primaries", image.dfd.color_primaries},

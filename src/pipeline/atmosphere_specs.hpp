@@ -10,6 +10,7 @@
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/scattering3d_lut.hpp"
 #include "atmosphere/scattering_orders.hpp"
+#include "atmosphere/sky_environment.hpp"
 #include "atmosphere/sky_irradiance.hpp"
 #include "atmosphere/skyview_lut.hpp"
 #include "atmosphere/skyview_multiple4d.hpp"
@@ -35,6 +36,7 @@ AerialPerspectiveSpec aerial_perspective_spec(const OutputSpec& spec);
 // radiance comes from the multiscattering table ("radiance_source").
 SkyIrradianceSpec sky_irradiance_spec(const OutputSpec& spec);
 bool sky_irradiance_reads_multiscattering(const OutputSpec& spec);
+SkyEnvironmentSpec sky_environment_spec(const OutputSpec& spec);
 // Defined in bruneton_products.cpp.
 BrunetonSpec bruneton_spec(const OutputSpec& spec);
 Scattering3dSpec scattering3d_spec(const OutputSpec& spec);

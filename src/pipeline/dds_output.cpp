@@ -80,7 +80,7 @@ DdsFormat output_dds_format(const OutputSpec& spec, const ProductInfo& info, int
            : channels == 2 ? DdsFormat::R8G8_UNORM
                            : DdsFormat::R8G8B8A8_UNORM;
   if (!name.empty()) return dds_format_from_name(name);
-  if (spec.precision == "half")
+  if (spec.precision == "half" || info.half_files)
     return channels == 1 ? DdsFormat::R16_FLOAT : DdsFormat::R16G16B16A16_FLOAT;
   return DdsFormat::R32G32B32A32_FLOAT;
 }

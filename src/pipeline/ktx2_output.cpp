@@ -33,7 +33,7 @@ Ktx2Format output_ktx2_format(const OutputSpec& spec, const ProductInfo& info, i
     return channels == 1   ? Ktx2Format::R8_UNORM
            : channels == 2 ? Ktx2Format::R8G8_UNORM
                            : Ktx2Format::R8G8B8A8_UNORM;
-  if (spec.precision == "half")
+  if (spec.precision == "half" || info.half_files)
     return channels == 1 ? Ktx2Format::R16_SFLOAT : Ktx2Format::R16G16B16A16_SFLOAT;
   return channels == 1 ? Ktx2Format::R32_SFLOAT : Ktx2Format::R32G32B32A32_SFLOAT;
 }

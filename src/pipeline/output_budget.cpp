@@ -7,6 +7,7 @@
 
 #include "atmosphere/sh_l2.hpp"
 #include "atmosphere/sky_preview.hpp"
+#include "core/cube_map.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/product_options.hpp"
 
@@ -39,6 +40,7 @@ const std::map<std::string, ProductLimits>& limits_table() {
       {"single_mie", {}},
       {"irradiance", {{2, 2}, {}}},
       {"sky_irradiance", {{2, 2}, {}}},
+      {"sky_environment", {}},
       {"scattering3d", {{}, {{"exr", 4.0}, {"dds", 6.0}, {"ktx2", 6.0}, {"png", 4.5}}}},
       {"gathering_sum", {}},
       {"noise_shape",
@@ -72,6 +74,8 @@ int output_layers(const OutputSpec& spec) {
   if (spec.product == "skyview") return int(skyview_spec(spec).views.size());
   if (spec.product == "sky_preview") return int(SkyPreviewSpec().panels.size());
   if (spec.product == "sky_irradiance") return kShSymmetricCount;
+  if (spec.product == "sky_environment")
+    return kCubeFaces * int(sky_environment_spec(spec).views.size());
   return 1;
 }
 

@@ -77,9 +77,14 @@ struct SharedLevels {
   std::optional<std::vector<Texture>> lower;
   BcSliceCache bc;
 
-  MipLevels levels(const Texture& tex, bool mips) {
+  MipLevels levels(const Texture& tex, bool mips, const ProductInfo& info,
+                   const OutputSpec& spec) {
     MipLevels out{&tex};
-    if (!mips) return out;
+    if (info.lower_levels) {
+      if (!lower) lower = info.lower_levels(tex, spec);
+    } else if (!mips) {
+      return out;
+    }
     if (!lower) lower = build_lower_mips(tex, MipEdge::wrap);
     for (const Texture& level : *lower) out.push_back(&level);
     return out;
@@ -101,14 +106,22 @@ std::string write_format(const std::string& format, const std::string& tmp, cons
   if (format == "dds") {
     const DdsFormat dds = output_dds_format(spec, info, tex.channel_count());
     const bool mips = spec.options.value("mips", info.default_mips);
-    write_dds(tmp, shared.levels(tex, mips), dds, output_dds_header(spec, dds, tex.layers),
-              FiniteCheck::already_checked, &shared.bc);
+    const MipLevels levels = shared.levels(tex, mips, info, spec);
+    if (info.cube_map)
+      write_dds_cube(tmp, levels, dds, FiniteCheck::already_checked);
+    else
+      write_dds(tmp, levels, dds, output_dds_header(spec, dds, tex.layers),
+                FiniteCheck::already_checked, &shared.bc);
     return dxgi_format_name(dds);
   }
   if (format == "ktx2") {
     const Ktx2Format ktx2 = output_ktx2_format(spec, info, tex.channel_count());
     const bool mips = spec.options.value("mips", info.default_mips);
-    write_ktx2(tmp, shared.levels(tex, mips), ktx2, FiniteCheck::already_checked, &shared.bc);
+    const MipLevels levels = shared.levels(tex, mips, info, spec);
+    if (info.cube_map)
+      write_ktx2_cube(tmp, levels, ktx2, FiniteCheck::already_checked);
+    else
+      write_ktx2(tmp, levels, ktx2, FiniteCheck::already_checked, &shared.bc);
     return ktx2_format_name(ktx2);
   }
   if (format == "vdb") {

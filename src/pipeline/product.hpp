@@ -67,6 +67,15 @@ struct ProductInfo {
   double ns_per_texel = 1000.0;
   // Semantic checks at load time beyond the schema; empty = none.
   CheckFn check;
+  // A cube map (layers six faces per cube, core/cube_map.hpp): DDS and KTX2
+  // write it with the cube flags (write_dds_cube, write_ktx2_cube).
+  bool cube_map = false;
+  // The levels below level 0 when the product makes its own (a cube's GGX
+  // prefiltered chain); they replace the box chain and are always written.
+  std::function<std::vector<Texture>(const Texture&, const OutputSpec&)> lower_levels;
+  // Float channels go to DDS and KTX2 as half whatever the output's
+  // precision (its dds_format or ktx2_format still chooses another format).
+  bool half_files = false;
   bool default_mips = false;     // DDS mip chain unless the output says "mips"
   bool preview_tiled = false;    // PNG preview repeats each panel 2x2 (tileable textures)
   bool preview_split = false;    // PNG preview shows each channel as its own grey panel

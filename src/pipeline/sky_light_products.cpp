@@ -1,8 +1,16 @@
 // Sky light products: the sky's irradiance as L2 spherical harmonics for
 // every (sun zenith, altitude) (atmosphere/sky_irradiance.hpp,
-// docs/runtime.md "Sky irradiance").
+// docs/runtime.md "Sky irradiance") and the sky as GGX-prefiltered cube
+// maps for listed views (atmosphere/sky_environment.hpp, docs/runtime.md
+// "Sky environment").
+
+#include <fmt/format.h>
 
 #include "atmosphere/order_progress.hpp"
+#include "atmosphere/sky_environment.hpp"
+#include "core/cube_map.hpp"
+#include "core/ggx_prefilter.hpp"
+#include "core/mip_chain.hpp"
 #include "atmosphere/sky_irradiance.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/product_options.hpp"
@@ -28,7 +36,73 @@ SkyIrradianceSpec sky_irradiance_spec(const OutputSpec& spec) {
   return s;
 }
 
+SkyEnvironmentSpec sky_environment_spec(const OutputSpec& spec) {
+  SkyEnvironmentSpec s;
+  s.face = spec.size.at(0);
+  s.levels = option_int(spec, "levels", s.levels);
+  s.samples = option_int(spec, "ggx_samples", s.samples);
+  s.steps = option_int(spec, "steps", s.steps);
+  s.sky_only = spec.options.value("sky_only", false);
+  if (auto it = spec.options.find("views"); it != spec.options.end() && it->is_array()) {
+    for (const auto& v : *it)
+      s.views.push_back({v.value("altitude_km", 0.0) * 1e3, v.value("sun_zenith_deg", 45.0) * kDeg});
+  } else {
+    // Noon-like and low sun at the ground (docs/runtime.md "Sky environment").
+    s.views = {{0.0, 45.0 * kDeg}, {0.0, 85.0 * kDeg}};
+  }
+  return s;
+}
+
 namespace {
+
+// The radiance source both products read (docs/decisions/sky-irradiance-source.md),
+// held with the field it may own.
+struct SkyLightSource {
+  ConvergedField field;
+  SkyRadianceSource source;
+};
+
+void make_sky_light_source(SkyLightSource& out, const Scene& scene, const OutputSpec& spec,
+                           const ProductInputs& in,
+                           const SkyIrradianceSpec& s, const BakeContext& ctx) {
+  const Atmosphere& atm = scene.atmosphere;
+  const Texture& transmittance = *in.at("transmittance");
+  if (sky_irradiance_reads_multiscattering(spec)) {
+    out.source = psi_ms_source(atm, transmittance, *in.at("multiscattering"), s);
+    return;
+  }
+  out.field = compute_converged_field(atm, transmittance, converged_multiscattering_spec(spec), ctx);
+  out.source.transmittance = &transmittance;
+  out.source.field = &out.field;
+}
+
+Texture bake_sky_environment_product(const Scene& scene, const OutputSpec& spec,
+                                     const ProductInputs& in, const BakeContext& ctx) {
+  SkyIrradianceSpec s;
+  s.sky_only = spec.options.value("sky_only", false);
+  s.steps = option_int(spec, "steps", s.steps);
+  SkyLightSource source;
+  make_sky_light_source(source, scene, spec, in, s, stage_context(ctx, 0.0, 0.5));
+  return bake_sky_environment(scene.atmosphere, source.source, sky_environment_spec(spec),
+                              stage_context(ctx, 0.5, 1.0));
+}
+
+// Levels 1.. of the cube's chain: GGX-prefiltered from level 0 (core/ggx_prefilter.hpp).
+std::vector<Texture> sky_environment_lower_levels(const Texture& level0, const OutputSpec& spec) {
+  const SkyEnvironmentSpec s = sky_environment_spec(spec);
+  return ggx_prefilter_levels(level0, sky_environment_levels(s), s.samples);
+}
+
+std::vector<ProductProblem> sky_environment_problems(const OutputSpec& spec) {
+  std::vector<ProductProblem> problems = equal_size_problems(spec, "cube map faces are square");
+  const SkyEnvironmentSpec s = sky_environment_spec(spec);
+  if (s.levels > mip_count(s.face, s.face))
+    problems.push_back({"/levels", fmt::format("expected at most {} levels for {} x {} faces, got {}",
+                                               mip_count(s.face, s.face), s.face, s.face, s.levels)});
+  if (!sky_irradiance_reads_multiscattering(spec))
+    for (ProductProblem& p : converged_field_problems(spec)) problems.push_back(std::move(p));
+  return problems;
+}
 
 Texture bake_sky_irradiance_product(const Scene& scene, const OutputSpec& spec,
                                     const ProductInputs& in, const BakeContext& ctx) {
@@ -66,6 +140,20 @@ void add_sky_light_products(std::vector<ProductInfo>& r) {
   p.allowed_formats = {"exr", "dds", "ktx2"};
   p.check = sky_irradiance_problems;
   r.push_back(std::move(p));
+
+  ProductInfo e = atmosphere_lut_product(
+      "sky_environment",
+      "the sky as HDR cube maps per listed view (altitude, sun), GGX-prefiltered mips for "
+      "specular IBL, with their L2 SH",
+      {"face", "face"}, {128, 128}, {1024, 1024}, {"transmittance", "multiscattering"},
+      bake_sky_environment_product, 16000.0);
+  e.default_formats = {"ktx2", "dds"};
+  e.allowed_formats = {"dds", "ktx2"};
+  e.half_files = true;
+  e.cube_map = true;
+  e.lower_levels = sky_environment_lower_levels;
+  e.check = sky_environment_problems;
+  r.push_back(std::move(e));
 }
 
 }  // namespace skybake

@@ -299,6 +299,39 @@ std::string sky_section(const nlohmann::json& sky, bool quick) {
   return s + "</table>\n</details>\n";
 }
 
+// The sky_irradiance section (sky_irradiance.hpp): per measured texel the
+// three errors apart, the decode against the path tracer, L2's own limit
+// (the best 9-coefficient fit of the reference) and the bilinear read
+// between texels, relative to the mean E over the normals.
+std::string sky_irradiance_section(const nlohmann::json& si, bool quick) {
+  std::string s = "<h2 id=\"sky_irradiance\">Sky irradiance: L2 SH against the path tracer</h2>\n";
+  if (si.is_null()) return s + "<p>Not run (sky_irradiance was not selected).</p>\n";
+  const auto& pt = si["path_tracer"];
+  s += fmt::format(
+      "<p>Table {} (sun zenith x altitude), radiance from the {} source, baked in {} s. "
+      "Reference: E(n) at {} normals per texel from the path tracer's radiance on {} + {} "
+      "zenith rays x {} azimuths, {} paths per ray and channel. Errors are relative to the "
+      "mean E over the normals.</p>\n",
+      prose(si["size"], "size"), text(si["radiance_source"]), num(si["bake_seconds"]),
+      prose(pt["normals"]), prose(pt["rays_below"]), prose(pt["rays_above"]),
+      prose(pt["azimuths"]), prose(pt["samples"]));
+  if (quick) s += kQuickTargets;
+  const auto& t = si["target"];
+  std::string status = t.value("status", "not measured");
+  std::string cls = status == "met" ? "met" : (status == "missed" ? "notmet" : "");
+  if (quick && status != "met") status = "not judged by a quick run", cls = "";
+  s += fmt::format("<p>Target ({}): <span class=\"{}\">{}</span> (worst decode RMS {}).</p>\n",
+                   text(t["what"]), cls, status, pct(t["worst_rms"]));
+  s += "<table>\n" + header({"altitude (m)", "sun zenith (deg)", "decode RMS", "decode max",
+                             "L2 limit RMS", "L2 limit max", "between texels RMS",
+                             "between texels max"});
+  for (const auto& x : si["texels"])
+    s += row({num(x["altitude_m"]), num(x["sun_zenith_deg"]), pct(x["decode"]["rms"]),
+              pct(x["decode"]["max"]), pct(x["l2_limit"]["rms"]), pct(x["l2_limit"]["max"]),
+              pct(x["interpolation"]["rms"]), pct(x["interpolation"]["max"])});
+  return s + "</table>\n";
+}
+
 std::string precision_section(const nlohmann::json& precision) {
   std::string s = "<h2 id=\"precision\">Where float32 and half lose</h2>\n";
   const auto& h = precision["horizon_transmittance"];
@@ -380,6 +413,8 @@ std::string report_html(const nlohmann::json& report) {
   const bool quick = report.value("level", "") == "quick";
   s += sky_section(report["sky_radiance"], quick);
   s += hillaire_runtime_section(report["hillaire_runtime"], quick);
+  if (report.contains("sky_irradiance"))
+    s += sky_irradiance_section(report["sky_irradiance"], quick);
   s += precision_section(report["precision"]);
   s += bruneton_section(report["bruneton_comparison"], quick);
   if (report["files"].contains("preview"))

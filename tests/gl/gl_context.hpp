@@ -162,6 +162,11 @@ GlTexture upload_texture(const Texture& tex, const SamplerState& sampler, bool a
 // upload_texture. Throws GlError for a format without a mapping.
 GlTexture upload_dds(const std::string& path, const SamplerState& sampler, bool array = false);
 
+// Uploads the bytes of a DDS cube map written by write_dds_cube (one cube,
+// an uncompressed format) as they are, every face and level, into a
+// GL_TEXTURE_CUBE_MAP sampled trilinear with seamless filtering across faces.
+GlTexture upload_dds_cube(const std::string& path);
+
 // The GL internal format, pixel format and pixel type of a DXGI format code
 // (the DdsFormat values of io/dds.hpp); false when there is no mapping.
 struct GlPixelFormat {

@@ -170,4 +170,41 @@ GlTexture upload_dds(const std::string& path, const SamplerState& sampler, bool 
   return out;
 }
 
+GlTexture upload_dds_cube(const std::string& path) {
+  GlContext::shared();
+  const DdsHeaderInfo h = read_dds_header(path);
+  GlPixelFormat px;
+  if (!h.has_dx10 || !(h.misc_flag & dds::kMiscTextureCube) || h.array_size != 1 ||
+      !gl_format_from_dxgi(h.dxgi_format, &px) || px.bytes_per_texel == 0)
+    throw GlError(path + ": expected one uncompressed DX10 cube map");
+  std::ifstream in(path, std::ios::binary);
+  const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const int n = int(h.width), levels = int(std::max<uint32_t>(h.mip_map_count, 1));
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &id);
+  GlTexture out(id, GL_TEXTURE_CUBE_MAP);
+  glTextureStorage2D(id, levels, px.internal_format, n, n);
+  check_gl("glTextureStorage2D (cube)");
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  // Programming Guide for DDS: each face with all its levels, faces in order;
+  // a cube's faces are the layers 0..5 of the direct-state-access calls.
+  size_t offset = dds::kHeaderBytes;
+  for (int face = 0; face < 6; ++face)
+    for (int level = 0; level < levels; ++level) {
+      const int side = std::max(n >> level, 1);
+      const size_t level_bytes = size_t(side) * size_t(side) * size_t(px.bytes_per_texel);
+      if (offset + level_bytes > bytes.size()) throw GlError(path + ": truncated cube map");
+      glTextureSubImage3D(id, level, 0, 0, face, side, side, 1, px.format, px.type,
+                          bytes.data() + offset);
+      offset += level_bytes;
+    }
+  check_gl("glTextureSubImage3D (cube faces)");
+  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, levels - 1);
+  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+  check_gl("cube sampler state");
+  return out;
+}
+
 }  // namespace skybake::gltest

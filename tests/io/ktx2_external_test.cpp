@@ -282,5 +282,26 @@ TEST(Ktx2External, KtxParseReadsEveryFormatAndShapeAsTheSpecificationsSay) {
   }
 }
 
+// A cube map and a cube array (write_ktx2_cube): faceCount 6, layerCount
+// the cubes (0 for one), each level's faces in order, as ktx-parse reads them.
+TEST(Ktx2External, CubeMapsReadAsSixFaces) {
+  const Spec& half = kSpecs[4];
+  ASSERT_EQ(half.format, Ktx2Format::R16G16B16A16_SFLOAT);
+  for (int cubes : {1, 2}) {
+    std::vector<Texture> levels = {make(8, 8, 1, 6 * cubes, 3, 1), make(4, 4, 1, 6 * cubes, 3, 2)};
+    const std::string path = test::scratch_file("io_ktx2_external", "files",
+                                                fmt::format("cube_{}.ktx2", cubes));
+    write_ktx2_cube(path, {&levels[0], &levels[1]}, half.format);
+    const json k = ktx_parse(path);
+    if (k.is_null()) return;
+    EXPECT_EQ(k["faceCount"], 6);
+    EXPECT_EQ(k["layerCount"], cubes > 1 ? cubes : 0);
+    EXPECT_EQ(k["pixelDepth"], 0);
+    ASSERT_EQ(k["levels"].size(), 2u);
+    for (size_t p = 0; p < 2; ++p)
+      EXPECT_EQ(k["levels"][p]["hex"], expected_hex(levels[p], half)) << cubes << " " << p;
+  }
+}
+
 }  // namespace
 }  // namespace skybake

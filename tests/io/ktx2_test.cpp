@@ -307,7 +307,9 @@ TEST(Ktx2Refuse, ForgedHeaderFieldsAreNamed) {
   EXPECT_THAT(refusal("typesize", [](auto& b) { put_u32_at(b, 16, 4); }),
               HasSubstr("expected typeSize 1 for R8G8B8A8_UNORM, got 4"));
   EXPECT_THAT(refusal("cube", [](auto& b) { put_u32_at(b, 36, 6); }),
-              HasSubstr("expected faceCount 1 (no cube maps), got 6"));
+              HasSubstr("expected square 2D faces for a cube map, got 8x4x0"));
+  EXPECT_THAT(refusal("faces", [](auto& b) { put_u32_at(b, 36, 2); }),
+              HasSubstr("expected faceCount 1 or 6 (a cube map), got 2"));
   EXPECT_THAT(refusal("levels0", [](auto& b) { put_u32_at(b, 40, 0); }),
               HasSubstr("expected levelCount from 1 to 4, got 0"));
   EXPECT_THAT(refusal("levels9", [](auto& b) { put_u32_at(b, 40, 9); }),
