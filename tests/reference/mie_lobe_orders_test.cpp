@@ -12,7 +12,7 @@ namespace skybake {
 namespace {
 
 TEST(MieLobeOrders, ConservativeDustSkyReturnsTheSunlightOnASmallTable) {
-  // Measured 0.985; the table's interpolation and the shell's curvature
+  // Measured 0.974; the table's interpolation and the shell's curvature
   // take the rest.
   const Atmosphere atm = dust_sky_balance::dust_sky(0.5, 0.0, 0.5);
   const Texture lut = bake_transmittance_lut(atm, {128, 32, 40}, BakeContext{});
@@ -24,7 +24,7 @@ TEST(MieLobeOrders, ConservativeDustSkyReturnsTheSunlightOnASmallTable) {
   const double ratio = dust_sky_balance::dust_out_over_in(atm, t);
   RecordProperty("out_over_in", fmt::format("{:.4f}", ratio));
   EXPECT_LT(ratio, 1.0 + 1e-3);
-  EXPECT_GT(ratio, 0.97);
+  EXPECT_GT(ratio, 0.96);
 }
 
 }  // namespace
