@@ -5,10 +5,9 @@
 // Mie from its own texture, orders to 1e-3): within 3% relative RMSE, worst
 // channel, the tracer's noise taken out as the report does (docs/report.md
 // "Where the 4D table's error on Mars comes from": 2.82% at 65536 paths;
-// 7.3% at the 32 x 128 x 32 x 8 shape). The table alone takes about 16 s
-// of CPU, so the unit tier has no cut-down twin that could still judge 3%;
-// its closest is tests/reference/mie_lobe_orders_test.cpp (the lobe
-// shape's energy balance in a sky of dust on a small table).
+// 7.3% at the 32 x 128 x 32 x 8 shape). The unit twin,
+// mars_4d_target_test.cpp, judges the lobe's axes on a table with r and mu
+// halved, where 3% is out of reach.
 #include <gtest/gtest.h>
 
 #include <cmath>
