@@ -143,7 +143,7 @@ nlohmann::json measure_skyview_multiple4d_error(const Scene& scene, const Output
                                                 const ProductInputs& in, const Texture& lut) {
   const Atmosphere& atm = scene.atmosphere;
   const ConvergedField field = compute_converged_field(
-      atm, *in.at("transmittance"), converged_multiscattering_spec(spec), BakeContext{});
+      atm, *in.at("transmittance"), skyview_multiple4d_spec(spec, atm), BakeContext{});
   const QueryReads reads = skyview_reads(
       atm, lut, *in.at("transmittance"), nullptr, skyview_spec(spec),
       [&](double r, const SkyviewDirection& view, double zenith) {

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "atmosphere/order_progress.hpp"
+#include "atmosphere/orders_resolution.hpp"
 #include "atmosphere/sky_preview.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
@@ -111,6 +112,19 @@ bool skyview_uses_multiple4d(const OutputSpec& spec) {
   return spec.options.value("multiple_scattering", std::string("hillaire2020")) == "scattering4d";
 }
 
+ConvergedMultiscatteringSpec skyview_multiple4d_spec(const OutputSpec& spec,
+                                                     const Atmosphere& atm) {
+  ConvergedMultiscatteringSpec c = converged_multiscattering_spec(spec);
+  // The options carry the schema's default shape, which stands for "the
+  // default": the lobe's where the Mie group shapes the orders.
+  const BrunetonSpec d = ConvergedMultiscatteringSpec::default_converged_bruneton_spec();
+  const BrunetonSpec& b = c.bruneton;
+  const bool default_shape = b.r_size == d.r_size && b.mu_size == d.mu_size &&
+                             b.mu_s_size == d.mu_s_size && b.nu_size == d.nu_size;
+  if (default_shape && mie_shapes_multiple_scattering(atm)) c.bruneton = with_mie_lobe_shape(b);
+  return c;
+}
+
 SkyviewLutSpec skyview_spec(const OutputSpec& spec) {
   SkyviewLutSpec lut;
   lut.width = spec.size.at(0);
@@ -155,7 +169,8 @@ Texture bake_skyview(const Scene& scene, const OutputSpec& spec, const ProductIn
   if (skyview_uses_multiple4d(spec)) {
     const ConvergedField field =
         compute_converged_field(scene.atmosphere, *in.at("transmittance"),
-                                converged_multiscattering_spec(spec), stage_context(ctx, 0.0, 0.8));
+                                skyview_multiple4d_spec(spec, scene.atmosphere),
+                                stage_context(ctx, 0.0, 0.8));
     return bake_skyview_lut_multiple4d(scene.atmosphere, *in.at("transmittance"), field,
                                        skyview_spec(spec), stage_context(ctx, 0.8, 1.0));
   }

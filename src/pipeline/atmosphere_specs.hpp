@@ -30,6 +30,11 @@ bool multiscattering_is_converged(const OutputSpec& spec);
 ConvergedMultiscatteringSpec converged_multiscattering_spec(const OutputSpec& spec);
 // Sky-view: "multiple_scattering": "scattering4d" (skyview_multiple4d.hpp).
 bool skyview_uses_multiple4d(const OutputSpec& spec);
+// Its 4D iteration: converged_multiscattering_spec, with the shape of
+// orders_resolution.hpp where the Mie group shapes the multiple scattering
+// and "scattering_shape" is the schema's default.
+ConvergedMultiscatteringSpec skyview_multiple4d_spec(const OutputSpec& spec,
+                                                     const Atmosphere& atm);
 SkyviewLutSpec skyview_spec(const OutputSpec& spec);
 AerialPerspectiveSpec aerial_perspective_spec(const OutputSpec& spec);
 // Sky irradiance (sky_light_products.cpp): its spec, and whether its

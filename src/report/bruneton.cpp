@@ -4,11 +4,13 @@
 
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <map>
 
 #include <fmt/format.h>
 
 #include "atmosphere/geometry.hpp"
+#include "atmosphere/orders_resolution.hpp"
 #include "atmosphere/scattering_orders.hpp"
 #include "core/math.hpp"
 #include "pipeline/product_graph.hpp"
@@ -19,12 +21,16 @@ namespace skybake {
 namespace {
 
 
-BrunetonSpec level_bruneton_spec(const BrunetonSetup& setup) {
+BrunetonSpec level_bruneton_spec(const BrunetonSetup& setup, const Atmosphere& atm) {
+  const std::vector<int>& shape =
+      !setup.bruneton_shape_mie_lobe.empty() && mie_shapes_multiple_scattering(atm)
+          ? setup.bruneton_shape_mie_lobe
+          : setup.bruneton_shape;
   BrunetonSpec b;
-  b.r_size = setup.bruneton_shape.at(0);
-  b.mu_size = setup.bruneton_shape.at(1);
-  b.mu_s_size = setup.bruneton_shape.at(2);
-  b.nu_size = setup.bruneton_shape.at(3);
+  b.r_size = shape.at(0);
+  b.mu_size = shape.at(1);
+  b.mu_s_size = shape.at(2);
+  b.nu_size = shape.at(3);
   b.orders = setup.bruneton_orders;
   b.tolerance = setup.bruneton_tolerance;
   b.max_orders = setup.bruneton_max_orders;
@@ -50,7 +56,7 @@ BakedTables bake_tables(const ReportInputs& in, const BrunetonSetup& setup) {
   BakedTables t;
   const OutputSpec* own = in.scene.find_output("scattering");
   t.own = own != nullptr;
-  t.spec = own ? bruneton_spec(*own) : level_bruneton_spec(setup);
+  t.spec = own ? bruneton_spec(*own) : level_bruneton_spec(setup, atm);
   const BrunetonSpec& spec = t.spec;
   in.stage(fmt::format("Bruneton tables {}x{}x{}x{}, {}", spec.r_size, spec.mu_size, spec.mu_s_size,
                        spec.nu_size,
@@ -125,6 +131,7 @@ Readings read_views(const ReportInputs& in, const BakedTables& t,
 BrunetonSetup BrunetonSetup::full() {
   BrunetonSetup s;
   s.bruneton_shape = {32, 128, 32, 8};
+  s.bruneton_shape_mie_lobe.assign(std::begin(kMieLobeShape), std::end(kMieLobeShape));
   s.bruneton_orders = 4;
   s.bruneton_tolerance = 1e-3;
   s.bruneton_max_orders = 100;
@@ -134,6 +141,7 @@ BrunetonSetup BrunetonSetup::full() {
 BrunetonSetup BrunetonSetup::quick() {
   BrunetonSetup s = full();
   s.bruneton_shape = {16, 64, 16, 4};
+  s.bruneton_shape_mie_lobe.clear();
   s.bruneton_orders = 4;
   s.bruneton_tolerance = 0.0;
   return s;

@@ -7,7 +7,9 @@
 // Bruneton side: the scene's own `scattering` output when it has one (its
 // shape, orders or tolerance, Mie storage), else the level's table (full:
 // the default 32x128x32x8 shape iterated until an order changes the table by
-// less than 1e-3, at most 100 orders; quick: 16x64x16x4, 4 orders), baked
+// less than 1e-3, at most 100 orders, 32x128x64x16 where the Mie group
+// shapes the multiple scattering, orders_resolution.hpp; quick: 16x64x16x4,
+// 4 orders), baked
 // from the operating-point transmittance table. Each view is read the way an
 // engine reads the table: lookup_scattering at the camera's (r, mu, mu_s, nu),
 // single Mie from the alpha channel when the table is combined.
@@ -38,9 +40,11 @@ namespace skybake {
 
 // Bruneton's tables when the scene has no scattering output of its own:
 // shape (r, mu, mu_s, nu) and orders, or with tolerance > 0 orders until the
-// residual drops below it.
+// residual drops below it; bruneton_shape_mie_lobe instead of bruneton_shape
+// where mie_shapes_multiple_scattering (empty: never).
 struct BrunetonSetup {
   std::vector<int> bruneton_shape;
+  std::vector<int> bruneton_shape_mie_lobe;
   int bruneton_orders = 4;
   double bruneton_tolerance = 0.0;
   int bruneton_max_orders = 100;
@@ -48,7 +52,8 @@ struct BrunetonSetup {
   static BrunetonSetup quick();
   static BrunetonSetup full();
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BrunetonSetup, bruneton_shape, bruneton_orders,
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BrunetonSetup, bruneton_shape, bruneton_shape_mie_lobe,
+                                   bruneton_orders,
                                    bruneton_tolerance, bruneton_max_orders)
 
 // Reads the report's "sky_radiance" (its views and path-traced references

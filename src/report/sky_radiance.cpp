@@ -10,6 +10,7 @@
 #include "atmosphere/converged_multiscattering.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/sky_render.hpp"
+#include "atmosphere/orders_resolution.hpp"
 #include "atmosphere/skyview_multiple4d.hpp"
 #include "atmosphere/skyview_lut.hpp"
 #include "core/math.hpp"
@@ -260,6 +261,9 @@ struct SkyRadianceScene {
   // baked once more and timed (docs/report.md "Two Psi_ms models").
   Texture converged, converged_relative;  // estimators mean and relative
   ConvergedField field;  // the iteration behind `converged`, shared with the 4D sky-view
+  // The 4D sky-view's own iteration at the shape of orders_resolution.hpp,
+  // where the Mie group shapes the orders (full level); else empty.
+  ConvergedField field_mie_lobe;
   double hillaire_seconds = 0.0, converged_seconds = 0.0;
   int converged_orders = 0;
   double converged_residual = 1.0;
@@ -299,6 +303,13 @@ SkyRadianceScene sky_radiance_scene(const ReportInputs& in, const SkyRadianceSet
       atm, in.transmittance, multiscattering_spec(operating_spec(in.scene, "multiscattering")),
       in.multiscattering);
   bake_both_models(in, s);
+  if (in.level.name == "full" && mie_shapes_multiple_scattering(atm)) {
+    ConvergedMultiscatteringSpec spec =
+        converged_multiscattering_spec(operating_spec(in.scene, "multiscattering"));
+    spec.bruneton = with_mie_lobe_shape(spec.bruneton);
+    in.stage("sky radiance: the 4D sky-view's iteration at the Mie lobe's shape");
+    s.field_mie_lobe = compute_converged_field(atm, in.transmittance, spec, BakeContext{});
+  }
   return s;
 }
 
@@ -319,7 +330,9 @@ void measure_sun(const ReportInputs& in, const SkyRadianceSetup& setup, SkyRadia
   SkyviewLutSpec sky = cam.sky;
   sky.views = {{cam.altitude_m, kPi / 2 - sun_elevation * kDeg}};
   const Texture multiple4d =
-      bake_skyview_lut_multiple4d(atm, in.transmittance, s.field, sky, BakeContext{});
+      bake_skyview_lut_multiple4d(atm, in.transmittance,
+                                  s.field_mie_lobe.orders_used > 0 ? s.field_mie_lobe : s.field,
+                                  sky, BakeContext{});
   SkyRenderOptions no_disk;
   no_disk.sun_disk = false;
   no_disk.ground = false;
