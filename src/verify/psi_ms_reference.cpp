@@ -12,7 +12,7 @@
 #include "core/kernels/exp_block.hpp"
 #include "core/math.hpp"
 #include "core/scratch.hpp"
-#include "verify/ring_segments.hpp"
+#include "verify/kernels/ring_segments.hpp"
 #include "verify/kernels/ring_sun_sums.hpp"
 
 namespace skybake {
