@@ -55,7 +55,8 @@ HWY_INLINE hn::Vec<KernelTag> MiePairKernel(const MieLanesConstants& k, const fl
 }
 
 // The four sums (R, G, B, weight) of some lanes of a block of pairs, as
-// named vectors: indexed in a loop, GCC kept them in memory.
+// named vectors: an array indexed in the loop, GCC keeps them on the stack
+// and loads and stores them every step.
 struct MieSums {
   hn::Vec<SumTag> r, g, b, w;
 };
@@ -68,12 +69,44 @@ HWY_INLINE void AddMieBlock(hn::Vec<SumTag> p, const float* blocks, size_t at, M
   sums.w = hn::Add(sums.w, hn::Mul(p, hn::LoadU(ds, blocks + MieBatch::field(3, at))));
 }
 
-// lanes[c][l]: the sum of channel c (R, G, B, weight) in lane l: kSums
-// vectors of NS lanes per channel hold the eight lanes, pair j adding into
-// lane j % 8.
+// out[c] = ((s0 + s1) + (s2 + s3)) + ((s4 + s5) + (s6 + s7)) in double, s
+// the eight lanes of channel c's sums: on AVX-512 the four channels' lanes
+// widened to two vectors of eight doubles and added pairwise across them
+// (each sum's operands and order as written), else one channel at a time.
+HWY_INLINE void AddMieLanes(const MieSums* acc, double out[4]) {
+#if HWY_TARGET == HWY_AVX3
+  const hn::ScalableTag<double> dd;
+  const auto rg = [&](hn::Vec<SumTag> a, hn::Vec<SumTag> b) {  // pairs (0 1) .. (6 7)
+    const auto wa = hn::PromoteTo(dd, a), wb = hn::PromoteTo(dd, b);
+    return hn::Add(hn::ConcatEven(dd, wb, wa), hn::ConcatOdd(dd, wb, wa));
+  };
+  const auto rg2 = rg(acc[0].r, acc[0].g), bw2 = rg(acc[0].b, acc[0].w);
+  // R01 R23 R45 R67 G01 .. and B01 .. W67 -> R0123 R4567 G0123 G4567 B.. W..
+  const auto quads = hn::Add(hn::ConcatEven(dd, bw2, rg2), hn::ConcatOdd(dd, bw2, rg2));
+  const auto sums = hn::Add(hn::ConcatEven(dd, quads, quads), hn::ConcatOdd(dd, quads, quads));
+  hn::StoreU(hn::LowerHalf(sums), hn::Half<decltype(dd)>(), out);
+#else
+  const SumTag ds;
+  constexpr size_t NS = hn::MaxLanes(SumTag());
+  HWY_ALIGN float lanes[4][MieBatch::kLanes];
+  for (size_t h = 0; h < MieBatch::kLanes / NS; ++h) {
+    hn::Store(acc[h].r, ds, lanes[0] + h * NS);
+    hn::Store(acc[h].g, ds, lanes[1] + h * NS);
+    hn::Store(acc[h].b, ds, lanes[2] + h * NS);
+    hn::Store(acc[h].w, ds, lanes[3] + h * NS);
+  }
+  for (int c = 0; c < 4; ++c) {
+    const float* s = lanes[c];
+    out[c] = ((double(s[0]) + s[1]) + (double(s[2]) + s[3])) +
+             ((double(s[4]) + s[5]) + (double(s[6]) + s[7]));
+  }
+#endif
+}
+
+// MieBatch::sums: kSums vectors of NS lanes per channel hold the eight lanes
+// of its sums, pair j adding into lane j % 8.
 void MieLaneSums(const MieKernel& kernel, const glm::dvec3& v, const float* x, const float* y,
-                 const float* z, const float* blocks, size_t n,
-                 float lanes[4][MieBatch::kLanes]) {
+                 const float* z, const float* blocks, size_t n, double out[4]) {
   const KernelTag d;
   const SumTag ds;
   constexpr size_t kMax = MieBatch::kLanes;
@@ -104,12 +137,7 @@ void MieLaneSums(const MieKernel& kernel, const glm::dvec3& v, const float* x, c
     for (size_t h = 0; h < kSums; ++h)
       AddMieBlock(MiePairKernel(k, x, y, z, j + h * NS, n), blocks, j + h * NS, acc[h]);
 #endif
-  for (size_t h = 0; h < kSums; ++h) {
-    hn::StoreU(acc[h].r, ds, lanes[0] + h * NS);
-    hn::StoreU(acc[h].g, ds, lanes[1] + h * NS);
-    hn::StoreU(acc[h].b, ds, lanes[2] + h * NS);
-    hn::StoreU(acc[h].w, ds, lanes[3] + h * NS);
-  }
+  AddMieLanes(acc, out);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -148,13 +176,7 @@ void MieBatch::set_field(const std::vector<glm::dvec3>& L) {
 }
 
 void MieBatch::sums(const MieKernel& k, const glm::dvec3& v, double out[4]) const {
-  float lanes[4][kLanes];
-  HWY_DYNAMIC_DISPATCH(MieLaneSums)(k, v, x.data(), y.data(), z.data(), blocks.data(), n, lanes);
-  for (int c = 0; c < 4; ++c) {
-    const float* s = lanes[c];
-    out[c] = ((double(s[0]) + s[1]) + (double(s[2]) + s[3])) +
-             ((double(s[4]) + s[5]) + (double(s[6]) + s[7]));
-  }
+  HWY_DYNAMIC_DISPATCH(MieLaneSums)(k, v, x.data(), y.data(), z.data(), blocks.data(), n, out);
 }
 
 }  // namespace skybake
