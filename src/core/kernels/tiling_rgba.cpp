@@ -2,9 +2,9 @@
 // texel's four channels are one Quad (as many vectors as the target needs
 // for four doubles), every lane doing the definition's IEEE operations on
 // the same operands in the same order; std::abs clears the sign bit and
-// std::max(a, b) is a < b ? b : a, NaN and signed zeros alike. So every
-// target gives the same bits (tests/core/tiling_profiles_test.cpp). See the
-// header.
+// std::max(a, b) is Max(b, a) for every non-NaN value, signed zeros
+// included (docs/architecture.md "Kernels"). So every target gives the same
+// bits (tests/core/tiling_profiles_test.cpp). See the header.
 #include "core/kernels/tiling_rgba.hpp"
 
 #include <algorithm>
@@ -84,7 +84,7 @@ HWY_INLINE Quad Magnitude(const Quad& a) {
 HWY_INLINE Quad Larger(const Quad& a, const Quad& b) {
   Quad q;
   for (size_t k = 0; k < kQuadParts; ++k)
-    q.v[k] = hn::IfThenElse(hn::Lt(a.v[k], b.v[k]), b.v[k], a.v[k]);
+    q.v[k] = hn::Max(b.v[k], a.v[k]);
   return q;
 }
 HWY_INLINE Quad Halved(const Quad& a) {
