@@ -85,7 +85,8 @@ HWY_INLINE void AddMieLanes(const MieSums* acc, double out[4]) {
   const auto quads = hn::Add(hn::ConcatEven(dd, bw2, rg2), hn::ConcatOdd(dd, bw2, rg2));
   const auto sums = hn::Add(hn::ConcatEven(dd, quads, quads), hn::ConcatOdd(dd, quads, quads));
   hn::StoreU(hn::LowerHalf(sums), hn::Half<decltype(dd)>(), out);
-#else
+  return;
+#endif
   const SumTag ds;
   constexpr size_t NS = hn::MaxLanes(SumTag());
   HWY_ALIGN float lanes[4][MieBatch::kLanes];
@@ -100,7 +101,6 @@ HWY_INLINE void AddMieLanes(const MieSums* acc, double out[4]) {
     out[c] = ((double(s[0]) + s[1]) + (double(s[2]) + s[3])) +
              ((double(s[4]) + s[5]) + (double(s[6]) + s[7]));
   }
-#endif
 }
 
 // MieBatch::sums: kSums vectors of NS lanes per channel hold the eight lanes
