@@ -2,7 +2,8 @@
 # The whole commands the speed targets are stated on, side by side in one run:
 # each command is run RUNS times per executable, interleaved (so load affects
 # every column alike), into a fresh output folder each time; prints the median
-# CPU (user + sys of the process, rusage) and median wall, in seconds.
+# CPU (user + sys of the process, rusage) and median wall, in seconds, and
+# their minimums (on a shared machine the least disturbed run).
 #
 #   bench/commands.sh [SKYBAKE...]          (default: build/skybake)
 #   env: RUNS (3), ONLY (space-separated row keys: version hillaire noise_all
@@ -96,7 +97,7 @@ for _ in range(runs):
         os.makedirs(folder)
         cells.setdefault(("other", other), []).append(timed([other], "commands", cwd=folder))
 
-print(f"runs per cell: {runs}; median CPU s (user+sys) / median wall s; {machine()}")
+print(f"runs per cell: {runs}; median CPU s (user+sys) / median wall s (min / min); {machine()}")
 print()
 print("| command | " + " | ".join(exes) + " |")
 print("|---|" + "---|" * len(exes))
@@ -104,7 +105,8 @@ for key in rows:
     line = []
     for exe in exes:
         c = cells[(key, exe)]
-        line.append(f"{statistics.median(x[0] for x in c):.3f} / {statistics.median(x[1] for x in c):.3f}")
+        line.append(f"{statistics.median(x[0] for x in c):.3f} / {statistics.median(x[1] for x in c):.3f}"
+                    f" ({min(x[0] for x in c):.3f} / {min(x[1] for x in c):.3f})")
     print(f"| {key} | " + " | ".join(line) + " |")
 results = []
 for key in rows:
@@ -113,6 +115,8 @@ for key in rows:
         who = f"{key} ({os.path.relpath(exe, repo)})"
         results.append((who, f"CPU (user + sys), median of {runs}", "s", f"{statistics.median(x[0] for x in c):.3f}"))
         results.append((who, f"wall, median of {runs}", "s", f"{statistics.median(x[1] for x in c):.3f}"))
+        results.append((who, f"CPU (user + sys), min of {runs}", "s", f"{min(x[0] for x in c):.3f}"))
+        results.append((who, f"wall, min of {runs}", "s", f"{min(x[1] for x in c):.3f}"))
 append_results(repo, "commands", "RUNS=%d ONLY=%r bench/commands.sh" % (runs, " ".join(only)), results)
 if other:
     c = cells[("other", other)]

@@ -8,8 +8,9 @@
 // timed every time, under the first of its products the graph bakes (the
 // others read it from the cache: compare the scene's totals).
 //
-//   build/bench/error_records_cpu [--repeat N] [--no-avx2] PRESET...
-//        --no-avx2: the one-value loops only (core/simd_switches.hpp)
+//   build/bench/error_records_cpu [--repeat N] [--scalar] PRESET...
+//        --scalar: every kernel on Highway's scalar target
+//        (docs/architecture.md "Kernels")
 #include <algorithm>
 #include <cstdio>
 #include <ctime>
@@ -18,9 +19,9 @@
 #include <string>
 #include <vector>
 
+#include <hwy/targets.h>
 #include <tbb/global_control.h>
 
-#include "core/simd_switches.hpp"
 #include "pipeline/bruneton_families.hpp"
 #include "pipeline/preset_loader.hpp"
 #include "pipeline/product_graph.hpp"
@@ -74,8 +75,8 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--repeat" && i + 1 < argc)
       repeat = std::max(1, std::stoi(argv[++i]));
-    else if (a == "--no-avx2")
-      set_avx2_enabled(false);
+    else if (a == "--scalar")
+      hwy::SetSupportedTargetsForTest(HWY_SCALAR);
     else
       presets.push_back(a);
   }

@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "atmosphere/density_kinks.hpp"
-#include "core/exp_block.hpp"
+#include "core/kernels/exp_block.hpp"
 
 namespace skybake {
 
@@ -79,7 +79,7 @@ ExtinctionProfile::ExtinctionProfile(const Atmosphere& atm, bool closed_form_lin
     if (!integrated_by_quadrature(c, closed_form_linear) || c.density.layers.empty()) continue;
     const glm::dvec3 sigma_t = c.scattering_per_m + c.absorption_per_m;
     Component out{sigma_t, layers_.size(), c.density.layers.size(), NodeExp::libm, false};
-    // exp_in_place needs |b h| <= 708 at every altitude in [0, top_h] (a
+    // exp_block needs |b h| <= 708 at every altitude in [0, top_h] (a
     // margin for nodes a rounding above the top); else this component keeps std::exp.
     const double top_h = atm.top_radius_m - atm.bottom_radius_m;
     bool block_safe = exp_kind == NodeExp::block;

@@ -17,8 +17,8 @@ namespace skybake {
 bool integrated_by_quadrature(const MediumComponent& c, bool closed_form_linear);
 
 // How exp is evaluated at the nodes: std::exp (bit-identical to
-// extinction_at) or exp_in_place (core/exp_block.hpp, within 3e-16 relative,
-// vectorized), the table's.
+// extinction_at) or exp_block (core/kernels/exp_block.hpp, within 3e-16
+// relative, over lanes), the table's.
 enum class NodeExp { libm, block };
 
 class ExtinctionProfile {
@@ -48,7 +48,7 @@ class ExtinctionProfile {
   struct Component {
     glm::dvec3 sigma_t;
     size_t first_layer, layer_count;
-    NodeExp exp_kind;  // libm where an exponent could leave exp_in_place's range
+    NodeExp exp_kind;  // libm where an exponent could leave exp_block's range
     bool unclamped_exponential;  // NodeExp::block on a exp(b h) that never clamps
   };
   std::vector<Layer> layers_;

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/exp_block.hpp"
+#include "core/kernels/exp_block.hpp"
 #include "core/scratch.hpp"
 
 namespace skybake {

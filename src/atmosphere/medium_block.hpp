@@ -1,6 +1,6 @@
 // sample_medium (medium.hpp) at many altitudes in one pass per component, so
 // that the exponentials of the density profiles are taken in one vectorized
-// block (core/exp_block.hpp) instead of one std::exp call each: the marches
+// block (core/kernels/exp_block.hpp) instead of one std::exp call each: the marches
 // of the error records' references (psi_ms_reference.cpp), where the
 // calls were a large part of the time.
 #pragma once

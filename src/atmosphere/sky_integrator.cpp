@@ -10,7 +10,7 @@
 #include "atmosphere/phase.hpp"
 #include "atmosphere/segment_sources.hpp"
 #include "atmosphere/transmittance_lut.hpp"
-#include "core/exp_block.hpp"
+#include "core/kernels/exp_block.hpp"
 #include "core/math.hpp"
 #include "core/scratch.hpp"
 

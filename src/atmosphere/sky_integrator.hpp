@@ -64,7 +64,7 @@ struct IntegrationOptions {
   // references, pipeline/atmosphere_errors.cpp). The tables do not cut.
   bool cut_at_shadow = false;
   // Take the segments' density exponentials and their weights' expm1s in
-  // blocks (core/exp_block.hpp: four at a time in AVX2, within 1e-15
+  // blocks (core/kernels/exp_block.hpp: over lanes, within 1e-15
   // relative of libm) instead of one libm call each: the same march to
   // rounding (the error records' references, pipeline/atmosphere_errors.cpp;
   // the tables and the preview keep libm's bits).

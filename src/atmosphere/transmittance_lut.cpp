@@ -29,10 +29,10 @@
 #include "atmosphere/density_kinks.hpp"
 #include "atmosphere/extinction_profile.hpp"
 #include "atmosphere/geometry.hpp"
+#include "atmosphere/kernels/node_altitudes.hpp"
 #include "atmosphere/linear_layer_depth.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
-#include "core/simd_switches.hpp"
 
 namespace skybake {
 
@@ -197,37 +197,11 @@ void node_altitudes(std::vector<double>& s, double r, double mu, double bottom_r
     x = std::max(0.0, std::sqrt(std::max(x * x + two_r_mu * x + r2, 0.0)) - bottom_radius);
 }
 
-// node_altitudes for the table's rule, without its clamps (which keep the
-// compiler from vectorizing): the radius is sqrt((s + r mu)^2 + p^2), p^2 =
-// r^2 (1 - mu)(1 + mu) >= 0, so the root's argument cannot be negative, and
-// altitudes a rounding below the ground stay in the lowest layer's formula.
-void altitudes_from_perigee(double* s, size_t n, double from_perigee, double p2,
-                            double bottom_radius) {
-  for (size_t j = 0; j < n; ++j) {
-    const double x_p = s[j] + from_perigee;
-    s[j] = std::sqrt(x_p * x_p + p2) - bottom_radius;
-  }
-}
-
-#if SKYBAKE_HAS_AVX2
-// The same loop built for AVX2: four nodes per instruction, the same bits
-// (no FMA; a square root is correctly rounded at any width).
-SKYBAKE_AVX2 void altitudes_from_perigee_avx2(double* s, size_t n, double from_perigee,
-                                              double p2, double bottom_radius) {
-  for (size_t j = 0; j < n; ++j) {
-    const double x_p = s[j] + from_perigee;
-    s[j] = std::sqrt(x_p * x_p + p2) - bottom_radius;
-  }
-}
-#endif
-
+// node_altitudes for the table's rule, over lanes and without its clamps
+// (kernels/node_altitudes.hpp).
 void node_altitudes_from_perigee(std::vector<double>& s, double r, double mu,
                                  double bottom_radius) {
   const double from_perigee = r * mu, p2 = r * r * std::max(0.0, (1.0 - mu) * (1.0 + mu));
-#if SKYBAKE_HAS_AVX2
-  if (avx2_enabled())
-    return altitudes_from_perigee_avx2(s.data(), s.size(), from_perigee, p2, bottom_radius);
-#endif
   altitudes_from_perigee(s.data(), s.size(), from_perigee, p2, bottom_radius);
 }
 

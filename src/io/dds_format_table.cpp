@@ -9,8 +9,11 @@
 
 #include "core/error.hpp"
 #include "core/half.hpp"
-#include "core/wide_intrinsics.hpp"
 #include "io/le_bytes.hpp"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace skybake {
 namespace {

@@ -9,11 +9,10 @@
 #include "atmosphere/phase.hpp"
 #include "atmosphere/sky_integrator.hpp"
 #include "atmosphere/transmittance_lut.hpp"
-#include "core/exp_block.hpp"
+#include "core/kernels/exp_block.hpp"
 #include "core/math.hpp"
 #include "core/scratch.hpp"
-#include "core/simd_switches.hpp"
-#include "verify/ring_segments.hpp"
+#include "verify/kernels/ring_segments.hpp"
 #include "verify/kernels/ring_sun_sums.hpp"
 
 namespace skybake {
@@ -87,10 +86,9 @@ void segment_ends(double r, double mu, double length, int steps, std::vector<dou
 
 // The ring's segments' media and the four expm1 of each (segment_weights'
 // three, weight_centroid's one) in blocks: one pass per component and one
-// of expm1 over the ring, vectorized where the AVX2 loops run
-// (medium_block.hpp, core/exp_block.hpp: within 1e-15 relative of libm);
-// else std::exp and std::expm1 one at a time, the same bits as
-// sample_medium, segment_weights and std::expm1 per segment.
+// of expm1 over the ring, over lanes (medium_block.hpp,
+// core/kernels/exp_block.hpp: within 1e-15 relative of libm, the same bits
+// on every target).
 // Not called in vacuum (no component: march_ring skips the segments).
 void ring_media(const Atmosphere& atm, double r, double mu, RingMarch& out) {
   const std::vector<double>& ends = out.ends;
@@ -99,24 +97,18 @@ void ring_media(const Atmosphere& atm, double r, double mu, RingMarch& out) {
   out.altitudes.resize(n);
   for (size_t i = 0; i < n; ++i)  // the medium at the midpoint, as the table's march samples it
     out.altitudes[i] = std::max(radius_after(r, mu, 0.5 * (ends[i] + ends[i + 1])), rb) - rb;
-  const bool wide = avx2_enabled();
-  sample_medium_block(atm, out.altitudes.data(), n, wide ? NodeExp::block : NodeExp::libm,
-                      out.media);
+  sample_medium_block(atm, out.altitudes.data(), n, NodeExp::block, out.media);
   out.expm1s.resize(4 * n);
-  // expm1_block's range (the wide loops): beyond it the weights' -1 and the
-  // centroid's 1 / expm1 change by less than 1e-307. Clamped as written.
-  const double bound = wide ? 708.0 : INFINITY;
+  // expm1_block's range: beyond it the weights' -1 and the centroid's
+  // 1 / expm1 change by less than 1e-307. Clamped as written.
+  const double bound = 708.0;
   for (size_t i = 0; i < n; ++i) {
     const double dt = ends[i + 1] - ends[i];
     const glm::dvec3& e = out.media.extinction[i];
     for (int c = 0; c < 3; ++c) out.expm1s[4 * i + c] = std::clamp(-e[c] * dt, -bound, bound);
     out.expm1s[4 * i + 3] = std::clamp((e.x + e.y + e.z) / 3.0 * dt, -bound, bound);
   }
-  if (wide) {
-    expm1_block(out.expm1s.data(), out.expm1s.size());
-  } else {
-    for (double& x : out.expm1s) x = std::expm1(x);
-  }
+  expm1_block(out.expm1s.data(), out.expm1s.size());
 }
 
 // march_ring's sums over its segments, in order: L_f (eq. 8) and each

@@ -27,11 +27,12 @@
 //   energy-conserving weight of sky_integrator.hpp, the sun read at the
 //   centroid of that weight (the midpoint in thin air, near the segment's
 //   start where it is optically thick).
-// Where the AVX2 loops run (core/simd_switches.hpp), a ring's media and
-// expm1s are taken in blocks (medium_block.hpp, core/exp_block.hpp): within
-// 1e-13 of the one-value loops, which keep libm's bits (docs/decisions/error-records.md); its per-segment terms
-// (ring_segments.hpp) and the four azimuths' sun reads (ring_sun_sums.hpp)
-// four segments at a time, the same bits as one at a time.
+// A ring's media and expm1s are taken in blocks (medium_block.hpp,
+// core/kernels/exp_block.hpp: within 1e-13 of libm's,
+// docs/decisions/error-records.md); its per-segment terms
+// (ring_segments.hpp) and the azimuths' sun reads (ring_sun_sums.hpp) several
+// segments at a time over lanes, the same bits as one at a time on every
+// target.
 #pragma once
 
 #include <vector>

@@ -7,14 +7,18 @@
 // skyview_texel_luminance, the
 // multiple-scattering table against compute_multiscattering at its texels,
 // the sky references' reads against lookup_sun_transmittance and
-// lookup_multiscattering.
+// lookup_multiscattering, the transmittance quadrature's node altitudes
+// against node_altitude_from_perigee.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "atmosphere/geometry.hpp"
 #include "atmosphere/kernels/mie_batch.hpp"
+#include "atmosphere/kernels/node_altitudes.hpp"
 #include "atmosphere/kernels/node_slice_reads.hpp"
 #include "atmosphere/kernels/row_blend.hpp"
 #include "atmosphere/kernels/skyview_row_luminance.hpp"
@@ -287,6 +291,26 @@ TEST_P(KernelsOnEachTarget, RowBlendIsOneTexelAtATime) {
                                            (w[2] * r[2][i].v[c] + w[3] * r[3][i].v[c]))
             << n << " " << i << " " << c;
   }
+}
+
+// The transmittance quadrature's node altitudes against the one-value
+// formula, bit for bit, and against radius_after (the same radius up to
+// rounding): rays up, down, grazing and through the perigee, n from 1 to 19
+// so that every target has a short tail.
+TEST_P(KernelsOnEachTarget, NodeAltitudesAreOneNodeAtATime) {
+  const double rb = 6360e3, r = 6360e3 + 12e3;
+  for (double mu : {-1.0, -0.3, -0.02, 0.0, 0.4, 1.0})
+    for (size_t n : {size_t(1), size_t(3), size_t(8), size_t(19)}) {
+      const double from_perigee = r * mu, p2 = r * r * std::max(0.0, (1.0 - mu) * (1.0 + mu));
+      std::vector<double> s(n), one(n);
+      for (size_t j = 0; j < n; ++j) {
+        s[j] = 900e3 * std::pow(double(j) / double(n), 1.25);
+        one[j] = node_altitude_from_perigee(s[j], from_perigee, p2, rb);
+        ASSERT_NEAR(one[j], radius_after(r, mu, s[j]) - rb, 1e-6) << mu << " " << s[j];
+      }
+      altitudes_from_perigee(s.data(), n, from_perigee, p2, rb);
+      EXPECT_EQ(std::memcmp(s.data(), one.data(), n * sizeof(double)), 0) << mu << " " << n;
+    }
 }
 
 // The density's Mie loop against one pair at a time (pair j into lane j % 8

@@ -16,9 +16,8 @@
 #include "atmosphere/phase.hpp"
 #include "atmosphere/segment_sources.hpp"
 #include "atmosphere/transmittance_lut.hpp"
-#include "core/simd_switches.hpp"
+#include "support/simd_targets.hpp"
 #include "support/test_atmospheres.hpp"
-#include "support/wide_vectors_as.hpp"
 
 namespace skybake {
 namespace {
@@ -278,8 +277,8 @@ void expect_dark_reads_left_out_keep_bits(const Atmosphere& atm, const Texture& 
 TEST(Integrator, DarkReadsLeftOutKeepEveryBit) {
   // The references leave out the reads past the point where the view ray's
   // transmittance underflows to 0, along rays that scatter nothing, and of
-  // groups wholly in the planet's shadow: the same bits as reading them, with
-  // AVX2 and without. Earth, Earth under Rayleigh of 1 /m (opaque within
+  // groups wholly in the planet's shadow: the same bits as reading them, on
+  // every SIMD target. Earth, Earth under Rayleigh of 1 /m (opaque within
   // metres), and Earth's air with scattering turned to absorption.
   Atmosphere opaque = earth_atmosphere();
   for (MediumComponent& c : opaque.components)
@@ -291,8 +290,8 @@ TEST(Integrator, DarkReadsLeftOutKeepEveryBit) {
   }
   for (const Atmosphere& atm : {earth_atmosphere(), opaque, absorber}) {
     const fixtures::SkyLutInputs l = fixtures::bake_sky_lut_inputs(atm);
-    for (bool wide : {false, true}) {
-      const test::WideVectorsAs as(wide);
+    for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
+      const test::SimdTargetAs as(target);
       expect_dark_reads_left_out_keep_bits(atm, l.transmittance, l.multiscattering);
     }
   }
@@ -446,14 +445,10 @@ TEST(Integrator, StiffMediaStayFinite) {
   expect_sane_everywhere(tiny);
 }
 
-TEST(Integrator, BlockMarchHasTheSameBitsWithAndWithoutAvx2) {
+TEST(Integrator, BlockMarchHasTheSameBitsOnEverySimdTarget) {
   // The references' march (block exponentials, the sources read at the
-  // midpoints or at the ends) with the AVX2 exponentials and without: ground
-  // and space viewers, lit and shadowed, cut at the shadow and plain.
-  {
-    const test::WideVectorsAs probe(true);
-    if (!avx2_enabled()) GTEST_SKIP() << "this CPU has no AVX2: only the one-value loops run";
-  }
+  // midpoints or at the ends) on each SIMD target against the scalar one:
+  // ground and space viewers, lit and shadowed, cut at the shadow and plain.
   Atmosphere dense = fixtures::earth_atmosphere();
   for (MediumComponent& c : dense.components)
     if (c.name == "rayleigh") c.scattering_per_m *= 1000.0;
@@ -474,14 +469,18 @@ TEST(Integrator, BlockMarchHasTheSameBitsWithAndWithoutAvx2) {
             const glm::dvec3 dir(std::cos(elevation), 0.0, std::sin(elevation));
             const glm::dvec3 sun(std::cos(sun_elevation) * 0.6, std::cos(sun_elevation) * 0.8,
                                  std::sin(sun_elevation));
-            const auto march = [&](bool wide) {
-              const test::WideVectorsAs as(wide);
+            const auto march = [&](int64_t target) {
+              const test::SimdTargetAs as(target);
               return integrate_scattered_luminance(atm, l.transmittance, &l.multiscattering, p,
                                                    dir, sun, INFINITY, 41, options);
             };
-            const ScatteringResult one = march(false), avx2 = march(true);
-            ASSERT_EQ(avx2.luminance, one.luminance) << r << " " << elevation << " " << at_ends;
-            ASSERT_EQ(avx2.transmittance, one.transmittance);
+            const ScatteringResult one = march(HWY_SCALAR);
+            for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
+              const ScatteringResult wide = march(target);
+              ASSERT_EQ(wide.luminance, one.luminance)
+                  << r << " " << elevation << " " << at_ends << " " << hwy::TargetName(target);
+              ASSERT_EQ(wide.transmittance, one.transmittance);
+            }
           }
   }
 }

@@ -1,8 +1,10 @@
-// Tests of exp_in_place (core/exp_block.hpp) against std::exp.
-#include "core/exp_block.hpp"
+// Tests of exp_block and expm1_block (core/kernels/exp_block.hpp) against
+// std::exp and std::expm1, on the best SIMD target this CPU runs
+// (tests/core/kernels_test.cpp holds every target to the one-value
+// functions).
+#include "core/kernels/exp_block.hpp"
 
 #include <cmath>
-#include <cstring>
 #include <random>
 #include <vector>
 
@@ -14,7 +16,7 @@ namespace {
 // Over the whole range the precondition allows, and at the points where
 // the reduction changes k (odd multiples of ln 2 / 2) and at 0: within
 // 4e-16 relative (libm's exp is itself within 1 ulp, 2.2e-16).
-TEST(ExpInPlace, MatchesStdExpOverItsRange) {
+TEST(ExpBlock, MatchesStdExpOverItsRange) {
   std::vector<double> x;
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> wide(-708.0, 708.0), narrow(-90.0, 1.0);
@@ -26,49 +28,26 @@ TEST(ExpInPlace, MatchesStdExpOverItsRange) {
   }
   for (double v : {0.0, -0.0, 1e-300, -1e-300, 708.0, -708.0, 1.0, -1.0}) x.push_back(v);
   std::vector<double> y = x;
-  exp_in_place(y.data(), y.size());
+  exp_block(y.data(), y.size());
   for (size_t i = 0; i < x.size(); ++i)
     ASSERT_NEAR(y[i] / std::exp(x[i]), 1.0, 4e-16) << "x = " << x[i];
 }
 
-TEST(ExpInPlace, OddLengthsAndEmpty) {
-  // The vectorized loop's remainder element is computed too.
+TEST(ExpBlock, OddLengthsAndEmpty) {
+  // The elements past the last whole vector are computed too.
   for (size_t n : {size_t(0), size_t(1), size_t(3), size_t(17)}) {
     std::vector<double> x(n), y;
     for (size_t i = 0; i < n; ++i) x[i] = -0.37 * double(i);
     y = x;
-    exp_in_place(y.data(), n);
+    exp_block(y.data(), n);
     for (size_t i = 0; i < n; ++i) EXPECT_NEAR(y[i] / std::exp(x[i]), 1.0, 4e-16) << n << " " << i;
   }
 }
 
-#if SKYBAKE_HAS_AVX2
-// The AVX2 loop gives every element the bits of the SSE2 one (the tables'
-// bytes must not depend on the CPU), at every length and alignment the
-// vectorized loop's head and tail can take.
-TEST(ExpInPlace, Avx2TwinHasTheSameBits) {
-  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "this CPU has no AVX2";
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> wide(-708.0, 708.0), narrow(-40.0, 0.0);
-  std::vector<double> x(4096 + 3);
-  for (size_t i = 0; i < x.size(); ++i) x[i] = i % 3 ? narrow(rng) : wide(rng);
-  for (size_t offset : {0u, 1u, 2u, 3u}) {
-    for (size_t n : {size_t(0), size_t(1), size_t(3), size_t(5), size_t(48), size_t(4096)}) {
-      std::vector<double> a(x.begin() + offset, x.begin() + offset + n), b = a;
-      exp_in_place(a.data(), n);
-      exp_in_place_avx2(b.data(), n);
-      for (size_t i = 0; i < n; ++i)
-        ASSERT_EQ(std::memcmp(&a[i], &b[i], sizeof(double)), 0)
-            << "x = " << x[offset + i] << ": " << a[i] << " vs " << b[i];
-    }
-  }
-}
-#endif
-
-// expm1_in_place against std::expm1: relative error at tiny x (where
+// expm1_block against std::expm1: relative error at tiny x (where
 // exp(x) - 1 would lose every digit), at the reduction's edges and over
 // the range the precondition allows.
-TEST(Expm1InPlace, MatchesStdExpm1OverItsRange) {
+TEST(Expm1Block, MatchesStdExpm1OverItsRange) {
   std::vector<double> x;
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> wide(-708.0, 708.0), narrow(-3.0, 3.0);
@@ -85,7 +64,7 @@ TEST(Expm1InPlace, MatchesStdExpm1OverItsRange) {
   }
   for (double v : {0.0, 1e-300, -1e-300, 708.0, -708.0, 1.0, -1.0}) x.push_back(v);
   std::vector<double> y = x;
-  expm1_in_place(y.data(), y.size());
+  expm1_block(y.data(), y.size());
   for (size_t i = 0; i < x.size(); ++i) {
     const double want = std::expm1(x[i]);
     if (want == 0.0)
@@ -94,22 +73,6 @@ TEST(Expm1InPlace, MatchesStdExpm1OverItsRange) {
       ASSERT_NEAR(y[i] / want, 1.0, 1e-15) << "x = " << x[i];
   }
 }
-
-#if SKYBAKE_HAS_AVX2
-TEST(Expm1InPlace, Avx2TwinHasTheSameBits) {
-  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "this CPU has no AVX2";
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> wide(-708.0, 708.0), narrow(-1.0, 1.0);
-  for (size_t n : {size_t(1), size_t(3), size_t(5), size_t(4099)}) {
-    std::vector<double> a(n);
-    for (size_t i = 0; i < n; ++i) a[i] = i % 3 ? narrow(rng) : wide(rng);
-    std::vector<double> b = a;
-    expm1_in_place(a.data(), n);
-    expm1_in_place_avx2(b.data(), n);
-    for (size_t i = 0; i < n; ++i) ASSERT_EQ(std::memcmp(&a[i], &b[i], sizeof(double)), 0) << i;
-  }
-}
-#endif
 
 }  // namespace
 }  // namespace skybake

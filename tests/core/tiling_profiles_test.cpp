@@ -9,10 +9,12 @@
 #include <random>
 
 #include "core/tiling_profiles.hpp"
-#include "support/wide_vectors_as.hpp"
+#include "support/simd_targets.hpp"
 
 namespace skybake {
 namespace {
+
+using test::KernelsOnEachTarget;
 
 Texture random_texture(int w, int h, int d, int layers, int channels, uint32_t seed) {
   static const char* names[] = {"R", "G", "B", "A"};
@@ -94,18 +96,14 @@ TEST(TilingProfiles, VolumeOfFourChannelsMatchesTheDefinitionExactly) {
   expect_definition(random_texture(24, 17, 20, 1, 4, 1));
 }
 
-// Four channels take core/tiling_rgba.cpp's path (a texel's channels in
-// the lanes of a vector, lines read 32 at a time, far jumps 4 lines side by
-// side): line counts that leave partial chunks and blocks, tiny axes, 2D
-// arrays, with the AVX2 loops on and off.
-TEST(TilingProfiles, FourChannelsMatchTheDefinitionWithAndWithoutAvx2) {
-  for (bool wide : {false, true}) {
-    SCOPED_TRACE(wide ? "AVX2" : "SSE2");
-    test::WideVectorsAs as(wide);
-    expect_definition(random_texture(37, 35, 33, 1, 4, 5));
-    expect_definition(random_texture(3, 2, 5, 1, 4, 6));
-    expect_definition(random_texture(40, 6, 1, 2, 4, 7));
-  }
+// Four channels take the kernel core/kernels/tiling_rgba.hpp (a texel's
+// channels in the lanes, lines read 32 at a time, far jumps 4 lines side by
+// side), on every SIMD target this CPU runs: line counts that leave partial
+// chunks and blocks, tiny axes, 2D arrays.
+TEST_P(KernelsOnEachTarget, TilingFourChannelsMatchTheDefinition) {
+  expect_definition(random_texture(37, 35, 33, 1, 4, 5));
+  expect_definition(random_texture(3, 2, 5, 1, 4, 6));
+  expect_definition(random_texture(40, 6, 1, 2, 4, 7));
 }
 
 TEST(TilingProfiles, TinyAxesWrapTheirPaddingMoreThanOnce) {

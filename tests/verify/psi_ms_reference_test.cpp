@@ -14,8 +14,8 @@
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/error_stats.hpp"
 #include "core/math.hpp"
+#include "support/simd_targets.hpp"
 #include "support/test_atmospheres.hpp"
-#include "support/wide_vectors_as.hpp"
 #include "verify/error_references.hpp"
 #include "verify/query_points.hpp"
 
@@ -110,36 +110,6 @@ TEST(PsiMsReference, RecordRuleConvergedOnStiffMedia) {
   EXPECT_LT(tiny.rms_rel, 2.5e-3);
 }
 
-TEST(PsiMsReference, WideLoopsWithinRoundingOfTheOneValueLoops) {
-  // The AVX2 path (block exponentials, four azimuths' reads at once) against
-  // the one-value path (std::exp, std::expm1, one read at a time) at the
-  // record's points: rounding only (expm1_in_place within 1e-15 relative of
-  // std::expm1, core/exp_block.hpp), not a change of rule.
-  {
-    const test::WideVectorsAs probe(true);
-    if (!avx2_enabled()) GTEST_SKIP() << "this CPU has no AVX2: only the one-value loops run";
-  }
-  Atmosphere dense = fixtures::earth_atmosphere();
-  for (MediumComponent& c : dense.components)
-    if (c.name == "rayleigh") c.scattering_per_m *= 1000.0;
-  for (const Atmosphere& atm :
-       {fixtures::earth_atmosphere(), fixtures::tiny_planet_atmosphere(), dense}) {
-    const Texture t = bake_transmittance_lut(atm, {64, 16, 8}, {});
-    std::vector<glm::dvec3> one, wide;
-    {
-      const test::WideVectorsAs as(false);
-      one = at_queries(atm, t, kRecord);
-    }
-    {
-      const test::WideVectorsAs as(true);
-      wide = at_queries(atm, t, kRecord);
-    }
-    const ErrorStats s = compare(wide, one);
-    EXPECT_LT(s.max_rel, 1e-13);
-    EXPECT_GT(one.front().x, 0.0);
-  }
-}
-
 // Every field of the point's sample, as bits.
 bool same_bits(const MultiscatteringSample& a, const MultiscatteringSample& b) {
   return std::memcmp(&a.psi_ms, &b.psi_ms, sizeof a.psi_ms) == 0 &&
@@ -151,8 +121,8 @@ TEST(PsiMsReference, DarkSamplesLeftOutKeepEveryBit) {
   // With a finite table the rule leaves out the sun reads of samples that
   // scatter nothing (an opaque medium, an absorber) and of groups in the
   // planet's shadow: against the rule that reads every sample, at the
-  // record's points and at suns below the horizon, the same bits, with
-  // AVX2 and without. Earth, Earth under Rayleigh of 1 /m (transmittance
+  // record's points and at suns below the horizon, the same bits, on every
+  // SIMD target. Earth, Earth under Rayleigh of 1 /m (transmittance
   // underflows within metres), and Earth's air with scattering turned to
   // absorption.
   Atmosphere opaque = fixtures::earth_atmosphere();
@@ -164,8 +134,8 @@ TEST(PsiMsReference, DarkSamplesLeftOutKeepEveryBit) {
     c.scattering_per_m = glm::dvec3(0.0);
   }
   const PointRule rule = point_rule(kRecord);
-  for (bool wide : {false, true}) {
-    const test::WideVectorsAs as(wide);
+  for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
+    const test::SimdTargetAs as(target);
     for (const Atmosphere& atm : {fixtures::earth_atmosphere(), opaque, absorber}) {
       const Texture t = bake_transmittance_lut(atm, {64, 16, 8}, {});
       const CachedFiniteCheck finite{&t};
@@ -175,7 +145,7 @@ TEST(PsiMsReference, DarkSamplesLeftOutKeepEveryBit) {
           const MultiscatteringSample all = multiscattering_at_point(atm, t, q.r, mu_s, rule);
           const MultiscatteringSample fast =
               multiscattering_at_point(atm, t, q.r, mu_s, rule, &finite);
-          EXPECT_TRUE(same_bits(all, fast)) << i << " " << mu_s << " wide " << wide;
+          EXPECT_TRUE(same_bits(all, fast)) << i << " " << mu_s << " " << hwy::TargetName(target);
         }
       }
     }

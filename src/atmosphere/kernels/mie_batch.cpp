@@ -29,56 +29,115 @@ using KernelTag = hn::CappedTag<float, MieBatch::kLanes>;
 // The sums' lanes: at most eight, so that pair j adds into lane j % 8.
 using SumTag = hn::CappedTag<float, MieBatch::kLanes>;
 
-// Part i of the kernel's lanes as the sums' lanes.
-HWY_INLINE hn::Vec<SumTag> SumLanes(hn::Vec<KernelTag> p, size_t i) {
-#if HWY_TARGET == HWY_AVX3
-  return i == 0 ? hn::LowerHalf(p) : hn::UpperHalf(SumTag(), p);
-#else
-  (void)i;
-  return p;
-#endif
+// The kernel k(v . w) of the pairs from j (both directions of each pair,
+// their two phases over one division), Lanes(KernelTag) of them.
+struct MieLanesConstants {
+  hn::Vec<KernelTag> one, zero, a, b, cs, vx, vy, vz;
+};
+HWY_INLINE hn::Vec<KernelTag> MiePairKernel(const MieLanesConstants& k, const float* x,
+                                            const float* y, const float* z, size_t j, size_t n) {
+  const KernelTag d;
+  using V = hn::Vec<KernelTag>;
+  // Past the last pair (n is a multiple of 8): lanes of weight 0, not added.
+  const auto load = [&](const float* p) {
+    return j + hn::Lanes(d) <= n ? hn::LoadU(d, p + j)
+                                 : hn::MaskedLoad(hn::FirstN(d, n - j), d, p + j);
+  };
+  const V in_plane = hn::Add(hn::Mul(k.vx, load(x)), hn::Mul(k.vz, load(z)));
+  const V across = hn::Mul(k.vy, load(y));
+  const V cp = hn::Add(in_plane, across), cm = hn::Sub(in_plane, across);
+  const V wp = hn::Add(k.a, hn::Mul(k.b, hn::Max(hn::Sub(k.one, cp), k.zero)));
+  const V wm = hn::Add(k.a, hn::Mul(k.b, hn::Max(hn::Sub(k.one, cm), k.zero)));
+  const V qp = hn::Mul(wp, hn::Sqrt(wp)), qm = hn::Mul(wm, hn::Sqrt(wm));
+  const V np = hn::Add(k.one, hn::Mul(k.cs, hn::Mul(cp, cp)));
+  const V nm = hn::Add(k.one, hn::Mul(k.cs, hn::Mul(cm, cm)));
+  return hn::Div(hn::Add(hn::Mul(np, qm), hn::Mul(nm, qp)), hn::Mul(qp, qm));
 }
 
-// lanes[c][l]: the sum of channel c (R, G, B, weight) in lane l.
-void MieLaneSums(const MieKernel& k, const glm::dvec3& v, const float* x, const float* y,
-                 const float* z, const float* blocks, size_t n,
-                 float lanes[4][MieBatch::kLanes]) {
+// The four sums (R, G, B, weight) of some lanes of a block of pairs, as
+// named vectors: an array indexed in the loop, GCC keeps them on the stack
+// and loads and stores them every step.
+struct MieSums {
+  hn::Vec<SumTag> r, g, b, w;
+};
+// sums += p times the fields of the pairs from `at`.
+HWY_INLINE void AddMieBlock(hn::Vec<SumTag> p, const float* blocks, size_t at, MieSums& sums) {
+  const SumTag ds;
+  sums.r = hn::Add(sums.r, hn::Mul(p, hn::LoadU(ds, blocks + MieBatch::field(0, at))));
+  sums.g = hn::Add(sums.g, hn::Mul(p, hn::LoadU(ds, blocks + MieBatch::field(1, at))));
+  sums.b = hn::Add(sums.b, hn::Mul(p, hn::LoadU(ds, blocks + MieBatch::field(2, at))));
+  sums.w = hn::Add(sums.w, hn::Mul(p, hn::LoadU(ds, blocks + MieBatch::field(3, at))));
+}
+
+// out[c] = ((s0 + s1) + (s2 + s3)) + ((s4 + s5) + (s6 + s7)) in double, s
+// the eight lanes of channel c's sums: on AVX-512 the four channels' lanes
+// widened to two vectors of eight doubles and added pairwise across them
+// (each sum's operands and order as written), else one channel at a time.
+HWY_INLINE void AddMieLanes(const MieSums* acc, double out[4]) {
+#if HWY_TARGET == HWY_AVX3
+  const hn::ScalableTag<double> dd;
+  const auto rg = [&](hn::Vec<SumTag> a, hn::Vec<SumTag> b) {  // pairs (0 1) .. (6 7)
+    const auto wa = hn::PromoteTo(dd, a), wb = hn::PromoteTo(dd, b);
+    return hn::Add(hn::ConcatEven(dd, wb, wa), hn::ConcatOdd(dd, wb, wa));
+  };
+  const auto rg2 = rg(acc[0].r, acc[0].g), bw2 = rg(acc[0].b, acc[0].w);
+  // R01 R23 R45 R67 G01 .. and B01 .. W67 -> R0123 R4567 G0123 G4567 B.. W..
+  const auto quads = hn::Add(hn::ConcatEven(dd, bw2, rg2), hn::ConcatOdd(dd, bw2, rg2));
+  const auto sums = hn::Add(hn::ConcatEven(dd, quads, quads), hn::ConcatOdd(dd, quads, quads));
+  hn::StoreU(hn::LowerHalf(sums), hn::Half<decltype(dd)>(), out);
+  return;
+#endif
+  const SumTag ds;
+  constexpr size_t NS = hn::MaxLanes(SumTag());
+  HWY_ALIGN float lanes[4][MieBatch::kLanes];
+  for (size_t h = 0; h < MieBatch::kLanes / NS; ++h) {
+    hn::Store(acc[h].r, ds, lanes[0] + h * NS);
+    hn::Store(acc[h].g, ds, lanes[1] + h * NS);
+    hn::Store(acc[h].b, ds, lanes[2] + h * NS);
+    hn::Store(acc[h].w, ds, lanes[3] + h * NS);
+  }
+  for (int c = 0; c < 4; ++c) {
+    const float* s = lanes[c];
+    out[c] = ((double(s[0]) + s[1]) + (double(s[2]) + s[3])) +
+             ((double(s[4]) + s[5]) + (double(s[6]) + s[7]));
+  }
+}
+
+// MieBatch::sums: kSums vectors of NS lanes per channel hold the eight lanes
+// of its sums, pair j adding into lane j % 8.
+void MieLaneSums(const MieKernel& kernel, const glm::dvec3& v, const float* x, const float* y,
+                 const float* z, const float* blocks, size_t n, double out[4]) {
   const KernelTag d;
   const SumTag ds;
-  using V = hn::Vec<KernelTag>;
-  using S = hn::Vec<SumTag>;
   constexpr size_t kMax = MieBatch::kLanes;
-  const size_t N = hn::Lanes(d), NS = hn::Lanes(ds);
-  const V one = hn::Set(d, 1.0f), zero = hn::Zero(d);
-  const V a = hn::Set(d, float(k.a)), b = hn::Set(d, float(k.b));
-  const V cs = hn::Set(d, k.cornette_shanks ? 1.0f : 0.0f);
-  const V vx = hn::Set(d, float(v.x)), vy = hn::Set(d, float(v.y)), vz = hn::Set(d, float(v.z));
-  S acc[4][kMax];
-  for (auto& c : acc)
-    for (size_t h = 0; h < kMax / NS; ++h) c[h] = hn::Zero(ds);
-  // Past the last pair (n is a multiple of 8): lanes of weight 0, not added.
-  auto load = [&](const float* p, size_t j) {
-    return j + N <= n ? hn::LoadU(d, p + j) : hn::MaskedLoad(hn::FirstN(d, n - j), d, p + j);
-  };
+  constexpr size_t N = hn::MaxLanes(KernelTag()), NS = hn::MaxLanes(SumTag());
+  constexpr size_t kSums = kMax / NS;  // sum vectors per channel
+  const MieLanesConstants k{hn::Set(d, 1.0f),
+                            hn::Zero(d),
+                            hn::Set(d, float(kernel.a)),
+                            hn::Set(d, float(kernel.b)),
+                            hn::Set(d, kernel.cornette_shanks ? 1.0f : 0.0f),
+                            hn::Set(d, float(v.x)),
+                            hn::Set(d, float(v.y)),
+                            hn::Set(d, float(v.z))};
+  MieSums acc[kSums];
+  for (MieSums& a : acc) a = MieSums{hn::Zero(ds), hn::Zero(ds), hn::Zero(ds), hn::Zero(ds)};
+#if HWY_TARGET == HWY_AVX3
+  // Sixteen pairs a step: two blocks into the one vector of sums.
+  static_assert(N == 2 * kMax && kSums == 1, "two blocks of eight a step");
   for (size_t j = 0; j < n; j += N) {
-    const V in_plane = hn::Add(hn::Mul(vx, load(x, j)), hn::Mul(vz, load(z, j)));
-    const V across = hn::Mul(vy, load(y, j));
-    const V cp = hn::Add(in_plane, across), cm = hn::Sub(in_plane, across);
-    const V wp = hn::Add(a, hn::Mul(b, hn::Max(hn::Sub(one, cp), zero)));
-    const V wm = hn::Add(a, hn::Mul(b, hn::Max(hn::Sub(one, cm), zero)));
-    const V qp = hn::Mul(wp, hn::Sqrt(wp)), qm = hn::Mul(wm, hn::Sqrt(wm));
-    const V np = hn::Add(one, hn::Mul(cs, hn::Mul(cp, cp)));
-    const V nm = hn::Add(one, hn::Mul(cs, hn::Mul(cm, cm)));
-    const V p = hn::Div(hn::Add(hn::Mul(np, qm), hn::Mul(nm, qp)), hn::Mul(qp, qm));
-    for (size_t i = 0; i < N / NS && j + i * NS < n; ++i) {
-      const size_t at = j + i * NS, h = at % kMax / NS;
-      const S part = SumLanes(p, i);
-      for (int c = 0; c < 4; ++c)
-        acc[c][h] = hn::Add(acc[c][h], hn::Mul(part, hn::LoadU(ds, blocks + MieBatch::field(c, at))));
-    }
+    const hn::Vec<KernelTag> p = MiePairKernel(k, x, y, z, j, n);
+    AddMieBlock(hn::LowerHalf(p), blocks, j, acc[0]);
+    if (j + kMax < n) AddMieBlock(hn::UpperHalf(ds, p), blocks, j + kMax, acc[0]);
   }
-  for (int c = 0; c < 4; ++c)
-    for (size_t h = 0; h < kMax / NS; ++h) hn::StoreU(acc[c][h], ds, lanes[c] + h * NS);
+#else
+  // One block a step: kSums kernel vectors (N == NS), the h-th into sums h.
+  static_assert(N == NS, "the kernel's lanes are the sums'");
+  for (size_t j = 0; j < n; j += kMax)
+    for (size_t h = 0; h < kSums; ++h)
+      AddMieBlock(MiePairKernel(k, x, y, z, j + h * NS, n), blocks, j + h * NS, acc[h]);
+#endif
+  AddMieLanes(acc, out);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -117,13 +176,7 @@ void MieBatch::set_field(const std::vector<glm::dvec3>& L) {
 }
 
 void MieBatch::sums(const MieKernel& k, const glm::dvec3& v, double out[4]) const {
-  float lanes[4][kLanes];
-  HWY_DYNAMIC_DISPATCH(MieLaneSums)(k, v, x.data(), y.data(), z.data(), blocks.data(), n, lanes);
-  for (int c = 0; c < 4; ++c) {
-    const float* s = lanes[c];
-    out[c] = ((double(s[0]) + s[1]) + (double(s[2]) + s[3])) +
-             ((double(s[4]) + s[5]) + (double(s[6]) + s[7]));
-  }
+  HWY_DYNAMIC_DISPATCH(MieLaneSums)(k, v, x.data(), y.data(), z.data(), blocks.data(), n, out);
 }
 
 }  // namespace skybake

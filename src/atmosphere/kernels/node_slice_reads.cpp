@@ -49,9 +49,14 @@ HWY_INLINE void NodeTaps(DF df, const SunCosineTapsFloat& k, const NodeRow& q, i
   const V N = hn::Max(hn::Zero(df), hn::Sub(hn::Mul(D, hn::Set(df, k.k1)), h2));
   const V Q = hn::Add(hn::Mul(D, hn::Set(df, k.ak2)), hn::Set(df, k.ah2));
   const V t = hn::Mul(hn::Min(one, hn::Div(N, Q)), hn::Set(df, k.last));
-  const V i = hn::Min(hn::Set(df, k.below_last), hn::ConvertTo(df, hn::ConvertTo(di, t)));
+  // float(int(t)) is Trunc(t) + 0 (the sum turns a -0 into int's +0), and
+  // the whole number i (|i| < 2^22) is the low bits of i + 1.5 2^23: no
+  // conversion instructions, whose overflow checks Highway adds.
+  const V i = hn::Min(hn::Set(df, k.below_last), hn::Add(hn::Trunc(t), hn::Zero(df)));
   hn::StoreU(hn::Sub(t, i), df, q.lw + x);
-  const hn::Vec<decltype(di)> tap = hn::ConvertTo(di, i);
+  const V magic = hn::Set(df, 0x1.8p23f);
+  const hn::Vec<decltype(di)> tap =
+      hn::Sub(hn::BitCast(di, hn::Add(i, magic)), hn::BitCast(di, magic));
   hn::StoreU(hn::Add(tap, hn::LoadU(di, q.nu_i0 + x)), di, q.at0 + x);
   hn::StoreU(hn::Add(tap, hn::LoadU(di, q.nu_i1 + x)), di, q.at1 + x);
 }

@@ -9,8 +9,8 @@
 namespace skybake {
 
 // skyview_texel_luminance of n texels of the row, texel k at (cos_phi[k],
-// nu[k]), into out[k]: the same bits, four texels at a time where AVX2 runs
-// (tests/atmosphere/avx2_bakes_test.cpp).
+// nu[k]), into out[k]: the same bits, several texels at a time over lanes
+// (tests/atmosphere/kernels_test.cpp).
 void skyview_row_luminance(const SkyviewRowMarch& row, const Atmosphere& atm,
                            const Texture& transmittance_lut, const Texture& multiscattering_lut,
                            const double* cos_phi, const double* nu, int n, double cos_theta_s,

@@ -1,11 +1,12 @@
-// exp of every element of an array, in place (one pointer: no aliasing
-// check sends the compiler to its scalar loop), written so that the
-// compiler vectorizes it (SSE2: two doubles per instruction, AVX2's twin
-// four, no call per value): the transmittance table's quadrature spends most of its time in
-// exp (docs/decisions/transmittance-quadrature.md).
+// exp of every element of an array, in place, over lanes (Highway; every
+// target from one source, kernels/exp_block.cpp, no call per value): the
+// transmittance table's quadrature spends most of its time in exp
+// (docs/decisions/transmittance-quadrature.md). Each lane does exp_one's
+// IEEE operations on the same operands in the same order (no FMA), so every
+// target gives exp_one's bits (tests/core/kernels_test.cpp).
 //
 // Precondition: |x| <= 708 (2^k must be a normal number; a clamp here
-// would keep the compiler from vectorizing the loop), callers check it.
+// would cost every element a comparison), callers check it.
 //
 // exp(x) = 2^k exp(y), k = round(x / ln 2), y = x - k ln 2 with |y| <= ln 2 / 2
 // (Cody & Waite reduction: ln 2 split into a head whose product with k is
@@ -14,7 +15,7 @@
 // exponent bits. Measured within 3e-16 relative of std::exp over
 // [-708, 708] (tests/core/exp_block_test.cpp).
 //
-// expm1_in_place: exp(x) - 1 the same way, with the same precondition
+// expm1_block: exp(x) - 1 the same way, with the same precondition
 // (beyond it expm1 is -1 or past any use to 1e-307: callers clamp): with the same k and y,
 // exp(x) - 1 = 2^k expm1(y) + (2^k - 1) and expm1(y) = y q(y), q the Taylor
 // series of (exp(y) - 1) / y to degree 12 (remainder below 2e-17 relative on
@@ -26,9 +27,13 @@
 #include <cstdint>
 #include <cstring>
 
-#include "core/simd_switches.hpp"
-
 namespace skybake {
+
+// The reduction's constants (see the top), shared with the kernel.
+constexpr double kExpLog2e = 1.4426950408889634;
+constexpr double kExpShifter = 0x1.8p52;  // adding it rounds to an integer in the low bits
+constexpr double kExpLn2Hi = 0x1.62e42fee00000p-1;   // 32 significant bits: k * it is exact
+constexpr double kExpLn2Lo = 0x1.a39ef35793c76p-33;  // ln 2 - kExpLn2Hi
 
 // The Cody & Waite reduction of v (|v| <= 708, see the top): y = v - k ln 2
 // and scale = 2^k, shared by exp_one and expm1_one.
@@ -37,13 +42,9 @@ struct ExpReduced {
   double scale;
 };
 inline __attribute__((always_inline)) ExpReduced exp_reduce(double v) {
-  constexpr double kLog2e = 1.4426950408889634;
-  constexpr double kShifter = 0x1.8p52;  // adding it rounds to an integer in the low bits
-  constexpr double kLn2Hi = 0x1.62e42fee00000p-1;   // 32 significant bits: k * it is exact
-  constexpr double kLn2Lo = 0x1.a39ef35793c76p-33;  // ln 2 - kLn2Hi
-  const double t = v * kLog2e + kShifter;
-  const double k = t - kShifter;
-  const double y = (v - k * kLn2Hi) - k * kLn2Lo;
+  const double t = v * kExpLog2e + kExpShifter;
+  const double k = t - kExpShifter;
+  const double y = (v - k * kExpLn2Hi) - k * kExpLn2Lo;
   // The low bits of t hold k (two's complement); shifted into the
   // exponent field with its bias they are 2^k.
   uint64_t bits;
@@ -71,27 +72,6 @@ inline __attribute__((always_inline)) double exp_one(double v) {
   return p * r.scale;
 }
 
-inline void exp_in_place(double* x, size_t n) {
-  for (size_t j = 0; j < n; ++j) x[j] = exp_one(x[j]);
-}
-
-#if SKYBAKE_HAS_AVX2
-// exp_in_place built for AVX2: the compiler vectorizes the same
-// operations four doubles at a time (no FMA, core/simd_switches.hpp), so
-// every element has the same bits (tests/core/exp_block_test.cpp).
-SKYBAKE_AVX2 inline void exp_in_place_avx2(double* x, size_t n) {
-  for (size_t j = 0; j < n; ++j) x[j] = exp_one(x[j]);
-}
-#endif
-
-// exp_in_place, four doubles at a time where the AVX2 loops run.
-inline void exp_block(double* x, size_t n) {
-#if SKYBAKE_HAS_AVX2
-  if (avx2_enabled()) return exp_in_place_avx2(x, n);
-#endif
-  exp_in_place(x, n);
-}
-
 // expm1(v) for |v| <= 708 (see the top).
 inline __attribute__((always_inline)) double expm1_one(double v) {
   const ExpReduced r = exp_reduce(v);
@@ -106,23 +86,10 @@ inline __attribute__((always_inline)) double expm1_one(double v) {
   return r.scale * (y * q) + (r.scale - 1.0);
 }
 
-inline void expm1_in_place(double* x, size_t n) {
-  for (size_t j = 0; j < n; ++j) x[j] = expm1_one(x[j]);
-}
+// x[j] = exp_one(x[j]) for j < n.
+void exp_block(double* x, size_t n);
 
-#if SKYBAKE_HAS_AVX2
-// expm1_in_place four doubles at a time, the same bits (as exp_in_place_avx2).
-SKYBAKE_AVX2 inline void expm1_in_place_avx2(double* x, size_t n) {
-  for (size_t j = 0; j < n; ++j) x[j] = expm1_one(x[j]);
-}
-#endif
-
-// expm1_in_place, four doubles at a time where the AVX2 loops run.
-inline void expm1_block(double* x, size_t n) {
-#if SKYBAKE_HAS_AVX2
-  if (avx2_enabled()) return expm1_in_place_avx2(x, n);
-#endif
-  expm1_in_place(x, n);
-}
+// x[j] = expm1_one(x[j]) for j < n.
+void expm1_block(double* x, size_t n);
 
 }  // namespace skybake
