@@ -92,6 +92,14 @@ void add_spectral_metadata(const SpectralScene& spectral, const ProductInfo& pro
   set_meta(tex.metadata, "spectral_range_nm", glm::dvec2(kSpectrumMinNm, kSpectrumMaxNm));
   set_meta(tex.metadata, "colour_space", colour_space_name(spectral.colour_space));
   set_meta(tex.metadata, "spectral_units", spectral_units_name(spectral.units));
+  // The factor from the table's units to cd/m^2 (the sun's to lux): what a
+  // photometric renderer multiplies by in the shader (half floats hold the
+  // table, not the product).
+  SpectralScene photometric = spectral;
+  photometric.units = SpectralUnits::photometric;
+  const glm::dmat3 to_xyz = xyz_from_rgb(chromaticities_of(spectral.colour_space));
+  set_meta(tex.metadata, "luminance_scale_cd_m2",
+           (to_xyz * photometric.sun_colour()).y / (to_xyz * spectral.sun_colour()).y);
   // The bakers describe their three wavelengths; a spectral table has many.
   if (auto it = tex.metadata.find("quantity"); it != tex.metadata.end())
     if (auto* q = std::get_if<std::string>(&it->second))

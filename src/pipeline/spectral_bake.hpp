@@ -31,8 +31,9 @@ std::vector<std::optional<Texture>> bake_spectral_graph(const Scene& scene,
                                                         const BakeContext& ctx);
 
 // What a spectral table's metadata records (docs/formats.md "Metadata"):
-// spectral_wavelengths, spectral_range_nm, colour_space, spectral_units and
-// spectral_quantity (radiance, luminance or sun_weighted_mean).
+// spectral_wavelengths, spectral_range_nm, colour_space, spectral_units,
+// luminance_scale_cd_m2 and spectral_quantity (radiance, luminance or
+// sun_weighted_mean).
 void add_spectral_metadata(const SpectralScene& spectral, const ProductInfo& product, Texture& tex);
 
 }  // namespace skybake

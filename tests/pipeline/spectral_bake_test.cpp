@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
@@ -96,6 +97,26 @@ TEST(SpectralBake, SunAtZeroAirMassIsTheSolarSpectrumsXyz) {
     EXPECT_NEAR(Imf::chromaticities(file.header()).red.x, want.red.x, 1e-6);
     EXPECT_NEAR(Imf::chromaticities(file.header()).white.y, want.white.y, 1e-6);
   }
+}
+
+TEST(SpectralBake, LuminanceScaleOfEachUnitSystem) {
+  // cd/m^2 per table unit: 1 photometric, 683 lm/W radiometric, and for
+  // relative tables (the sun's luminance 1) the sun's illuminance in lux,
+  // about 1.28e5 at the top of Earth's atmosphere.
+  const json outputs = {{{"product", "transmittance"}, {"size", {32, 8}}, {"formats", {"exr"}}}};
+  std::map<std::string, double> scale;
+  for (const char* units : {"relative", "radiometric", "photometric"}) {
+    const json spectral = {{"wavelengths", 15}, {"units", units}};
+    const Texture t = read_exr(bake_json(slab_scene(spectral, json::object(), outputs)), "transmittance");
+    scale[units] = std::get<double>(t.metadata.at("luminance_scale_cd_m2"));
+    const glm::dvec3 sun = std::get<glm::dvec3>(t.metadata.at("solar_irradiance"));
+    const double y = (xyz_from_rgb(chromaticities_of(ColourSpace::rec709)) * sun).y;
+    EXPECT_GT(y * scale[units], 1.20e5) << units;  // the sun in lux
+    EXPECT_LT(y * scale[units], 1.35e5) << units;
+  }
+  EXPECT_NEAR(scale["photometric"], 1.0, 1e-12);
+  EXPECT_NEAR(scale["radiometric"], kMaxLuminousEfficacy, 1e-9);
+  EXPECT_NEAR(scale["relative"], 683.0 * spectrum_xyz(astm_g173_solar_irradiance, 0.25).y, 1.0);
 }
 
 TEST(SpectralBake, GreySkyIsTheRgbSkyTimesTheSunsColour) {
