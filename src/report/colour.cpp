@@ -142,7 +142,8 @@ json colour_view(const ReportInputs& in, const ColourSetup& s, const std::vector
   pt.samples = s.colour_samples;
   json out = {{"altitude_m", altitude_m}, {"sun_elevation_deg", elevation_deg}};
   double ref_uv_ci = 0.0, ref_y_ci = 0.0;
-  std::vector<glm::dvec3> worst(tables.size(), glm::dvec3(0.0));  // duv, |dY|, table duv
+  // Per table: Delta u'v', |dY / Y|, and both against the reference count's table.
+  std::vector<glm::dvec4> worst(tables.size(), glm::dvec4(0.0));
   for (const glm::ivec2& t : colour_texels(spec.width, spec.height)) {
     const glm::dvec2 uv = skyview_texel_uv(atm, r, spec, t.x, t.y);
     const glm::dvec3 dir = skyview_vector_from_direction(view_from_skyview_uv(atm, r, uv, spec.width, spec.height));
@@ -157,13 +158,15 @@ json colour_view(const ReportInputs& in, const ColourSetup& s, const std::vector
       if (f.reference_table >= 0) {
         const glm::dvec3 own = colour_table_xyz(tables[size_t(f.reference_table)], f, t.x, t.y, layer);
         worst[k].z = std::max(worst[k].z, colour_delta_uv(xyz, own));
+        worst[k].w = std::max(worst[k].w, std::abs(xyz.y / own.y - 1.0));
       }
     }
   }
   for (size_t k = 0; k < tables.size(); ++k)
     out[tables[k].name] = {{"delta_uv", worst[k].x},
                            {"luminance_error", worst[k].y},
-                           {"table_delta_uv", worst[k].z}};
+                           {"table_delta_uv", worst[k].z},
+                           {"table_luminance_error", worst[k].w}};
   out["ref_delta_uv_ci95"] = ref_uv_ci;
   out["ref_luminance_ci95"] = ref_y_ci;
   return out;
@@ -173,7 +176,7 @@ json colour_view(const ReportInputs& in, const ColourSetup& s, const std::vector
 // scaled by one factor so that the reference-count table's mean luminance
 // over the sky is 0.5 before Reinhard's curve.
 std::string colour_previews(const ReportInputs& in, const std::vector<ColourTable>& tables,
-                            const ColourFrame& f) {
+                            const ColourFrame& f, const std::vector<std::string>& view_names) {
   const Texture& first = tables.front().skyview;
   const int w = first.width, h = first.height, views = first.layers, nt = int(tables.size());
   Texture picture(w, h, 1, views * nt, {"R", "G", "B"});
@@ -188,7 +191,7 @@ std::string colour_previews(const ReportInputs& in, const std::vector<ColourTabl
       for (int x = 0; x < w; ++x) mean += colour_table_xyz(key, f, x, y, v).y;
     const double scale = 0.5 / std::max(mean / (w * (h / 2)), 1e-30) / f.sun_y;
     for (int k = 0; k < nt; ++k) {
-      options.panel_labels.push_back(fmt::format("{} view {}", tables[size_t(k)].name, v));
+      options.panel_labels.push_back(tables[size_t(k)].name + " " + view_names.at(size_t(v)));
       const float* src = tables[size_t(k)].skyview.texel(0, 0, 0, v);
       float* dst = picture.texel(0, 0, 0, v * nt + k);
       for (size_t i = 0; i < size_t(w) * h * 3; ++i) dst[i] = float(std::max(0.0, src[i] * scale));
@@ -225,8 +228,10 @@ json colour_report(const ReportInputs& in, const ColourSetup& s) {
               {"colour_space", colour_space_name(in.scene.spectral->colour_space)},
               {"views", json::array()}};
   int layer = 0;
+  std::vector<std::string> view_names;
   for (double alt : s.colour_altitudes_m)
     for (double e : s.colour_sun_elevations_deg) {
+      view_names.push_back(fmt::format("{}m sun {}", alt, e));
       in.stage(fmt::format("colour: reference at {} m, sun {} deg", alt, e));
       out["views"].push_back(colour_view(in, s, tables, f, layer++, alt, e));
     }
@@ -238,7 +243,7 @@ json colour_report(const ReportInputs& in, const ColourSetup& s) {
     }
     out["worst"][t.name] = {{"delta_uv", duv}, {"luminance_error", dy}};
   }
-  out["preview"] = colour_previews(in, tables, f);
+  out["preview"] = colour_previews(in, tables, f, view_names);
   return out;
 }
 

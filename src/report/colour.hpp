@@ -18,11 +18,13 @@
 // Per view and table: delta_uv, the largest CIE 1976 Delta u'v' over the
 // directions, and luminance_error, the largest |Y / Y_ref - 1|; each with the
 // reference's own noise propagated (ref_delta_uv_ci95, ref_luminance_ci95).
-// Also table_delta_uv: each table against the reference count's table (the
-// spectral sampling error without the tables' own). Targets: N = 15 within
+// Also table_delta_uv and table_luminance_error: each table against the
+// reference count's table (the spectral sampling error without the tables'
+// own). Targets: N = 15 within
 // Delta u'v' 0.002 and luminance 1% on every view.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -47,5 +49,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ColourSetup, colour_skyview_size, colour_wave
                                    colour_sun_elevations_deg, colour_altitudes_m)
 
 nlohmann::json colour_report(const ReportInputs& in, const ColourSetup& setup);
+
+// The section in report.html (colour_html.cpp).
+std::string colour_html(const nlohmann::json& colour);
 
 }  // namespace skybake
