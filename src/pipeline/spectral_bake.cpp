@@ -35,6 +35,33 @@ bool spectral_has_dependents(const ProductGraph& graph, size_t i) {
   return false;
 }
 
+// The 4D and 3D tables' combined alpha is the single Mie's red (Bruneton
+// 2017's combined texture): it adds up from the family's RGB single Mie.
+bool spectral_has_mie_alpha(const std::string& product, const Texture& tex) {
+  return (product == "scattering" || product == "scattering3d") && tex.channels.size() == 4;
+}
+
+class SpectralMieAlpha {
+ public:
+  SpectralMieAlpha(const std::string& product, const Texture& tex, const Scene& sg,
+                   const ProductInputs& in, const BakeContext& ctx) {
+    if (!spectral_has_mie_alpha(product, tex)) return;
+    if (product == "scattering")
+      bruneton_ = bruneton_family(sg, in, ctx);
+    else
+      scattering3d_ = scattering3d_family(sg, in, ctx);
+  }
+  const Texture* texture() const {
+    if (bruneton_) return &bruneton_->single_mie;
+    if (scattering3d_) return &scattering3d_->mie;
+    return nullptr;
+  }
+
+ private:
+  std::shared_ptr<const BrunetonTextures> bruneton_;
+  std::shared_ptr<const Scattering3dTextures> scattering3d_;
+};
+
 // The sum of the group's luminance weights: the Y row of its XYZ matrix
 // applied to 1, for the channels that are neither RGB nor radiance.
 double spectral_group_luminance(const SpectralScene& s, const SpectralGrid& grid, size_t g) {
@@ -141,18 +168,16 @@ std::vector<std::optional<Texture>> bake_spectral_graph(const Scene& scene,
       t.tables[i] = node.info->bake(sg, node.spec, in, gctx);
       if (output_convention(node.spec) != TableConvention::skybake && spectral_has_dependents(graph, i))
         t.twins[i] = node.info->bake(sg, skybake_layout_twin(node.spec), in, {});
-      const bool mie_alpha = node.info->name == "scattering" && t.tables[i]->channels.size() == 4;
-      std::shared_ptr<const BrunetonTextures> family;
-      if (mie_alpha) family = bruneton_family(sg, in, gctx);
+      const SpectralMieAlpha mie(node.info->name, *t.tables[i], sg, in, gctx);
       if (!out[i]) out[i].emplace();
-      spectral_accumulate(*out[i], *t.tables[i], m, weight, mie_alpha ? &family->single_mie : nullptr);
+      spectral_accumulate(*out[i], *t.tables[i], m, weight, mie.texture());
     }
     forget_families();
   }
   for (size_t i = 0; i < n; ++i)
     if (out[i])
       spectral_finish(*out[i], spectral_rule(graph.nodes[i].info->name), sun, luminance,
-                      graph.nodes[i].info->name == "scattering" && out[i]->channels.size() == 4);
+                      spectral_has_mie_alpha(graph.nodes[i].info->name, *out[i]));
   return out;
 }
 

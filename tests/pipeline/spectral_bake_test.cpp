@@ -142,6 +142,41 @@ TEST(SpectralBake, GreySkyIsTheRgbSkyTimesTheSunsColour) {
       EXPECT_NEAR(sp.data[t * 3 + c], rgb.data[t * 3] * sun[c], 2e-5 * rgb.data[t * 3] + 1e-9);
 }
 
+TEST(SpectralBake, GreyFourAndThreeDTablesAreTheRgbTimesTheSunsColour) {
+  // As above for the 4D and 3D tables, whose alpha is the single Mie's red:
+  // with a flat medium every channel, alpha included, is the RGB bake's
+  // times the sun's colour (alpha: its red).
+  json spectrum = {{"sun", {{"constant", {{"irradiance_w_m2_nm", 1.0}}}}}};
+  const json outputs = {
+      {{"product", "transmittance"}, {"size", {32, 8}}, {"formats", {"exr"}}},
+      {{"product", "scattering"}, {"size", {4, 16, 8, 4}}, {"orders", 2}, {"formats", {"exr"}}},
+      {{"product", "scattering3d"}, {"size", {4, 16, 8}}, {"orders", 2}, {"formats", {"exr"}}}};
+  json rgb_scene = slab_scene(nullptr, spectrum, outputs);
+  rgb_scene["atmosphere"]["mie"] = {{"scattering_per_m", {2e-6, 2e-6, 2e-6}},
+                                    {"density", {{"exponential", {{"scale_height_km", 1.2}}}}}};
+  json sp_scene = rgb_scene;
+  sp_scene["spectral"] = {{"wavelengths", 6}};
+  const fs::path rgb_dir = bake_json(rgb_scene);
+  std::map<std::string, Texture> rgb;
+  for (const char* name : {"scattering", "scattering3d"}) rgb[name] = read_exr(rgb_dir, name);
+  const fs::path sp_dir = bake_json(sp_scene);
+  for (const char* name : {"scattering", "scattering3d"}) {
+    const Texture sp = read_exr(sp_dir, name);
+    const glm::dvec3 sun = std::get<glm::dvec3>(sp.metadata.at("solar_irradiance"));
+    ASSERT_EQ(sp.channels.size(), 4u) << name;
+    ASSERT_EQ(rgb[name].data.size(), sp.data.size()) << name;
+    for (size_t t = 0; t < sp.texel_count(); ++t) {
+      const float* a = &rgb[name].data[t * 4];
+      const float* b = &sp.data[t * 4];
+      for (int c = 0; c < 4; ++c) {
+        // Grey: the RGB bake's channels are equal, the sky's colour is the sun's.
+        const double want = c == 3 ? a[3] * sun[0] : a[0] * sun[c];
+        ASSERT_NEAR(b[c], want, 2e-5 * std::abs(want) + 1e-12) << name << " texel " << t << " " << c;
+      }
+    }
+  }
+}
+
 TEST(SpectralBake, ShippedRgbCoefficientsAreTheirSpectraAtRgbWavelengths) {
   for (const char* preset : {"presets/earth_spectral.json", "presets/mars_spectral.json"}) {
     const Scene scene = load_scene(test::source_path(preset));
