@@ -27,7 +27,10 @@ struct SampledSpectrum {
 };
 
 // A "spectral_table" object's key (values or absorption) as a spectrum.
+// `absorption` is the Mie table's only; an albedo is at most 1.
 SpectrumFn table_from(const json& t, const char* key, const Source& src, const std::string& at) {
+  if (t.contains("absorption") && at != "/spectrum/mie/table")
+    src.fail(at + "/absorption", "applies to the mie table only (sigma_a beside its sigma_s)");
   SampledSpectrum s;
   s.nm = t.at("wavelengths_nm").get<std::vector<double>>();
   s.values = t.contains(key) ? t[key].get<std::vector<double>>() : std::vector<double>(s.nm.size());
@@ -39,6 +42,10 @@ SpectrumFn table_from(const json& t, const char* key, const Source& src, const s
   if (s.values.size() != s.nm.size())
     src.fail(at + token(key), fmt::format("expected {} values, one per wavelength, got {}",
                                           s.nm.size(), s.values.size()));
+  if (at == "/spectrum/ground_albedo/table")
+    for (size_t i = 0; i < s.values.size(); ++i)
+      if (s.values[i] > 1.0)
+        src.fail(at + "/values" + token(i), fmt::format("must be an albedo <= 1, got {}", s.values[i]));
   return s;
 }
 

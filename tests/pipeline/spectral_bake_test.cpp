@@ -199,7 +199,9 @@ TEST(SpectralPreset, ProblemsNameFilePointerAndRule) {
   const fs::path dir = test::test_dir("spectral");
   const json spectrum = {
       {"rayleigh", {{"table", {{"wavelengths_nm", {500, 400}}, {"values", {1e-5, 2e-5}}}}}},
-      {"ozone", {{"column", {{"dobson", 300}}}}}};
+      {"ozone", {{"column", {{"dobson", 300}}}}},
+      {"ground_albedo",
+       {{"table", {{"wavelengths_nm", {400, 700}}, {"values", {0.2, 1.5}}, {"absorption", {0, 0}}}}}}};
   json scene = slab_scene({{"units", "photometric"}}, spectrum,
                           {{{"product", "transmittance"}, {"precision", "half"}}});
   std::ofstream(dir / "bad.json") << scene.dump(2);
@@ -212,6 +214,8 @@ TEST(SpectralPreset, ProblemsNameFilePointerAndRule) {
     EXPECT_NE(what.find("/atmosphere/spectrum/ozone"), std::string::npos) << what;
     EXPECT_NE(what.find("needs the atmosphere's 'ozone' component"), std::string::npos) << what;
     EXPECT_NE(what.find("/outputs/0/precision"), std::string::npos) << what;
+    EXPECT_NE(what.find("/atmosphere/spectrum/ground_albedo/table/absorption"), std::string::npos)
+        << what;
   }
 }
 

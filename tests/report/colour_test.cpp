@@ -1,6 +1,6 @@
 // The report section "Colour" (report/colour.hpp) at a small size: its
-// invariants rather than its figures (colour_accuracy_test.cpp judges those
-// at full size). A table baked at the reference's own wavelength count is
+// invariants, and the spectral-sampling bar colour_accuracy_test.cpp judges
+// at full size. A table baked at the reference's own wavelength count is
 // its own spectral reference (table_delta_uv exactly 0), three wavelengths
 // are not, every figure is finite and non-negative, the previews are
 // written, and an RGB scene is skipped.
