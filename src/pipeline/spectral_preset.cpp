@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "atmosphere/spectral_medium.hpp"
+#include "core/math.hpp"
 #include "core/spectral_data.hpp"
 #include "pipeline/product.hpp"
 
@@ -68,8 +69,28 @@ SpectrumFn sun_from(const json& sun, const Source& src) {
   return [scale](double nm) { return scale * astm_g173_solar_irradiance(nm); };
 }
 
+// Rayleigh scattering of air from its molecular constants (docs/reference.md
+// "Spectral skies"): the refractive index of standard air (Peck & Reeder
+// 1972), n - 1 proportional to the number density.
+double rayleigh_molecular(double nm, double number_density, double depolarization) {
+  constexpr double kStandardAirPerM3 = 2.547e25;
+  const double s2 = std::pow(1000.0 / nm, 2.0);  // (1 / lambda in um)^2
+  const double n1 = (8060.51 + 2480990.0 / (132.274 - s2) + 17455.7 / (39.32957 - s2)) * 1e-8 *
+                    number_density / kStandardAirPerM3;
+  const double n2m1 = n1 * (2.0 + n1);  // n^2 - 1
+  const double lambda = nm * 1e-9;
+  return 8.0 * std::pow(kPi, 3) * n2m1 * n2m1 / (3.0 * number_density * std::pow(lambda, 4)) *
+         (6.0 + 3.0 * depolarization) / (6.0 - 7.0 * depolarization);
+}
+
 ComponentSpectrum rayleigh_from(const json& r, const Source& src) {
   if (r.contains("table")) return {table_from(r["table"], "values", src, "/spectrum/rayleigh/table"), {}};
+  if (r.contains("molecular")) {
+    const double n = r["molecular"].value("number_density_per_m3", 2.547e25);
+    const double rho = r["molecular"].value("depolarization", 0.0279);
+    return {[n, rho](double nm) { return rayleigh_molecular(nm, n, rho); },
+            [](double) { return 0.0; }};
+  }
   const json& p = r.at("power_law");
   const double s = p["scattering_per_m"].get<double>();
   const double ref = p.value("reference_nm", 1000.0), e = p.value("exponent", 4.0);

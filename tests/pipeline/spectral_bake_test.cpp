@@ -195,6 +195,22 @@ TEST(SpectralBake, ShippedRgbCoefficientsAreTheirSpectraAtRgbWavelengths) {
   }
 }
 
+TEST(SpectralPreset, MolecularRayleighIsAirs) {
+  // Sea-level air scatters about 1.15e-5 /m at 550 nm (Bucholtz 1995), and
+  // its wavelength exponent is a little above 4 (about 4.08 over the
+  // visible, from the refractive index's dispersion).
+  const fs::path dir = test::test_dir("spectral");
+  const json spectrum = {{"rayleigh", {{"molecular", json::object()}}}};
+  std::ofstream(dir / "air.json")
+      << slab_scene({{"wavelengths", 15}}, spectrum, {{{"product", "transmittance"}}}).dump();
+  const Scene scene = load_scene(dir / "air.json");
+  const SpectrumFn& s = scene.spectral->medium.components.at("rayleigh").scattering_per_m;
+  EXPECT_NEAR(s(550.0), 1.15e-5, 0.03e-5);
+  const double exponent = std::log(s(440.0) / s(680.0)) / std::log(680.0 / 440.0);
+  EXPECT_GT(exponent, 4.0);
+  EXPECT_LT(exponent, 4.2);
+}
+
 TEST(SpectralPreset, ProblemsNameFilePointerAndRule) {
   const fs::path dir = test::test_dir("spectral");
   const json spectrum = {
