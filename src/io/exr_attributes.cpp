@@ -4,8 +4,11 @@
 
 #include <ImfDoubleAttribute.h>
 #include <ImfIntAttribute.h>
+#include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 #include <ImfVecAttribute.h>
+
+#include "core/colour.hpp"
 
 namespace skybake {
 
@@ -30,6 +33,18 @@ void insert_typed_attribute(Imf::Header& header, const std::string& name, const 
     }
   };
   std::visit(Insert{header, name}, value);
+}
+
+void add_exr_chromaticities(Imf::Header& header, const Metadata& metadata) {
+  auto it = metadata.find("colour_space");
+  if (it == metadata.end() || !std::holds_alternative<std::string>(it->second)) return;
+  const std::string& name = std::get<std::string>(it->second);
+  if (name != "rec709" && name != "acescg") return;
+  const Chromaticities c =
+      chromaticities_of(name == "acescg" ? ColourSpace::acescg : ColourSpace::rec709);
+  auto v2f = [](const glm::dvec2& v) { return Imath::V2f(float(v.x), float(v.y)); };
+  Imf::addChromaticities(header,
+                         Imf::Chromaticities(v2f(c.red), v2f(c.green), v2f(c.blue), v2f(c.white)));
 }
 
 std::optional<MetaValue> typed_attribute(const Imf::Attribute& a) {

@@ -18,4 +18,9 @@ void insert_typed_attribute(Imf::Header& header, const std::string& name, const 
 // The metadata value of an attribute of one of those types, or nullopt.
 std::optional<MetaValue> typed_attribute(const Imf::Attribute& a);
 
+// The standard `chromaticities` attribute (OpenEXR's Imf::Chromaticities)
+// of a table whose metadata names its colour_space (a spectral bake's; an
+// RGB table's primaries are the preset's wavelengths, not a colour space).
+void add_exr_chromaticities(Imf::Header& header, const Metadata& metadata);
+
 }  // namespace skybake

@@ -93,6 +93,7 @@ Imf::Header base_header(const Texture& tex, int width, int height, ExrPrecision 
   header.insert(kExrPrefix + "shape", Imf::StringAttribute(shape_attribute(tex)));
   header.insert(kExrPrefix + "channels", Imf::StringAttribute(join_exr_channels(tex.channels)));
   header.insert(kExrPrefix + "layout", Imf::StringAttribute(layout));
+  add_exr_chromaticities(header, tex.metadata);
   return header;
 }
 

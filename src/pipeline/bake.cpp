@@ -21,6 +21,7 @@
 #include "pipeline/output_writer.hpp"
 #include "pipeline/product_graph.hpp"
 #include "pipeline/runtime_metadata.hpp"
+#include "pipeline/spectral_bake.hpp"
 #include "pipeline/table_conventions.hpp"
 #include "pipeline/warnings.hpp"
 
@@ -135,7 +136,7 @@ class SceneBake {
       if (node.requested) report_current(i);
       return;
     }
-    if (read_back(i)) {
+    if (!scene_.spectral && read_back(i)) {
       if (node.requested) report_current(i);
       return;
     }
@@ -182,7 +183,10 @@ class SceneBake {
       ctx.on_progress = [&report, product](double f) { report(product, f); };
     }
     const auto t_bake = Clock::now();
-    textures_[i] = node.info->bake(scene_, node.spec, inputs, ctx);
+    if (scene_.spectral)  // every needed node at once, group by group (spectral_bake.hpp)
+      textures_[i] = take_spectral(i, ctx);
+    else
+      textures_[i] = node.info->bake(scene_, node.spec, inputs, ctx);
     bake_seconds_ = seconds_since(t_bake);
     Texture& tex = *textures_[i];
     if (node.requested) refuse_non_finite(scene_, node, tex);
@@ -191,10 +195,19 @@ class SceneBake {
     set_meta(tex.metadata, "input_hash", node.input_hash);
     set_meta(tex.metadata, "preset", scene_.file.filename().string());
     add_runtime_metadata(scene_, *node.info, tex);
+    if (scene_.spectral) add_spectral_metadata(*scene_.spectral, *node.info, tex);
     summary_.computed.push_back(node.info->name);
     // The bakers that read a table read it in skybake's layout.
-    if (output_convention(node.spec) != TableConvention::skybake && has_dependents(i))
+    if (!scene_.spectral && output_convention(node.spec) != TableConvention::skybake &&
+        has_dependents(i))
       twins_[i] = node.info->bake(scene_, skybake_layout_twin(node.spec), inputs, {});
+  }
+
+  Texture take_spectral(size_t i, const BakeContext& ctx) {
+    if (spectral_.empty()) spectral_ = bake_spectral_graph(scene_, graph_, needed_, ctx);
+    Texture tex = std::move(*spectral_.at(i));
+    spectral_[i].reset();
+    return tex;
   }
 
   bool has_dependents(size_t i) const {
@@ -230,7 +243,9 @@ class SceneBake {
                      make_entry(node, tex, std::move(files), seconds)};
     const auto t_measure = Clock::now();
     // Error records are measured on tables in skybake's layout.
-    if (node.info->measure_error && output_convention(node.spec) == TableConvention::skybake)
+    // (A spectral table has no RGB reference to be measured against.)
+    if (node.info->measure_error && output_convention(node.spec) == TableConvention::skybake &&
+        !scene_.spectral)
       rec.entry.error = node.info->measure_error(scene_, node.spec, inputs_of(node), tex);
     if (node.info->tileable) rec.entry.tiling = tiling_record(tex);
     rec.entry.error_seconds = seconds_since(t_measure);
@@ -322,6 +337,7 @@ class SceneBake {
   std::vector<char> stale_, needed_;
   std::vector<std::string> reasons_;
   std::vector<std::optional<Texture>> textures_;
+  std::vector<std::optional<Texture>> spectral_;  // a spectral scene's tables until taken
   std::vector<std::optional<Texture>> twins_;  // skybake's layout of an output in another
   std::vector<std::optional<Freshness>> freshness_;
   BakeLog log_;

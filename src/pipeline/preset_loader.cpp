@@ -22,6 +22,7 @@
 #include "core/suggest.hpp"
 #include "io/dds.hpp"
 #include "pipeline/atmosphere_preset.hpp"
+#include "pipeline/spectral_preset.hpp"
 #include "pipeline/cloud_products.hpp"
 #include "pipeline/output_budget.hpp"
 #include "pipeline/output_preset.hpp"
@@ -364,6 +365,7 @@ Scene load_scene(const fs::path& file) {
                                             problems));
       });
     }
+  preset::load_spectral(scene, doc, atmosphere_src, scene_src, !broken.count("atmosphere"), problems);
   if (problems.empty())  // every output within its own budgets
     problems.collect([&] { check_scene_budget(scene.outputs, scene_src); });
   problems.throw_if_any();

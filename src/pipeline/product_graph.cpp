@@ -56,6 +56,12 @@ void compute_hashes(const Scene& scene, GraphNode& node, const std::vector<Graph
     auto it = scene.resolved.find(section);
     value.add(section).add(it == scene.resolved.end() ? std::string("null") : it->dump());
   }
+  // A spectral bake (docs/presets.md "Spectral skies") changes every table
+  // that reads the atmosphere; without one the hash is the RGB bake's.
+  const auto& sections = node.info->scene_sections;
+  if (std::find(sections.begin(), sections.end(), "atmosphere") != sections.end())
+    if (auto it = scene.resolved.find("spectral"); it != scene.resolved.end())
+      value.add("spectral").add(it->dump());
   for (int s : node.spec.size) value.add(std::to_string(s));
   nlohmann::json values = nlohmann::json::object();
   nlohmann::json files = nlohmann::json::object();

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 
 #include "atmosphere/medium.hpp"
 #include "core/error.hpp"
+#include "pipeline/spectral_scene.hpp"
 
 namespace skybake {
 
@@ -31,6 +33,8 @@ struct Scene {
   std::vector<std::filesystem::path> sources;  // file and the preset files it references
   bool has_atmosphere = false;  // planet + atmosphere given (cloud-only scenes have neither)
   Atmosphere atmosphere;        // SI units; defaults when !has_atmosphere
+  // The spectral bake the preset asks for ("spectral"), or null: RGB.
+  std::shared_ptr<const SpectralScene> spectral;
   nlohmann::json resolved;      // the preset with references inlined (hash input)
   std::vector<OutputSpec> outputs;
   // Keys written in the preset that change nothing (validate reports them).

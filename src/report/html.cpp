@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "report/colour.hpp"
+
 namespace skybake {
 
 namespace {
@@ -417,6 +419,7 @@ std::string report_html(const nlohmann::json& report) {
     s += sky_irradiance_section(report["sky_irradiance"], quick);
   s += precision_section(report["precision"]);
   s += bruneton_section(report["bruneton_comparison"], quick);
+  if (report.contains("colour")) s += colour_html(report["colour"]);
   if (report["files"].contains("preview"))
     s += "<h2>Sky previews</h2>\n<p>High sun, 10 deg, sunset, below the horizon, from space "
          "(rendered from the operating-point tables).</p>\n<img src=\"" +

@@ -4,6 +4,7 @@
 
 #include "report/aerial_perspective.hpp"
 #include "report/bruneton.hpp"
+#include "report/colour.hpp"
 #include "report/gathering_sum.hpp"
 #include "report/hillaire_runtime.hpp"
 #include "report/irradiance.hpp"
@@ -70,7 +71,10 @@ const std::vector<ReportSection>& report_sections() {
       make_section("bruneton_comparison", {}, "/bruneton_comparison", BrunetonSetup::quick(),
                    BrunetonSetup::full(), bruneton_comparison_report),
       make_section("sky_preview", {}, "/files/preview", PreviewSetup::quick(), PreviewSetup::full(),
-                   sky_preview_report)};
+                   sky_preview_report),
+      // Three wavelengths and N against the spectral path tracer (spectral scenes).
+      make_section("colour", {"skyview"}, "/colour", ColourSetup::quick(), ColourSetup::full(),
+                   colour_report)};
   return table;
 }
 

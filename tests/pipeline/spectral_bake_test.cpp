@@ -1,0 +1,239 @@
+// Spectral bakes (pipeline/spectral_bake.hpp) against closed forms: one
+// wavelength through a pure Rayleigh slab, the sun at zero air mass, the
+// group sum of a grey sky, and the shipped spectral presets' RGB values
+// against their own spectra. Small tables, real files read back.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfStandardAttributes.h>
+#include <nlohmann/json.hpp>
+
+#include "atmosphere/spectral_medium.hpp"
+#include "core/colour.hpp"
+#include "core/spectral_data.hpp"
+#include "io/texture_file.hpp"
+#include "pipeline/bake.hpp"
+#include "pipeline/preset_loader.hpp"
+#include "support/run.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace skybake {
+namespace {
+
+constexpr double kSlabKm = 10.0;
+constexpr double kSigma550 = 1e-5;
+
+// A planet with a uniform Rayleigh slab kSlabKm thick.
+json slab_scene(const json& spectral, const json& spectrum, const json& outputs) {
+  json atm = {{"top_radius_km", 6360 + kSlabKm},
+              {"rayleigh",
+               {{"scattering_per_m", {kSigma550, kSigma550, kSigma550}},
+                {"density", {{"uniform", {{"top_km", kSlabKm}}}}}}},
+              {"spectrum", spectrum}};
+  json scene = {{"name", "slab"},
+                {"planet", {{"radius_km", 6360}, {"ground_albedo", {0.0, 0.0, 0.0}}}},
+                {"atmosphere", atm},
+                {"outputs", outputs}};
+  if (!spectral.is_null()) scene["spectral"] = spectral;
+  return scene;
+}
+
+// Bakes `scene` into a fresh folder; the file `<name>.exr` read back.
+fs::path bake_json(const json& scene) {
+  const fs::path dir = test::test_dir("spectral");
+  std::ofstream(dir / "scene.json") << scene.dump(2);
+  BakeOptions o;
+  o.out_dir = dir / "out";
+  bake_scene(load_scene(dir / "scene.json"), o);
+  return o.out_dir / scene["name"].get<std::string>();
+}
+
+Texture read_exr(const fs::path& dir, const std::string& name) {
+  return read_texture_file((dir / (name + ".exr")).string()).texture;
+}
+
+TEST(SpectralBake, OneWavelengthThroughARayleighSlab) {
+  // The sun shines only inside the bin of 501 nm (N = 15: bins of 470/15 nm,
+  // the fifth centred on 360 + 4.5 * 470/15 = 501 nm): every channel of the
+  // sun-weighted transmittance is T(501 nm) = exp(-sigma(501) H).
+  const json sun = {{"table", {{"wavelengths_nm", {490, 491, 511, 512}}, {"values", {0, 1, 1, 0}}}}};
+  const json spectrum = {
+      {"sun", sun},
+      {"rayleigh", {{"power_law", {{"scattering_per_m", kSigma550}, {"reference_nm", 550}}}}}};
+  const json outputs = {{{"product", "transmittance"}, {"size", {32, 8}}, {"formats", {"exr"}}}};
+  const Texture t = read_exr(bake_json(slab_scene({{"wavelengths", 15}}, spectrum, outputs)), "transmittance");
+  const double nm = 360.0 + 4.5 * 470.0 / 15.0;
+  const double expected = std::exp(-kSigma550 * std::pow(nm / 550.0, -4.0) * kSlabKm * 1e3);
+  // Texel (0, 0): the ground looking at the zenith.
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(t.at(0, 0, 0, 0, c) / expected, 1.0, 2e-5) << c;
+}
+
+TEST(SpectralBake, SunAtZeroAirMassIsTheSolarSpectrumsXyz) {
+  // At the top, looking up, the transmittance is 1 at every wavelength: the
+  // sun's colour recorded with the table is the ASTM G-173 spectrum's XYZ in
+  // the table's colour space and units (radiometric: CIE-weighted W/m^2).
+  const json outputs = {{{"product", "transmittance"}, {"size", {32, 8}}, {"formats", {"exr"}}}};
+  for (const char* space : {"rec709", "acescg"}) {
+    const json spectral = {{"wavelengths", 15}, {"units", "radiometric"}, {"colour_space", space}};
+    const fs::path dir = bake_json(slab_scene(spectral, json::object(), outputs));
+    const Texture t = read_exr(dir, "transmittance");
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(t.at(0, t.height - 1, 0, 0, c), 1.0, 1e-6);
+    const glm::dvec3 sun = std::get<glm::dvec3>(t.metadata.at("solar_irradiance"));
+    const ColourSpace cs = std::string(space) == "acescg" ? ColourSpace::acescg : ColourSpace::rec709;
+    const glm::dvec3 xyz = xyz_from_rgb(chromaticities_of(cs)) * sun;
+    const glm::dvec3 fine = spectrum_xyz(astm_g173_solar_irradiance, 0.25);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(xyz[i] / fine[i], 1.0, 1e-4) << space << i;
+    // The file carries its colour space as OpenEXR's standard attribute.
+    Imf::InputFile file((dir / "transmittance.exr").c_str());
+    ASSERT_TRUE(Imf::hasChromaticities(file.header()));
+    const Chromaticities want = chromaticities_of(cs);
+    EXPECT_NEAR(Imf::chromaticities(file.header()).red.x, want.red.x, 1e-6);
+    EXPECT_NEAR(Imf::chromaticities(file.header()).white.y, want.white.y, 1e-6);
+  }
+}
+
+TEST(SpectralBake, LuminanceScaleOfEachUnitSystem) {
+  // cd/m^2 per table unit: 1 photometric, 683 lm/W radiometric, and for
+  // relative tables (the sun's luminance 1) the sun's illuminance in lux,
+  // about 1.28e5 at the top of Earth's atmosphere.
+  const json outputs = {{{"product", "transmittance"}, {"size", {32, 8}}, {"formats", {"exr"}}}};
+  std::map<std::string, double> scale;
+  for (const char* units : {"relative", "radiometric", "photometric"}) {
+    const json spectral = {{"wavelengths", 15}, {"units", units}};
+    const Texture t = read_exr(bake_json(slab_scene(spectral, json::object(), outputs)), "transmittance");
+    scale[units] = std::get<double>(t.metadata.at("luminance_scale_cd_m2"));
+    const glm::dvec3 sun = std::get<glm::dvec3>(t.metadata.at("solar_irradiance"));
+    const double y = (xyz_from_rgb(chromaticities_of(ColourSpace::rec709)) * sun).y;
+    EXPECT_GT(y * scale[units], 1.20e5) << units;  // the sun in lux
+    EXPECT_LT(y * scale[units], 1.35e5) << units;
+  }
+  EXPECT_NEAR(scale["photometric"], 1.0, 1e-12);
+  EXPECT_NEAR(scale["radiometric"], kMaxLuminousEfficacy, 1e-9);
+  EXPECT_NEAR(scale["relative"], 683.0 * spectrum_xyz(astm_g173_solar_irradiance, 0.25).y, 1.0);
+}
+
+TEST(SpectralBake, GreySkyIsTheRgbSkyTimesTheSunsColour) {
+  // Coefficients flat in wavelength and a flat sun: every group bakes the
+  // same grey sky-view as the RGB bake, and the groups add up to it times
+  // the sun's colour (relative units: the sun's luminance is 1).
+  const json spectrum = {{"sun", {{"constant", {{"irradiance_w_m2_nm", 1.0}}}}}};
+  const json outputs = {
+      {{"product", "transmittance"}, {"size", {32, 8}}, {"formats", {"exr"}}},
+      {{"product", "multiscattering"}, {"size", {8, 8}}, {"formats", {"exr"}}, {"directions", 16}},
+      {{"product", "skyview"},
+       {"size", {16, 8}},
+       {"formats", {"exr"}},
+       {"views", {{{"altitude_km", 0.5}, {"sun_zenith_deg", 70}}}}}};
+  const Texture rgb = read_exr(bake_json(slab_scene(nullptr, spectrum, outputs)), "skyview");
+  const Texture sp = read_exr(bake_json(slab_scene({{"wavelengths", 6}}, spectrum, outputs)), "skyview");
+  const glm::dvec3 sun = std::get<glm::dvec3>(sp.metadata.at("solar_irradiance"));
+  const glm::dvec3 e = rgb_from_xyz(chromaticities_of(ColourSpace::rec709)) * glm::dvec3(1.0);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(sun[c], e[c], 1e-3 * e[c]);  // illuminant E, Y = 1
+  ASSERT_EQ(rgb.data.size(), sp.data.size());
+  for (size_t t = 0; t < rgb.texel_count(); ++t)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(sp.data[t * 3 + c], rgb.data[t * 3] * sun[c], 2e-5 * rgb.data[t * 3] + 1e-9);
+}
+
+TEST(SpectralBake, GreyFourAndThreeDTablesAreTheRgbTimesTheSunsColour) {
+  // As above for the 4D and 3D tables, whose alpha is the single Mie's red:
+  // with a flat medium every channel, alpha included, is the RGB bake's
+  // times the sun's colour (alpha: its red).
+  json spectrum = {{"sun", {{"constant", {{"irradiance_w_m2_nm", 1.0}}}}}};
+  const json outputs = {
+      {{"product", "transmittance"}, {"size", {32, 8}}, {"formats", {"exr"}}},
+      {{"product", "scattering"}, {"size", {4, 16, 8, 4}}, {"orders", 2}, {"formats", {"exr"}}},
+      {{"product", "scattering3d"}, {"size", {4, 16, 8}}, {"orders", 2}, {"formats", {"exr"}}}};
+  json rgb_scene = slab_scene(nullptr, spectrum, outputs);
+  rgb_scene["atmosphere"]["mie"] = {{"scattering_per_m", {2e-6, 2e-6, 2e-6}},
+                                    {"density", {{"exponential", {{"scale_height_km", 1.2}}}}}};
+  json sp_scene = rgb_scene;
+  sp_scene["spectral"] = {{"wavelengths", 6}};
+  const fs::path rgb_dir = bake_json(rgb_scene);
+  std::map<std::string, Texture> rgb;
+  for (const char* name : {"scattering", "scattering3d"}) rgb[name] = read_exr(rgb_dir, name);
+  const fs::path sp_dir = bake_json(sp_scene);
+  for (const char* name : {"scattering", "scattering3d"}) {
+    const Texture sp = read_exr(sp_dir, name);
+    const glm::dvec3 sun = std::get<glm::dvec3>(sp.metadata.at("solar_irradiance"));
+    ASSERT_EQ(sp.channels.size(), 4u) << name;
+    ASSERT_EQ(rgb[name].data.size(), sp.data.size()) << name;
+    for (size_t t = 0; t < sp.texel_count(); ++t) {
+      const float* a = &rgb[name].data[t * 4];
+      const float* b = &sp.data[t * 4];
+      for (int c = 0; c < 4; ++c) {
+        // Grey: the RGB bake's channels are equal, the sky's colour is the sun's.
+        const double want = c == 3 ? a[3] * sun[0] : a[0] * sun[c];
+        ASSERT_NEAR(b[c], want, 2e-5 * std::abs(want) + 1e-12) << name << " texel " << t << " " << c;
+      }
+    }
+  }
+}
+
+TEST(SpectralBake, ShippedRgbCoefficientsAreTheirSpectraAtRgbWavelengths) {
+  for (const char* preset : {"presets/earth_spectral.json", "presets/mars_spectral.json"}) {
+    const Scene scene = load_scene(test::source_path(preset));
+    ASSERT_TRUE(scene.spectral) << preset;
+    const Atmosphere at = atmosphere_at_wavelengths(scene.atmosphere, scene.spectral->medium,
+                                                    glm::dvec3(kRedNm, kGreenNm, kBlueNm));
+    for (size_t i = 0; i < at.components.size(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        const MediumComponent& want = at.components[i];
+        const MediumComponent& got = scene.atmosphere.components[i];
+        EXPECT_NEAR(got.scattering_per_m[c], want.scattering_per_m[c], 1e-4 * want.scattering_per_m[c])
+            << preset << " " << got.name << c;
+        EXPECT_NEAR(got.absorption_per_m[c], want.absorption_per_m[c], 1e-4 * want.absorption_per_m[c])
+            << preset << " " << got.name << c;
+      }
+  }
+}
+
+TEST(SpectralPreset, MolecularRayleighIsAirs) {
+  // Sea-level air scatters about 1.15e-5 /m at 550 nm (Bucholtz 1995), and
+  // its wavelength exponent is a little above 4 (about 4.08 over the
+  // visible, from the refractive index's dispersion).
+  const fs::path dir = test::test_dir("spectral");
+  const json spectrum = {{"rayleigh", {{"molecular", json::object()}}}};
+  std::ofstream(dir / "air.json")
+      << slab_scene({{"wavelengths", 15}}, spectrum, {{{"product", "transmittance"}}}).dump();
+  const Scene scene = load_scene(dir / "air.json");
+  const SpectrumFn& s = scene.spectral->medium.components.at("rayleigh").scattering_per_m;
+  EXPECT_NEAR(s(550.0), 1.15e-5, 0.03e-5);
+  const double exponent = std::log(s(440.0) / s(680.0)) / std::log(680.0 / 440.0);
+  EXPECT_GT(exponent, 4.0);
+  EXPECT_LT(exponent, 4.2);
+}
+
+TEST(SpectralPreset, ProblemsNameFilePointerAndRule) {
+  const fs::path dir = test::test_dir("spectral");
+  const json spectrum = {
+      {"rayleigh", {{"table", {{"wavelengths_nm", {500, 400}}, {"values", {1e-5, 2e-5}}}}}},
+      {"ozone", {{"column", {{"dobson", 300}}}}},
+      {"ground_albedo",
+       {{"table", {{"wavelengths_nm", {400, 700}}, {"values", {0.2, 1.5}}, {"absorption", {0, 0}}}}}}};
+  json scene = slab_scene({{"units", "photometric"}}, spectrum,
+                          {{{"product", "transmittance"}, {"precision", "half"}}});
+  std::ofstream(dir / "bad.json") << scene.dump(2);
+  try {
+    load_scene(dir / "bad.json");
+    FAIL() << "loaded";
+  } catch (const PresetError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("/atmosphere/spectrum/rayleigh/table/wavelengths_nm/1"), std::string::npos) << what;
+    EXPECT_NE(what.find("/atmosphere/spectrum/ozone"), std::string::npos) << what;
+    EXPECT_NE(what.find("needs the atmosphere's 'ozone' component"), std::string::npos) << what;
+    EXPECT_NE(what.find("/outputs/0/precision"), std::string::npos) << what;
+    EXPECT_NE(what.find("/atmosphere/spectrum/ground_albedo/table/absorption"), std::string::npos)
+        << what;
+  }
+}
+
+}  // namespace
+}  // namespace skybake
