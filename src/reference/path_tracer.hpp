@@ -56,6 +56,22 @@
 // The sun is a delta light, so a sampled direction never reaches it and
 // next-event estimation alone counts it (no MIS needed).
 //
+// Two unbiased estimates of the sun scattered in the medium
+// (PathTracerSpec::sun_estimate), the same expectation:
+// - collision (the default): at each real collision, as above;
+// - segment: before each flight, its expectation over the collision along
+//   the whole segment, E sum_i p_i(nu) int T(0, s) sigma_s,i(s) T_sun(s)
+//   Vis(s) ds (nu is constant along a straight segment), estimated with one
+//   point drawn on the segment's lit part only (planet_shadow.hpp: the
+//   shadow is one interval of a line) from q(s) ~ upper(s) exp(-lower
+//   depth(0, s)), the transmittance bins' bounds, so that the weight
+//   sigma_s p / upper times the residual of T(0, s) stays bounded; the
+//   collisions then only carry the path on. With the sun below the
+//   horizon, the light comes from the thin lit air high above the shadow,
+//   which a collision reaches with a probability of 1e-3 to 1e-5: the
+//   collision estimate's mean is right but its sum over thousands of paths
+//   is mostly zero, while the segment estimate puts every point there.
+//
 // Altitude bins: 16 equal bins for the delta-tracking majorant (fewer
 // segments to walk; a loose majorant only costs null collisions) and
 // adaptive bins (AdaptiveBinning defaults) for the ratio-tracking control.
@@ -86,12 +102,16 @@
 
 namespace skybake {
 
+// How the sun scattered in the medium is gathered (see the top).
+enum class SunEstimate { collision, segment };
+
 struct PathTracerSpec {
   uint64_t seed = 1;     // RNG key: same seed, same estimate, bit for bit
   int samples = 4096;    // paths per channel, >= 1
   int max_bounces = 64;  // vertices (medium or ground) that gather sunlight; 1 = single scattering
   bool ground_reflection = true;   // Lambertian ground of ground_albedo; false: a black ground
   int russian_roulette_after = 3;  // vertices before Russian roulette may end a path
+  SunEstimate sun_estimate = SunEstimate::collision;
 };
 
 // The single-scattering mode: one vertex and a black ground, the quantity
@@ -167,6 +187,18 @@ class SkyPathTracer {
                                uint64_t sample_index) const;
   template <typename Rng>
   Flight fly(glm::dvec3 origin, glm::dvec3 dir, int channel, Rng& rng) const;
+  // A lit piece [t0, t1) of a flight segment in one bin and its mass of q.
+  struct LitPiece {
+    double t0, t1, lower, upper, mass;
+  };
+  template <typename Rng>
+  double residual_transmittance(glm::dvec3 origin, glm::dvec3 dir, double r, double mu,
+                                double t_end, int channel, Rng& rng, double& control_depth) const;
+  double lit_segment_pieces(glm::dvec3 origin, glm::dvec3 dir, glm::dvec3 sun_dir, int channel,
+                            std::vector<LitPiece>& pieces) const;
+  template <typename Rng>
+  double segment_sun(glm::dvec3 origin, glm::dvec3 dir, glm::dvec3 sun_dir, int channel,
+                     Rng& rng) const;
   template <typename Rng>
   double sun_transmittance(glm::dvec3 origin, glm::dvec3 sun_dir, int channel, Rng& rng) const;
   double forced_collision_distance(const ViewRay& view, int channel, double u) const;
