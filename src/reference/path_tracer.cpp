@@ -220,7 +220,7 @@ double SkyPathTracer::lit_segment_pieces(glm::dvec3 origin, glm::dvec3 dir, glm:
       const double span = lower * (b - a);
       const double integral = span > 1e-12 ? -std::expm1(-span) / lower : b - a;
       const double mass = upper * std::exp(-(depth + lower * (a - t0))) * integral;
-      pieces.push_back({a, b, lower, upper, mass});
+      pieces.push_back({a, b, lower, upper, mass, depth + lower * (a - t0)});
       total += mass;
     }
     depth += lower * (t1 - t0);
@@ -229,22 +229,31 @@ double SkyPathTracer::lit_segment_pieces(glm::dvec3 origin, glm::dvec3 dir, glm:
 }
 
 // The sun gathered along a flight segment (header, "segment"): one point s
-// drawn from q on the lit pieces, where the estimate E sum_i sigma_s,i
-// p_i(nu) T(0, s) T_sun(s) / q(s) reduces to E sigma_s p / upper times the
-// mass of q, the residual of T(0, s) and the sun's transmittance.
+// on the lit pieces, drawn from q1 ~ upper(s) exp(-lower depth(0, s)) or
+// uniformly in length (q2), each with probability 1/2, weighted by the
+// balance heuristic (one-sample MIS, Veach 1997 sec. 9.2.4): E sum_i
+// sigma_s,i p_i(nu) T(0, s) T_sun(s) / (q1 + q2) / 2, with T(0, s) the
+// control exp(-lower depth) times the residual.
 template <typename Rng>
 double SkyPathTracer::segment_sun(glm::dvec3 origin, glm::dvec3 dir, glm::dvec3 sun_dir,
                                   int channel, Rng& rng) const {
   thread_local std::vector<LitPiece> pieces;
   const double total = lit_segment_pieces(origin, dir, sun_dir, channel, pieces);
   if (!(total > 0.0)) return 0.0;
-  double pick = rng() * total;
+  double length = 0.0;
+  for (const LitPiece& p : pieces) length += p.t1 - p.t0;
+  const bool uniform = rng() < 0.5;
+  double pick = rng() * (uniform ? length : total);
   size_t k = 0;
-  while (k + 1 < pieces.size() && pick >= pieces[k].mass) pick -= pieces[k++].mass;
+  const auto share = [uniform](const LitPiece& q) { return uniform ? q.t1 - q.t0 : q.mass; };
+  while (k + 1 < pieces.size() && pick >= share(pieces[k])) pick -= share(pieces[k++]);
   const LitPiece& p = pieces[k];
-  const double u = rng(), span = p.lower * (p.t1 - p.t0);
-  double s =
-      span > 1e-12 ? p.t0 - std::log1p(u * std::expm1(-span)) / p.lower : p.t0 + u * (p.t1 - p.t0);
+  double s = p.t0 + pick;
+  if (!uniform) {
+    const double u = rng(), span = p.lower * (p.t1 - p.t0);
+    s = span > 1e-12 ? p.t0 - std::log1p(u * std::expm1(-span)) / p.lower
+                     : p.t0 + u * (p.t1 - p.t0);
+  }
   s = std::clamp(s, p.t0, p.t1);
   const glm::dvec3 x = origin + s * dir;
   const double h = std::max(0.0, glm::length(x) - atm_.bottom_radius_m);
@@ -259,8 +268,11 @@ double SkyPathTracer::segment_sun(glm::dvec3 origin, glm::dvec3 dir, glm::dvec3 
   const double view = residual_transmittance(
       origin, dir, r, clamp_cosine(glm::dot(origin, dir) / r), s, channel, rng, control_depth);
   if (view == 0.0) return 0.0;
-  return atm_.sun_illuminance[channel] * sigma_s_phase / p.upper * total * view *
-         sun_transmittance(x, sun_dir, channel, rng);
+  // (q1 + q2) / 2 over the control exp(-lower depth(0, s)), which cancels.
+  const double depth = p.depth + p.lower * (s - p.t0);
+  const double mixture = 0.5 * p.upper / total + 0.5 * std::exp(depth) / length;
+  return atm_.sun_illuminance[channel] * sigma_s_phase * view *
+         sun_transmittance(x, sun_dir, channel, rng) / mixture;
 }
 
 // The path from its first vertex on: at each vertex the sun by next-event

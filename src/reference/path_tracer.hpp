@@ -63,10 +63,12 @@
 //   the whole segment, E sum_i p_i(nu) int T(0, s) sigma_s,i(s) T_sun(s)
 //   Vis(s) ds (nu is constant along a straight segment), estimated with one
 //   point drawn on the segment's lit part only (planet_shadow.hpp: the
-//   shadow is one interval of a line) from q(s) ~ upper(s) exp(-lower
-//   depth(0, s)), the transmittance bins' bounds, so that the weight
-//   sigma_s p / upper times the residual of T(0, s) stays bounded; the
-//   collisions then only carry the path on. With the sun below the
+//   shadow is one interval of a line), from upper(s) exp(-lower depth(0,
+//   s)) with the transmittance bins' bounds (where the air is) or uniformly
+//   in length (where the sun's transmittance, near 0 at the shadow's edge,
+//   lets the light through), one of the two at random and weighted by the
+//   balance heuristic; T(0, s) by residual ratio tracking. The collisions
+//   then only carry the path on. With the sun below the
 //   horizon, the light comes from the thin lit air high above the shadow,
 //   which a collision reaches with a probability of 1e-3 to 1e-5: the
 //   collision estimate's mean is right but its sum over thousands of paths
@@ -190,9 +192,10 @@ class SkyPathTracer {
                                uint64_t sample_index) const;
   template <typename Rng>
   Flight fly(glm::dvec3 origin, glm::dvec3 dir, int channel, Rng& rng) const;
-  // A lit piece [t0, t1) of a flight segment in one bin and its mass of q.
+  // A lit piece [t0, t1) of a flight segment in one bin, its mass of q1 and
+  // the control's optical depth from the segment's start to t0.
   struct LitPiece {
-    double t0, t1, lower, upper, mass;
+    double t0, t1, lower, upper, mass, depth;
   };
   template <typename Rng>
   double residual_transmittance(glm::dvec3 origin, glm::dvec3 dir, double r, double mu,

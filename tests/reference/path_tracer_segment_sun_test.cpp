@@ -100,7 +100,7 @@ TEST(PathTracerSegmentSun, SingleScatteringMatchesQuadratureInTwilight) {
     const auto truth = reference_single_scattering(atm, x, w, sun, 1e-8);
     ASSERT_TRUE(truth.converged);
     ASSERT_GT(truth.value.b, 0.0);
-    expect_segment_within_ci(tracer.trace(x, w, sun, spec), truth.value, 0.25,
+    expect_segment_within_ci(tracer.trace(x, w, sun, spec), truth.value, 0.1,
                              std::to_string(v.sun_zenith_deg) + " " +
                                  std::to_string(v.elevation_deg) + " " +
                                  std::to_string(v.azimuth_deg));
