@@ -87,9 +87,10 @@
 // a dense sky, g near 1, the sun below the horizon with the collision
 // estimate) the sample variance converges slowly and the interval can be
 // optimistic at small sample counts: use thousands of paths there (or the
-// segment estimate in twilight: 256 collision paths read 3-20x low or high
-// at 94-98 degrees, the segment estimate within its interval of the
-// quadrature; both agree at 94 degrees with every order). On Earth, z-scores of the estimates
+// segment estimate in twilight: in single-scattering mode 256 collision
+// paths read 0 to 27x the quadrature at 94-98 degrees, the segment
+// estimate within its interval; with every order both agree at 94 degrees,
+// tests/reference/path_tracer_twilight_accuracy_test.cpp). On Earth, z-scores of the estimates
 // against the quadrature over many seeds have mean ~0 and variance ~1.
 //
 // Cost (one core, Earth, viewer on the ground): ~130k samples per second
