@@ -5,6 +5,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -16,6 +17,7 @@
 #include "reference/atmosphere_quadrature.hpp"
 #include "reference/counter_rng.hpp"
 #include "reference/phase_sampling.hpp"
+#include "reference/planet_shadow.hpp"
 
 namespace skybake {
 
@@ -139,22 +141,21 @@ SkyPathTracer::Flight SkyPathTracer::fly(glm::dvec3 origin, glm::dvec3 dir, int 
   return {Event::ground, g * (rb / glm::length(g))};
 }
 
-// Residual ratio tracking of the transmittance from origin toward the sun,
-// 0 in the planet's shadow: per bin segment of length L, the control
-// exp(-lower L) exactly, times prod (1 - (sigma_t - lower) / (upper - lower))
-// over Poisson points of rate upper - lower (Novak et al. 2014, eq. 12 with
-// a piecewise-constant control), the points drawn as one Poisson process in
-// units of the local rate across the segments. No Russian roulette: it would turn a deep
-// transmittance into a rare large value.
+// Residual ratio tracking along the ray from origin (radius r, zenith
+// cosine mu) to t_end: per bin segment of length L, the control exp(-lower
+// L) is exact and its optical depth is added to control_depth; the return
+// value is prod (1 - (sigma_t - lower) / (upper - lower)) over Poisson
+// points of rate upper - lower (Novak et al. 2014, eq. 12 with a
+// piecewise-constant control), the points drawn as one Poisson process in
+// units of the local rate across the segments. No Russian roulette: it
+// would turn a deep transmittance into a rare large value.
 template <typename Rng>
-double SkyPathTracer::sun_transmittance(glm::dvec3 origin, glm::dvec3 sun_dir, int channel,
-                                        Rng& rng) const {
-  const double rb = atm_.bottom_radius_m, rt = atm_.top_radius_m;
-  const double r = glm::length(origin);
-  const double mu = clamp_cosine(glm::dot(origin, sun_dir) / r);
-  if (ray_intersects_ground(rb, r, mu)) return 0.0;
-  AltitudeBinWalker walker(transmittance_bounds_, r, mu, distance_to_top_boundary(rt, r, mu));
-  double control_depth = 0.0, residual = 1.0, t0, t1;
+double SkyPathTracer::residual_transmittance(glm::dvec3 origin, glm::dvec3 dir, double r, double mu,
+                                             double t_end, int channel, Rng& rng,
+                                             double& control_depth) const {
+  const double rb = atm_.bottom_radius_m;
+  AltitudeBinWalker walker(transmittance_bounds_, r, mu, t_end);
+  double residual = 1.0, t0, t1;
   int bin;
   double optical = exponential_step(1.0, rng());  // to the next point, in units of m
   while (walker.next(t0, t1, bin)) {
@@ -165,14 +166,113 @@ double SkyPathTracer::sun_transmittance(glm::dvec3 origin, glm::dvec3 sun_dir, i
     double t = t0;
     while (t + optical / m < t1) {
       t += optical / m;
-      const double h = std::max(0.0, glm::length(origin + t * sun_dir) - rb);
+      const double h = std::max(0.0, glm::length(origin + t * dir) - rb);
       residual *= std::clamp(1.0 - (extinction(h, channel) - lower) / m, 0.0, 1.0);
       if (residual == 0.0) return 0.0;
       optical = exponential_step(1.0, rng());
     }
     optical = std::max(0.0, optical - (t1 - t) * m);
   }
+  return residual;
+}
+
+// The transmittance from origin toward the sun, 0 in the planet's shadow:
+// the control times the residual (residual_transmittance).
+template <typename Rng>
+double SkyPathTracer::sun_transmittance(glm::dvec3 origin, glm::dvec3 sun_dir, int channel,
+                                        Rng& rng) const {
+  const double rb = atm_.bottom_radius_m, rt = atm_.top_radius_m;
+  const double r = glm::length(origin);
+  const double mu = clamp_cosine(glm::dot(origin, sun_dir) / r);
+  if (ray_intersects_ground(rb, r, mu)) return 0.0;
+  double control_depth = 0.0;
+  const double residual = residual_transmittance(
+      origin, sun_dir, r, mu, distance_to_top_boundary(rt, r, mu), channel, rng, control_depth);
+  if (residual == 0.0) return 0.0;
   return std::exp(-control_depth) * residual;
+}
+
+// The pieces of the flight segment from origin along dir (to the ground or
+// space) that the sun lights, cut at the transmittance bins, each with its
+// share of the sampling density q(s) ~ upper(s) exp(-lower depth(0, s))
+// (header, "segment"). Returns the total mass of q.
+double SkyPathTracer::lit_segment_pieces(glm::dvec3 origin, glm::dvec3 dir, glm::dvec3 sun_dir,
+                                         int channel, std::vector<LitPiece>& pieces) const {
+  const double rb = atm_.bottom_radius_m, rt = atm_.top_radius_m;
+  const double r = glm::length(origin);
+  const double mu = clamp_cosine(glm::dot(origin, dir) / r);
+  const double length =
+      distance_to_nearest_boundary(rb, rt, r, mu, ray_intersects_ground(rb, r, mu));
+  const ShadowInterval shadow = planet_shadow_interval(origin, dir, sun_dir, rb, length);
+  const double inf = std::numeric_limits<double>::infinity();
+  const double shadow_begin = shadow.empty() ? inf : shadow.begin;
+  const double shadow_end = shadow.empty() ? inf : shadow.end;
+  pieces.clear();
+  AltitudeBinWalker walker(transmittance_bounds_, r, mu, length);
+  double depth = 0.0, total = 0.0, t0, t1;  // depth: the control's optical depth to t0
+  int bin;
+  while (walker.next(t0, t1, bin)) {
+    const double lower = transmittance_bounds_.lower(bin)[channel];
+    const double upper = transmittance_bounds_.upper(bin)[channel];
+    for (const auto& [a, b] :
+         {std::pair{t0, std::min(t1, shadow_begin)}, std::pair{std::max(t0, shadow_end), t1}}) {
+      if (!(a < b) || !(upper > 0.0)) continue;
+      const double span = lower * (b - a);
+      const double integral = span > 1e-12 ? -std::expm1(-span) / lower : b - a;
+      const double mass = upper * std::exp(-(depth + lower * (a - t0))) * integral;
+      pieces.push_back({a, b, lower, upper, mass, depth + lower * (a - t0)});
+      total += mass;
+    }
+    depth += lower * (t1 - t0);
+  }
+  return total;
+}
+
+// The sun gathered along a flight segment (header, "segment"): one point s
+// on the lit pieces, drawn from q1 ~ upper(s) exp(-lower depth(0, s)) or
+// uniformly in length (q2), each with probability 1/2, weighted by the
+// balance heuristic (one-sample MIS, Veach 1997 sec. 9.2.4): E sum_i
+// sigma_s,i p_i(nu) T(0, s) T_sun(s) / (q1 + q2) / 2, with T(0, s) the
+// control exp(-lower depth) times the residual.
+template <typename Rng>
+double SkyPathTracer::segment_sun(glm::dvec3 origin, glm::dvec3 dir, glm::dvec3 sun_dir,
+                                  int channel, Rng& rng) const {
+  thread_local std::vector<LitPiece> pieces;
+  const double total = lit_segment_pieces(origin, dir, sun_dir, channel, pieces);
+  if (!(total > 0.0)) return 0.0;
+  double length = 0.0;
+  for (const LitPiece& p : pieces) length += p.t1 - p.t0;
+  const bool uniform = rng() < 0.5;
+  double pick = rng() * (uniform ? length : total);
+  size_t k = 0;
+  const auto share = [uniform](const LitPiece& q) { return uniform ? q.t1 - q.t0 : q.mass; };
+  while (k + 1 < pieces.size() && pick >= share(pieces[k])) pick -= share(pieces[k++]);
+  const LitPiece& p = pieces[k];
+  double s = p.t0 + pick;
+  if (!uniform) {
+    const double u = rng(), span = p.lower * (p.t1 - p.t0);
+    s = span > 1e-12 ? p.t0 - std::log1p(u * std::expm1(-span)) / p.lower
+                     : p.t0 + u * (p.t1 - p.t0);
+  }
+  s = std::clamp(s, p.t0, p.t1);
+  const glm::dvec3 x = origin + s * dir;
+  const double h = std::max(0.0, glm::length(x) - atm_.bottom_radius_m);
+  const double nu = clamp_cosine(glm::dot(dir, sun_dir));
+  double sigma_s_phase = 0.0;
+  for (const Component& c : components_)
+    sigma_s_phase +=
+        density_at(c.density, h) * c.scattering[channel] * phase_function(c.phase, c.g, nu);
+  if (!(sigma_s_phase > 0.0)) return 0.0;
+  const double r = glm::length(origin);
+  double control_depth = 0.0;
+  const double view = residual_transmittance(
+      origin, dir, r, clamp_cosine(glm::dot(origin, dir) / r), s, channel, rng, control_depth);
+  if (view == 0.0) return 0.0;
+  // (q1 + q2) / 2 over the control exp(-lower depth(0, s)), which cancels.
+  const double depth = p.depth + p.lower * (s - p.t0);
+  const double mixture = 0.5 * p.upper / total + 0.5 * std::exp(depth) / length;
+  return atm_.sun_illuminance[channel] * sigma_s_phase * view *
+         sun_transmittance(x, sun_dir, channel, rng) / mixture;
 }
 
 // The path from its first vertex on: at each vertex the sun by next-event
@@ -182,6 +282,7 @@ double SkyPathTracer::continue_path(Flight flight, glm::dvec3 w, glm::dvec3 sun_
                                     const PathTracerSpec& spec, int channel, Rng& rng) const {
   const double rb = atm_.bottom_radius_m;
   const double sun = atm_.sun_illuminance[channel];
+  const bool by_segment = spec.sun_estimate == SunEstimate::segment;
   double radiance = 0.0, throughput = 1.0;
   for (int vertex = 1;; ++vertex) {
     const glm::dvec3 x = flight.position;
@@ -197,8 +298,9 @@ double SkyPathTracer::continue_path(Flight flight, glm::dvec3 w, glm::dvec3 sun_
       }
       throughput *= sigma_t > 0.0 ? sigma_s / sigma_t : 0.0;
       if (!(throughput > 0.0)) break;
-      const double t_sun = sun_transmittance(x, sun_dir, channel, rng);
-      radiance += throughput * sun * (sigma_s_phase / sigma_s) * t_sun;
+      if (!by_segment)
+        radiance += throughput * sun * (sigma_s_phase / sigma_s) *
+                    sun_transmittance(x, sun_dir, channel, rng);
       // The next direction: a component by its share of sigma_s, then its phase.
       double pick = rng() * sigma_s;
       const Component* chosen = nullptr;
@@ -232,6 +334,7 @@ double SkyPathTracer::continue_path(Flight flight, glm::dvec3 w, glm::dvec3 sun_
       if (rng() >= survive) break;
       throughput /= survive;
     }
+    if (by_segment) radiance += throughput * segment_sun(x, w, sun_dir, channel, rng);
     flight = fly(x, w, channel, rng);
     if (flight.event == Event::escaped) break;
   }
@@ -279,8 +382,11 @@ double SkyPathTracer::trace_channel(const ViewRay& view, glm::dvec3 sun_dir,
   if (spec.max_bounces < 1) return 0.0;
   const double transmittance = view.transmittance[channel];
   const double collision = -std::expm1(-view.depth.back()[channel]);
-  double radiance = 0.0;
-  if (collision > 0.0) {
+  const bool by_segment = spec.sun_estimate == SunEstimate::segment;
+  // The segment estimate gathers the view ray's first vertex itself; the
+  // forced collision is then needed only for the later ones.
+  double radiance = by_segment ? segment_sun(view.start, view.dir, sun_dir, channel, rng) : 0.0;
+  if (collision > 0.0 && !(by_segment && spec.max_bounces == 1)) {
     const double t = forced_collision_distance(view, channel, rng());
     const Flight first{Event::medium, view.start + t * view.dir};
     radiance += collision * continue_path(first, view.dir, sun_dir, spec, channel, rng);

@@ -31,6 +31,10 @@ IrradianceReference reference_sky_irradiance(const Atmosphere& atm, double altit
   PathTracerSpec spec;
   spec.samples = rule.samples;
   spec.max_bounces = rule.max_bounces;
+  // Daylight keeps the collision estimate its figures were measured with;
+  // with the sun below the horizon only the segment estimate converges
+  // (path_tracer.hpp). Both are unbiased.
+  if (sun_zenith_rad > 0.5 * kPi) spec.sun_estimate = SunEstimate::segment;
   const glm::dvec3 position(0.0, 0.0, r);
   const glm::dvec3 sun(std::sin(sun_zenith_rad), 0.0, std::cos(sun_zenith_rad));
   IrradianceReference ref;

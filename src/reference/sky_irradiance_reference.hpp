@@ -7,8 +7,8 @@
 //   L_k  = int L(w) Y_k(w) dw                  the L2 projection,
 // so that the projection's own E (sh_l2_irradiance) is the best a 9-term
 // fit can do: L2's limit (Ramamoorthi & Hanrahan 2001).
-// The path tracer is not converged with the sun below the horizon
-// (docs/decisions/sky-irradiance-source.md): daylight only.
+// With the sun below the horizon the paths gather the sun by the segment
+// estimate (path_tracer.hpp), which converges in twilight.
 #pragma once
 
 #include <functional>

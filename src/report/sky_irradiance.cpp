@@ -9,7 +9,7 @@
 // Errors relative to the mean reference E over the normals, per channel.
 // The daylight target (sun zenith <= 90 degrees): 3% RMS, and 8% max or
 // L2's own max + 1% where that is above 8%. Columns past 90 degrees are not
-// measured: the path tracer is not converged there
+// measured: the table misses the twilight target by far
 // (docs/decisions/sky-irradiance-source.md).
 #include "report/sky_irradiance.hpp"
 

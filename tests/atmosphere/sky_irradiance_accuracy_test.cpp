@@ -163,12 +163,12 @@ TEST(SkyIrradianceAccuracy, InterpolationBetweenTexels) {
 }
 
 // Twilight, sun 0 to 18 degrees below the horizon: the target is L2's
-// limit + 1%. Open: the path tracer is not a converged reference there.
-// Its next-event estimate of the sun from collisions mostly in the planet's
-// shadow is heavy-tailed: in single-scattering mode it reads 3x (94
-// degrees) to 20x (98 degrees) below the deterministic quadrature, which
-// the table's march matches within 2% (sky_irradiance_test.cpp,
-// docs/decisions/sky-irradiance-source.md). Kept, disabled, as the open
+// limit + 1%, against the path tracer's segment estimate of the sun, which
+// converges there (reference/path_tracer.hpp). Open: the table is too
+// bright, its single scattering right (sky_irradiance_test.cpp) and the 4D
+// field's orders >= 2 interpolated across too few sun cosines below the
+// horizon and clamped past the field's mu_s_min
+// (docs/decisions/sky-irradiance-source.md). Kept, disabled, as the open
 // target.
 TEST(SkyIrradianceAccuracy, DISABLED_TwilightWithinL2LimitPlusOnePercent) {
   fixtures::ReferenceRule rule;
