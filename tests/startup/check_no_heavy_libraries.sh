@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The skybake executable loads neither OpenImageIO nor OpenVDB nor libsquish
-# (and the OpenMP runtime it needs) at start-up: none is among its DT_NEEDED
+# (and the OpenMP runtime it needs) nor libhwy (whose initialiser calibrates a
+# timer in every process) at start-up: none is among its DT_NEEDED
 # entries nor anywhere in what the dynamic loader resolves (ldd); OpenVDB
 # comes only with the VDB plugin beside it, libsquish with the
 # block-compression plugin.
@@ -10,7 +11,7 @@ exe="$1"
 status=0
 needed="$(readelf -d "$exe" | grep NEEDED || true)"
 loaded="$(ldd "$exe")"
-for lib in libOpenImageIO libopenvdb libsquish libgomp; do
+for lib in libOpenImageIO libopenvdb libsquish libgomp libhwy; do
   if grep -q "$lib" <<<"$needed$loaded"; then
     echo "check_no_heavy_libraries: $exe loads $lib at start-up:" >&2
     grep "$lib" <<<"$needed$loaded" >&2
@@ -33,5 +34,5 @@ elif ! readelf -d "$bc_plugin" | grep NEEDED | grep -q libsquish; then
   echo "check_no_heavy_libraries: $bc_plugin does not link libsquish" >&2
   status=1
 fi
-[ $status -eq 0 ] && echo "check_no_heavy_libraries: $(wc -l <<<"$loaded") libraries, no OpenImageIO, no OpenVDB, no libsquish"
+[ $status -eq 0 ] && echo "check_no_heavy_libraries: $(wc -l <<<"$loaded") libraries, no OpenImageIO, no OpenVDB, no libsquish, no libhwy"
 exit $status
