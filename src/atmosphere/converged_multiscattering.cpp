@@ -263,7 +263,7 @@ glm::dvec3 relative_fit(const DirectionalSource& s, const std::vector<glm::dvec3
   return psi;
 }
 
-// The view nodes' values (compute_converged_multiscattering_layers).
+// The view nodes' values (compute_converged_multiscattering_slices).
 std::vector<glm::dvec3> view_node_values(const Atmosphere& atm, const DirectionalSource& s,
                                          const PsiQuadrature& q, double r, double mu_s,
                                          glm::dvec3 isotropic, PsiViewShape shape) {
@@ -339,13 +339,13 @@ glm::dvec3 compute_converged_multiscattering(const Atmosphere& atm,
   return relative_fit(s, relative_weights(s, viewer_weights(atm, q, r, 0.0)), mean);
 }
 
-std::vector<glm::dvec3> compute_converged_multiscattering_layers(
+std::vector<glm::dvec3> compute_converged_multiscattering_slices(
     const Atmosphere& atm, const Texture& transmittance_lut, const ConvergedField& field, double r,
     double mu_s, const PsiQuadrature& q, PsiViewShape shape) {
   if (shape.nu_nodes == 0)
     return {compute_converged_multiscattering(atm, transmittance_lut, field, r, mu_s, q)};
   if (q.kernel_rayleigh.empty())
-    throw Error("compute_converged_multiscattering_layers: needs the phase kernels");
+    throw Error("compute_converged_multiscattering_slices: needs the phase kernels");
   r = std::clamp(r, atm.bottom_radius_m, atm.top_radius_m);
   mu_s = clamp_cosine(mu_s);
   if (mu_s < field.shape.mu_s_min)
@@ -401,18 +401,18 @@ Texture converged_multiscattering_table(const Atmosphere& atm, const Texture& tr
   const MultiscatteringMapping mapping = multiscattering_mapping(table, atm);
   const PsiQuadrature quadrature = psi_quadrature(spec, field.phases);
   const PsiViewShape shape = spec.view_shape();
-  Texture tex(table.width, table.height, 1, 1 + (shape.nu_nodes > 0 ? shape.size() : 0),
+  Texture tex(table.width, table.height, 1 + (shape.nu_nodes > 0 ? shape.size() : 0), 1,
               {"R", "G", "B"});
   ProgressCounter progress(ctx, size_t(table.height));
   tbb::parallel_for(0, table.height, [&](int y) {
     for (int x = 0; x < table.width; ++x) {
       const RadiusSunCosine p = r_mu_s_from_multiscattering_uv(
           atm, multiscattering_texel_uv(table, x, y), table.width, table.height, mapping);
-      const std::vector<glm::dvec3> psi = compute_converged_multiscattering_layers(
+      const std::vector<glm::dvec3> psi = compute_converged_multiscattering_slices(
           atm, transmittance_lut, field, p.r, p.mu_s, quadrature, shape);
-      for (size_t layer = 0; layer < psi.size(); ++layer) {
-        float* t = tex.texel(x, y, 0, int(layer));
-        for (int c = 0; c < 3; ++c) t[c] = float(psi[layer][c]);
+      for (size_t z = 0; z < psi.size(); ++z) {
+        float* t = tex.texel(x, y, int(z));
+        for (int c = 0; c < 3; ++c) t[c] = float(psi[z][c]);
       }
     }
     progress.tick();
@@ -437,13 +437,13 @@ Texture converged_multiscattering_table(const Atmosphere& atm, const Texture& tr
   if (spec.nu_slices > 0) {
     set_meta(m, "nu_slices", spec.nu_slices);
     set_meta(m, "zenith_slices", spec.zenith_slices);
-    set_meta(m, "view_layers",
-             std::string("layer 0: isotropic Psi_ms; a view reads a(nu) + b(mu_v), nu = "
+    set_meta(m, "view_slices",
+             std::string("slice 0: isotropic Psi_ms; a view reads a(nu) + b(mu_v), nu = "
                          "cos(view ray, sun), mu_v = the view ray's zenith cosine at the point; "
-                         "a: layers 1 + k at x = (0.5 - 0.5 nu)^(1/4), b: layers 1 + nu_slices + "
-                         "k at x = 0.5 + 0.5 sign(mu_v) sqrt(|mu_v|), k + f = x (slices - 1), "
-                         "linear between layers k and k + 1 (docs/reference.md \"Psi_ms by "
-                         "view\")"));
+                         "a: slices 1 + k, k + f = (0.5 - 0.5 nu)^(1/4) (nu_slices - 1); b: "
+                         "slices 1 + nu_slices + k, k + f = (0.5 + 0.5 sign(mu_v) sqrt(|mu_v|)) "
+                         "(zenith_slices - 1); linear between slices k and k + 1 "
+                         "(docs/reference.md \"Psi_ms by view\")"));
   }
   set_multiscattering_convention_metadata(m, table.convention);
   return tex;

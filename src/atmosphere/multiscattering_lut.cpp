@@ -448,10 +448,11 @@ MultiscatteringMapping multiscattering_mapping_of(const Texture& lut) {
     m.nu_slices = meta_int(lut.metadata, "nu_slices");
     if (lut.metadata.count("zenith_slices")) m.zenith_slices = meta_int(lut.metadata, "zenith_slices");
     if (m.nu_slices < 2 || m.zenith_slices == 1 || m.zenith_slices < 0 ||
-        lut.layers != 1 + m.nu_slices + m.zenith_slices)
+        lut.depth != 1 + m.nu_slices + m.zenith_slices || lut.layers != 1)
       throw Error(fmt::format("multiscattering: expected nu_slices >= 2, zenith_slices 0 or "
-                              ">= 2 and 1 + nu_slices + zenith_slices layers, got {}, {} and {}",
-                              m.nu_slices, m.zenith_slices, lut.layers));
+                              ">= 2 and a volume of 1 + nu_slices + zenith_slices slices, got "
+                              "{}, {} and {} slices x {} layers",
+                              m.nu_slices, m.zenith_slices, lut.depth, lut.layers));
   }
   if (!lut.metadata.count("mu_s_mapping")) return m;
   const std::string name = meta_string(lut.metadata, "mu_s_mapping");
@@ -499,10 +500,9 @@ glm::dvec3 lookup_multiscattering_view(const Texture& lut, const Multiscattering
     x = std::clamp((std::atan((mu_s - at.centre) / at.mapping.width) - at.a_lo) /
                        (at.a_hi - at.a_lo),
                    0.0, 1.0);
-  const size_t layer =
-      size_t(lut.width) * size_t(lut.height) * size_t(lut.depth) * size_t(at.row.channels);
+  const size_t slice = size_t(lut.width) * size_t(lut.height) * size_t(at.row.channels);
   const auto read = [&](int k) {
-    const BilinearRow row{at.row.row0 + size_t(k) * layer, at.row.row1 + size_t(k) * layer,
+    const BilinearRow row{at.row.row0 + size_t(k) * slice, at.row.row1 + size_t(k) * slice,
                           at.row.fy, at.row.channels};
     return sample_bilinear_rgb(lut, row, at.u_offset + x * at.u_scale);
   };
@@ -516,7 +516,8 @@ glm::dvec3 lookup_multiscattering_view(const Texture& lut, const Multiscattering
         node_pair(at.mapping.zenith_slices, zenith_node_unit_from_cosine(mu_v));
     psi += blend(1 + at.mapping.nu_slices + p.first, p.f);
   }
-  return psi;
+  // The fit can dip below 0 toward views no direction of its grid informed.
+  return glm::max(psi, glm::dvec3(0.0));
 }
 
 glm::dvec3 lookup_multiscattering(const Texture& lut, const MultiscatteringMapping& mapping,

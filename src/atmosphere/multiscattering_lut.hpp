@@ -66,10 +66,10 @@ struct MultiscatteringMapping {
   AltitudeMapping altitude = AltitudeMapping::linear;
   double width = 1.0;   // terminator: w, the crowded span in mu_s (> 0)
   double offset = 0.0;  // terminator: how far below the horizon's cosine the centre sits
-  // A view-dependent table (psi_view_nodes.hpp): layer 0 the isotropic
-  // Psi_ms, layers 1..nu_slices the term a at the nodes of the view-sun
-  // cosine nu, then zenith_slices layers of the term b at the nodes of the
-  // view's zenith cosine; nu_slices 0: one isotropic layer.
+  // A view-dependent table (psi_view_nodes.hpp), a volume: slice 0 the
+  // isotropic Psi_ms, slices 1..nu_slices the term a at the nodes of the
+  // view-sun cosine nu, then zenith_slices slices of the term b at the nodes
+  // of the view's zenith cosine; nu_slices 0: one 2D table.
   int nu_slices = 0;
   int zenith_slices = 0;
 };
@@ -222,7 +222,7 @@ inline glm::dvec3 lookup_multiscattering(const Texture& lut, const Multiscatteri
   return sample_bilinear_rgb(lut, at.row, at.u_offset + x * at.u_scale);
 }
 
-// The nu layers a view of scattering cosine nu (view ray . sun) reads in a
+// The nu slices a view of scattering cosine nu (view ray . sun) reads in a
 // view-dependent table: `first` and first + 1, weight f on the second
 // (psi_view_nodes.hpp); unused for an isotropic table.
 struct MultiscatteringView {
@@ -233,8 +233,8 @@ MultiscatteringView multiscattering_view(const MultiscatteringMapping& mapping, 
 
 // lookup_multiscattering at the radius `at` was made for, read by a view of
 // `view` whose zenith cosine at the point is mu_v: the isotropic read for
-// an isotropic table, bit for bit; else a(nu) + b(mu_v), each the blend of
-// two layers' bilinear reads (psi_view_nodes.hpp).
+// an isotropic table, bit for bit; else max(a(nu) + b(mu_v), 0), each term
+// the blend of two slices' bilinear reads (psi_view_nodes.hpp).
 glm::dvec3 lookup_multiscattering_view(const Texture& lut, const MultiscatteringAtRadius& at,
                                        double mu_s, const MultiscatteringView& view, double mu_v);
 inline glm::dvec3 lookup_multiscattering(const Texture& lut, const MultiscatteringAtRadius& at,

@@ -292,6 +292,8 @@ void add_atmosphere_products(std::vector<ProductInfo>& r) {
       {"mu_s", "h"}, {32, 32}, {1024, 1024}, {"transmittance"}, bake_multiscattering, 32000.0,
       measure_multiscattering_error);
   ms.check = converged_multiscattering_problems;
+  // The source by view (angular) is a volume: its view slices along w.
+  ms.sampling.wrap = {"clamp", "clamp", "clamp"};
   ms.reads_mie_phase = false;  // isotropic (Hillaire 2020 eq. 7); "converged" records it
   r.push_back(std::move(ms));
   ProductInfo skyview = atmosphere_product(

@@ -1,5 +1,5 @@
 // Tests of the converged model's view-dependent source
-// (compute_converged_multiscattering_layers, psi_view_nodes.hpp): its
+// (compute_converged_multiscattering_slices, psi_view_nodes.hpp): its
 // table's layer 0 is the isotropic table bit for bit; with the mean
 // estimator the source carries the scattered power of the isotropic mean
 // (energy balance, a conservative dust sky included); in a thin
@@ -68,8 +68,9 @@ TEST(ConvergedViewSource, LayerZeroIsTheIsotropicTableBitForBit) {
   const Texture view = converged_multiscattering_table(atm, t, table, spec, field, {});
   spec.nu_slices = spec.zenith_slices = 0;
   const Texture isotropic = converged_multiscattering_table(atm, t, table, spec, field, {});
-  ASSERT_EQ(view.layers, 17);
-  ASSERT_EQ(isotropic.layers, 1);
+  ASSERT_EQ(view.depth, 17);
+  ASSERT_EQ(view.layers, 1);
+  ASSERT_EQ(isotropic.depth, 1);
   for (int y = 0; y < 8; ++y)
     for (int x = 0; x < 8; ++x)
       for (int c = 0; c < 3; ++c) EXPECT_EQ(view.at(x, y, 0, 0, c), isotropic.at(x, y, 0, 0, c));
@@ -98,7 +99,7 @@ TEST_P(ViewSourceEnergy, TheMeanEstimatorsViewSourceCarriesTheMeanLight) {
   for (double h : {0.0, 0.3}) {
     for (double mu_s : {0.1, 0.5, 0.95}) {
       const double r = atm.bottom_radius_m + h * (atm.top_radius_m - atm.bottom_radius_m);
-      const std::vector<glm::dvec3> layers = compute_converged_multiscattering_layers(
+      const std::vector<glm::dvec3> layers = compute_converged_multiscattering_slices(
           atm, t, field, r, mu_s, q, spec.view_shape());
       glm::dvec3 power(0.0);
       double solid_angle = 0.0;
@@ -154,7 +155,7 @@ TEST(ConvergedViewSource, ThinDustSlabFollowsTheSourceOfOrderOne) {
     const double r = atm.bottom_radius_m + 2e3;
     const std::vector<glm::dvec3> j = thin_slab_source(atm, r, mu_s, dirs);
     const std::vector<glm::dvec3> layers =
-        compute_converged_multiscattering_layers(atm, t, field, r, mu_s, q, spec.view_shape());
+        compute_converged_multiscattering_slices(atm, t, field, r, mu_s, q, spec.view_shape());
     // Over the set (equal solid angles), the RMS error against the mean
     // source: what the mean estimator's weights minimise. An isotropic value
     // can do no better than the source's spread about its mean.
