@@ -48,6 +48,9 @@ isotropic row is the relative table read the by-view way (a its value, b 0).
     build/bench/psi_oracle_dump presets/mars.json /tmp/mars_view.json 16x16 16384 2 - view
     build/bench/psi_oracle_dump presets/mars.json /tmp/mars_view_h.json 16x16 16384 1 heldout view
     /usr/bin/python3 bench/psi_oracle.py /tmp/mars_view.json --heldout /tmp/mars_view_h.json
+    # (dumps made with 0 seed sets take their references from another dump of
+    # the same views: --refs for the report's views, --heldout-refs for the
+    # held-out ones)
 """
 import json
 import sys
@@ -240,11 +243,16 @@ if __name__ == "__main__":
         _, A_a, s_a, refs_a = load(args.pop(i + 1))
         args.pop(i)
         ALSO.append((A_a, s_a, refs_a))
+    heldout_refs = None  # the held-out views' references from another dump of them
+    if "--heldout-refs" in args:
+        i = args.index("--heldout-refs")
+        heldout_refs = args.pop(i + 1)
+        args.pop(i)
     if "--heldout" in args:
         i = args.index("--heldout")
         heldout = args.pop(i + 1)
         args.pop(i)
     if heldout:
-        _, A_h, s_h, refs_h = load(heldout)
+        _, A_h, s_h, refs_h = load(heldout, heldout_refs)
         HELDOUT = (A_h, s_h, refs_h)
     main(args[0], refs_path)
