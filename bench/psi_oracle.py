@@ -37,6 +37,20 @@ b the path tracer's radiance and x held in a box [lo, hi]:
 Boxes: x >= 0 (any table); the range of the true source over directions at
 each texel, [min_v j, max_v j] (any estimator that is a mean of the source
 with weights >= 0); the converged relative table times [1/k, k].
+
+A dump of the form by view (psi_oracle_dump's 7th argument `view`;
+docs/reference.md "Psi_ms by view") holds the weights of every texel of
+the volume a(nu) + b(mu_v); its boxes are the converged table by view times
+[1/k, k] (each texel between v / k and v k, whatever its sign), and no box
+at all (a fit of the 72 numbers, judged by the held-out views). Its
+isotropic row is the relative table read the by-view way (a its value, b 0).
+
+    build/bench/psi_oracle_dump presets/mars.json /tmp/mars_view.json 16x16 16384 2 - view
+    build/bench/psi_oracle_dump presets/mars.json /tmp/mars_view_h.json 16x16 16384 1 heldout view
+    /usr/bin/python3 bench/psi_oracle.py /tmp/mars_view.json --heldout /tmp/mars_view_h.json
+    # (dumps made with 0 seed sets take their references from another dump of
+    # the same views: --refs for the report's views, --heldout-refs for the
+    # held-out ones)
 """
 import json
 import sys
@@ -146,6 +160,8 @@ def main(path, refs_path=None):
         L = s + np.einsum("cvk,ck->cv", A, np.array(t["values"]))
         err = np.max(np.abs(L - np.array(t["rendered"])) / np.array(t["rendered"]))
         print(f"  weights x {name} vs the report's rendering of it: max rel diff {err:.1e}")
+    if d.get("form") == "view":
+        return main_view(d, A, s, refs)
     conv = np.array(d["tables"]["converged_relative"]["values"])
     jmin, jmax = np.array(d["texel_source_min"]), np.array(d["texel_source_max"])
     inside = np.mean((conv >= jmin * (1 - 1e-6)) & (conv <= jmax * (1 + 1e-6)))
@@ -185,6 +201,36 @@ def main(path, refs_path=None):
         print(f"  {name:34s} " + " / ".join(f"{100*v[:, i].max():6.2f}" for i in range(v.shape[1])))
 
 
+def main_view(d, A, s, refs):
+    """The oracle for the form by view: boxes around the converged table by view."""
+    view = np.array(d["tables"]["converged_view"]["values"])
+    worst = {}
+    for c, ch in enumerate("RGB"):
+        print(f"channel {ch}: denoised rel RMSE, bias, max rel (%) against set 0 | set 1"
+              + (" | held-out views" if HELDOUT else "") + "; fits against set 0")
+        for name in ["converged_relative", "converged_view"]:
+            worst.setdefault(name, []).append(
+                line(name, np.array(d["tables"][name]["rendered"])[c], refs, c,
+                     np.array(d["tables"][name]["values"])[c]))
+        b0 = refs[0][0][c]
+        v = view[c]
+        boxes = [(f"view x [1/{k:g}, {k:g}]", np.minimum(v / k, v * k), np.maximum(v / k, v * k))
+                 for k in (1.25, 1.5, 2, 3)]
+        boxes.append(("no box", np.full_like(v, -np.inf), np.full_like(v, np.inf)))
+        for bname, lo, hi in boxes:
+            if bname == "no box":  # more texels than views: the least-norm fit
+                A_f, s_f, b_f = stacked(A[c], s[c], b0, c)
+                x = np.linalg.lstsq(A_f / b_f[:, None], (b_f - s_f) / b_f, rcond=None)[0]
+            else:
+                x = least_squares(*stacked(A[c], s[c], b0, c), lo, hi)
+            worst.setdefault("LS " + bname, []).append(line("LS " + bname, s[c] + A[c] @ x, refs, c, x))
+    print("worst channel, denoised rel RMSE (%) against set 0 / set 1"
+          + (" / held-out views" if HELDOUT else "") + ":")
+    for name, v in worst.items():
+        v = np.array(v)
+        print(f"  {name:34s} " + " / ".join(f"{100*v[:, i].max():6.2f}" for i in range(v.shape[1])))
+
+
 if __name__ == "__main__":
     args = sys.argv[1:]
     refs_path = heldout = None
@@ -197,11 +243,16 @@ if __name__ == "__main__":
         _, A_a, s_a, refs_a = load(args.pop(i + 1))
         args.pop(i)
         ALSO.append((A_a, s_a, refs_a))
+    heldout_refs = None  # the held-out views' references from another dump of them
+    if "--heldout-refs" in args:
+        i = args.index("--heldout-refs")
+        heldout_refs = args.pop(i + 1)
+        args.pop(i)
     if "--heldout" in args:
         i = args.index("--heldout")
         heldout = args.pop(i + 1)
         args.pop(i)
     if heldout:
-        _, A_h, s_h, refs_h = load(heldout)
+        _, A_h, s_h, refs_h = load(heldout, heldout_refs)
         HELDOUT = (A_h, s_h, refs_h)
     main(args[0], refs_path)

@@ -11,7 +11,13 @@
 //        A 6th argument `heldout` replaces the report's views with others
 //        (elevations 10, 35, 50 degrees, azimuths offset by half a step),
 //        to check a table fitted to the report's views on views it was not;
-//        `heldout2` another set (elevations 2, 14, 75, a quarter step).
+//        `heldout2` another set (elevations 2, 14, 75, a quarter step); `-`
+//        the report's views.
+//        A 7th argument `view` dumps the form by view instead
+//        (docs/reference.md "Psi_ms by view", 8 nu x 8 zenith slices): the
+//        weights of every texel of its volume, the converged relative table
+//        by view, and the isotropic relative table as the same form (a its
+//        value at every nu node, b 0), "form": "view".
 //
 // Views, camera, sky-view settings, sun elevations and path tracer settings
 // are the report's (`skybake report PRESET --only skyview --quick --paths
@@ -50,10 +56,24 @@ nlohmann::json channel_arrays(const std::vector<glm::dvec3>& v) {
 
 nlohmann::json table_json(const Texture& t) {
   std::vector<glm::dvec3> v;
-  for (int y = 0; y < t.height; ++y)
-    for (int x = 0; x < t.width; ++x)
-      v.push_back({t.at(x, y, 0, 0, 0), t.at(x, y, 0, 0, 1), t.at(x, y, 0, 0, 2)});
+  for (int z = 0; z < t.depth; ++z)
+    for (int y = 0; y < t.height; ++y)
+      for (int x = 0; x < t.width; ++x)
+        v.push_back({t.at(x, y, z, 0, 0), t.at(x, y, z, 0, 1), t.at(x, y, z, 0, 2)});
   return channel_arrays(v);
+}
+
+// An isotropic table as a table by view of `like`'s slices: a its value at
+// every nu node, b 0 (the same views, read the by-view way).
+Texture isotropic_as_view(const Texture& isotropic, const Texture& like) {
+  Texture t = like;
+  const int nu_slices = meta_int(like.metadata, "nu_slices");
+  for (int z = 0; z < t.depth; ++z)
+    for (int y = 0; y < t.height; ++y)
+      for (int x = 0; x < t.width; ++x)
+        for (int c = 0; c < 3; ++c)
+          t.texel(x, y, z)[c] = z <= nu_slices ? isotropic.at(x, y, 0, 0, c) : 0.0f;
+  return t;
 }
 
 // The references of every view, seeds as the report's plus `set` x a large odd offset.
@@ -99,6 +119,12 @@ int main(int argc, char** argv) {
   spec.estimator = PsiEstimator::relative;
   const Texture rel = converged_multiscattering_table(atm, transmittance, table, spec, field, {});
 
+  const bool by_view = argc > 7 && std::string(argv[7]) == "view";
+  Texture view;
+  if (by_view) {
+    spec.nu_slices = spec.zenith_slices = 8;
+    view = converged_multiscattering_table(atm, transmittance, table, spec, field, {});
+  }
   SkyRadianceSetup views = setup;
   const std::string held = argc > 6 ? argv[6] : "";
   const bool heldout = held == "heldout" || held == "heldout2";
@@ -113,7 +139,8 @@ int main(int argc, char** argv) {
       d.y = std::sin(a) * x + std::cos(a) * y;
     }
   const std::vector<double>& suns = setup.sun_elevations_deg;
-  const PsiWeights w = sky_view_psi_weights(atm, transmittance, hillaire, cam, suns);
+  const PsiWeights w =
+      sky_view_psi_weights(atm, transmittance, by_view ? view : hillaire, cam, suns);
   nlohmann::json out;
   out["preset"] = argv[1];
   out["table"] = {table.width, table.height};
@@ -121,14 +148,14 @@ int main(int argc, char** argv) {
   out["sun_elevations_deg"] = suns;
   out["view_elevations_deg"] = views.view_elevations_deg;
   out["heldout"] = heldout;
+  out["form"] = by_view ? "view" : "isotropic";
   out["view_azimuths"] = setup.view_azimuths;
   out["single"] = channel_arrays(w.single);
   nlohmann::json weights = nlohmann::json::array();
   for (size_t v = 0; v < w.views; ++v)
     weights.push_back(channel_arrays(std::vector<glm::dvec3>(
-        w.weights.begin() + long(v * size_t(table.width * table.height)),
-        w.weights.begin() + long((v + 1) * size_t(table.width * table.height)))));
-  out["weights"] = weights;  // [view][channel][texel], texel = y * width + x
+        w.weights.begin() + long(v * w.texels()), w.weights.begin() + long((v + 1) * w.texels()))));
+  out["weights"] = weights;  // [view][channel][texel], texel = (z * height + y) * width + x
   std::vector<double> altitude, mu_s;
   const MultiscatteringMapping mapping = multiscattering_mapping_of(hillaire);
   for (int y = 0; y < table.height; ++y)
@@ -151,9 +178,11 @@ int main(int argc, char** argv) {
   });
   out["texel_source_min"] = channel_arrays(lo);
   out["texel_source_max"] = channel_arrays(hi);
-  for (const auto& [name, t] : {std::pair<const char*, const Texture*>{"hillaire", &hillaire},
-                                {"converged_mean", &mean},
-                                {"converged_relative", &rel}}) {
+  std::vector<std::pair<const char*, const Texture*>> tables = {
+      {"hillaire", &hillaire}, {"converged_mean", &mean}, {"converged_relative", &rel}};
+  const Texture rel_as_view = by_view ? isotropic_as_view(rel, view) : Texture{};
+  if (by_view) tables = {{"converged_relative", &rel_as_view}, {"converged_view", &view}};
+  for (const auto& [name, t] : tables) {
     std::vector<glm::dvec3> rendered;
     for (double sun : suns)
       for (const glm::dvec3& l : render_sky_views(atm, transmittance, *t, cam, sun))

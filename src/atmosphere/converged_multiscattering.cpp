@@ -14,6 +14,7 @@
 #include "atmosphere/phase.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "atmosphere/order_progress.hpp"
+#include "atmosphere/psi_view_nodes.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
 
@@ -205,6 +206,41 @@ std::vector<glm::dvec3> ground_viewers(const Atmosphere& atm, double r, const Sp
   return viewers;
 }
 
+// Each direction's viewer weight g(v) dOmega_v (ground_viewers), plus
+// `others` x their mean over the directions.
+std::vector<glm::dvec3> viewer_weights(const Atmosphere& atm, const PsiQuadrature& q, double r,
+                                       double others) {
+  const std::vector<glm::dvec3> by_band = ground_viewers(atm, r, q.grid);
+  const size_t per_band = size_t(q.grid.azimuths / 2), n = q.directions.size();
+  std::vector<glm::dvec3> viewers(n);
+  glm::dvec3 sum(0.0);
+  for (size_t v = 0; v < n; ++v) {
+    viewers[v] = q.solid_angle[v] * by_band[v / per_band];
+    sum += viewers[v];
+  }
+  if (others > 0.0)
+    for (size_t v = 0; v < n; ++v) viewers[v] += others * sum / double(n) * q.solid_angle[v];
+  return viewers;
+}
+
+// The relative estimator's weights g(v) dOmega_v / q(v) per channel (0 for a
+// channel with no source in any direction). Directions with no light at all
+// would take every weight: q is floored far below anything visible.
+std::vector<glm::dvec3> relative_weights(const DirectionalSource& s,
+                                         const std::vector<glm::dvec3>& viewers) {
+  std::vector<glm::dvec3> w(viewers.size(), glm::dvec3(0.0));
+  for (int c = 0; c < 3; ++c) {
+    double largest = 0.0;
+    for (size_t v = 0; v < viewers.size(); ++v)
+      largest = std::max(largest, s.single[v][c] + s.multiple[v][c]);
+    if (!(largest > 0.0)) continue;
+    const double floor = 1e-9 * largest;
+    for (size_t v = 0; v < viewers.size(); ++v)
+      w[v][c] = viewers[v][c] / std::max(s.single[v][c] + s.multiple[v][c], floor);
+  }
+  return w;
+}
+
 // Psi_rel (docs/reference.md "Converged Psi_ms", "The relative estimator"):
 // per channel, the constant whose relative error against the whole source
 // q(v) = s1(v) + j(v) averages to zero over the views of ground viewers,
@@ -213,32 +249,37 @@ std::vector<glm::dvec3> ground_viewers(const Atmosphere& atm, double r, const Sp
 //   Psi_rel = sum_v g(v) dOmega_v j(v) / q(v) / sum_v g(v) dOmega_v / q(v).
 // A channel that does not scatter here (sigma_s = 0: the runtime multiplies
 // Psi by 0) or has no source in any direction keeps the mean.
-glm::dvec3 relative_fit(const Atmosphere& atm, const Texture& transmittance_lut,
-                        const std::vector<glm::dvec3>& light, const PsiQuadrature& q, double r,
-                        double mu_s, glm::dvec3 mean) {
-  const DirectionalSource s = directional_source(atm, transmittance_lut, light, q, r, mu_s);
-  const std::vector<glm::dvec3> by_band = ground_viewers(atm, r, q.grid);
-  const size_t per_band = size_t(q.grid.azimuths / 2);
-  std::vector<glm::dvec3> viewers(light.size());
-  for (size_t v = 0; v < light.size(); ++v) viewers[v] = q.solid_angle[v] * by_band[v / per_band];
+glm::dvec3 relative_fit(const DirectionalSource& s, const std::vector<glm::dvec3>& weights,
+                        glm::dvec3 mean) {
   glm::dvec3 psi = mean;
   for (int c = 0; c < 3; ++c) {
-    double largest = 0.0;
-    for (size_t v = 0; v < light.size(); ++v)
-      largest = std::max(largest, s.single[v][c] + s.multiple[v][c]);
-    if (!(largest > 0.0)) continue;
-    // Directions with no light at all would take every weight: floored far
-    // below anything visible.
-    const double floor = 1e-9 * largest;
     double num = 0.0, den = 0.0;
-    for (size_t v = 0; v < light.size(); ++v) {
-      const double w = viewers[v][c] / std::max(s.single[v][c] + s.multiple[v][c], floor);
-      num += w * s.multiple[v][c];
-      den += w;
+    for (size_t v = 0; v < weights.size(); ++v) {
+      num += weights[v][c] * s.multiple[v][c];
+      den += weights[v][c];
     }
     if (den > 0.0) psi[c] = num / den;
   }
   return psi;
+}
+
+// The view nodes' values (compute_converged_multiscattering_slices).
+std::vector<glm::dvec3> view_node_values(const Atmosphere& atm, const DirectionalSource& s,
+                                         const PsiQuadrature& q, double r, double mu_s,
+                                         glm::dvec3 isotropic, PsiViewShape shape) {
+  std::vector<glm::dvec3> w;
+  if (q.estimator == PsiEstimator::relative) {
+    w = relative_weights(s, viewer_weights(atm, q, r, kViewNodeOtherViews));
+  } else {
+    for (double a : q.solid_angle) w.push_back(glm::dvec3(a));
+  }
+  const glm::dvec3 sun(safe_sqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
+  std::vector<double> nu, mu_v;
+  for (const glm::dvec3& d : q.directions) {
+    nu.push_back(glm::dot(d, sun));
+    mu_v.push_back(d.z);
+  }
+  return fit_view_nodes(nu, mu_v, s.multiple, w, isotropic, shape);
 }
 
 }  // namespace
@@ -255,7 +296,7 @@ PsiQuadrature psi_quadrature(const ConvergedMultiscatteringSpec& spec,
     q.directions.push_back(half_cell_direction(g, i));
     q.solid_angle.push_back(g.solid_angle[size_t((i / half) * g.azimuths)]);
   }
-  if (q.estimator != PsiEstimator::relative) return q;
+  if (q.estimator != PsiEstimator::relative && spec.nu_slices == 0) return q;
   // Each view's phase over the full grid, normalised to one on the grid (an
   // isotropic L* then gives j = L* exactly, whatever the cells' size against
   // Mie's forward peak), folded onto the half cells (mirror pairs added).
@@ -294,7 +335,32 @@ glm::dvec3 compute_converged_multiscattering(const Atmosphere& atm,
   const std::vector<glm::dvec3> light = incident_light(atm, field, r, mu_s, q.grid);
   const glm::dvec3 mean = mean_light(light, q);
   if (q.estimator == PsiEstimator::mean) return mean;
-  return relative_fit(atm, transmittance_lut, light, q, r, mu_s, mean);
+  const DirectionalSource s = directional_source(atm, transmittance_lut, light, q, r, mu_s);
+  return relative_fit(s, relative_weights(s, viewer_weights(atm, q, r, 0.0)), mean);
+}
+
+std::vector<glm::dvec3> compute_converged_multiscattering_slices(
+    const Atmosphere& atm, const Texture& transmittance_lut, const ConvergedField& field, double r,
+    double mu_s, const PsiQuadrature& q, PsiViewShape shape) {
+  if (shape.nu_nodes == 0)
+    return {compute_converged_multiscattering(atm, transmittance_lut, field, r, mu_s, q)};
+  if (q.kernel_rayleigh.empty())
+    throw Error("compute_converged_multiscattering_slices: needs the phase kernels");
+  r = std::clamp(r, atm.bottom_radius_m, atm.top_radius_m);
+  mu_s = clamp_cosine(mu_s);
+  if (mu_s < field.shape.mu_s_min)
+    return std::vector<glm::dvec3>(size_t(1 + shape.size()), glm::dvec3(0.0));
+  const std::vector<glm::dvec3> light = incident_light(atm, field, r, mu_s, q.grid);
+  const glm::dvec3 mean = mean_light(light, q);
+  const DirectionalSource s = directional_source(atm, transmittance_lut, light, q, r, mu_s);
+  const glm::dvec3 isotropic =
+      q.estimator == PsiEstimator::mean
+          ? mean
+          : relative_fit(s, relative_weights(s, viewer_weights(atm, q, r, 0.0)), mean);
+  std::vector<glm::dvec3> out{isotropic};
+  for (const glm::dvec3& v : view_node_values(atm, s, q, r, mu_s, isotropic, shape))
+    out.push_back(v);
+  return out;
 }
 
 SourceRange converged_source_range(const Atmosphere& atm, const Texture& transmittance_lut,
@@ -334,16 +400,20 @@ Texture converged_multiscattering_table(const Atmosphere& atm, const Texture& tr
                                         const ConvergedField& field, const BakeContext& ctx) {
   const MultiscatteringMapping mapping = multiscattering_mapping(table, atm);
   const PsiQuadrature quadrature = psi_quadrature(spec, field.phases);
-  Texture tex(table.width, table.height, 1, 1, {"R", "G", "B"});
+  const PsiViewShape shape = spec.view_shape();
+  Texture tex(table.width, table.height, 1 + (shape.nu_nodes > 0 ? shape.size() : 0), 1,
+              {"R", "G", "B"});
   ProgressCounter progress(ctx, size_t(table.height));
   tbb::parallel_for(0, table.height, [&](int y) {
     for (int x = 0; x < table.width; ++x) {
       const RadiusSunCosine p = r_mu_s_from_multiscattering_uv(
           atm, multiscattering_texel_uv(table, x, y), table.width, table.height, mapping);
-      const glm::dvec3 psi =
-          compute_converged_multiscattering(atm, transmittance_lut, field, p.r, p.mu_s, quadrature);
-      float* t = tex.texel(x, y);
-      for (int c = 0; c < 3; ++c) t[c] = float(psi[c]);
+      const std::vector<glm::dvec3> psi = compute_converged_multiscattering_slices(
+          atm, transmittance_lut, field, p.r, p.mu_s, quadrature, shape);
+      for (size_t z = 0; z < psi.size(); ++z) {
+        float* t = tex.texel(x, y, int(z));
+        for (int c = 0; c < 3; ++c) t[c] = float(psi[z][c]);
+      }
     }
     progress.tick();
   });
@@ -364,6 +434,17 @@ Texture converged_multiscattering_table(const Atmosphere& atm, const Texture& tr
   set_meta(m, "last_residual", field.last_residual);
   set_meta(m, "bands", spec.bands);
   set_meta(m, "estimator", std::string(psi_estimator_name(spec.estimator)));
+  if (spec.nu_slices > 0) {
+    set_meta(m, "nu_slices", spec.nu_slices);
+    set_meta(m, "zenith_slices", spec.zenith_slices);
+    set_meta(m, "view_slices",
+             std::string("slice 0: isotropic Psi_ms; a view reads a(nu) + b(mu_v), nu = "
+                         "cos(view ray, sun), mu_v = the view ray's zenith cosine at the point; "
+                         "a: slices 1 + k, k + f = (0.5 - 0.5 nu)^(1/4) (nu_slices - 1); b: "
+                         "slices 1 + nu_slices + k, k + f = (0.5 + 0.5 sign(mu_v) sqrt(|mu_v|)) "
+                         "(zenith_slices - 1); linear between slices k and k + 1 "
+                         "(docs/reference.md \"Psi_ms by view\")"));
+  }
   set_multiscattering_convention_metadata(m, table.convention);
   return tex;
 }

@@ -17,6 +17,7 @@
 #include "atmosphere/incident_radiance.hpp"
 #include "atmosphere/medium.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
+#include "atmosphere/psi_view_nodes.hpp"
 #include "atmosphere/scattering_orders.hpp"
 #include "core/bake_context.hpp"
 #include "core/texture.hpp"
@@ -39,6 +40,14 @@ struct ConvergedMultiscatteringSpec {
   BrunetonSpec bruneton = default_converged_bruneton_spec();
   int bands = 16;  // zenith bands of the sphere grid the mean is taken over (x 2 bands azimuths)
   PsiEstimator estimator = PsiEstimator::relative;
+  // With nu_slices >= 2, the table also holds the view-dependent source
+  // a(nu) + b(mu_v) (psi_view_nodes.hpp; docs/reference.md "Psi_ms by
+  // view"): a at nu_slices nodes of the view-sun cosine, b at zenith_slices
+  // (0, or >= 2) nodes of the view's zenith cosine, in slices of a volume
+  // after the isotropic slice 0.
+  int nu_slices = 0;
+  int zenith_slices = 0;
+  PsiViewShape view_shape() const { return {nu_slices, zenith_slices}; }
 
   static BrunetonSpec default_converged_bruneton_spec();
 };
@@ -86,6 +95,20 @@ glm::dvec3 compute_converged_multiscattering(const Atmosphere& atm,
                                              const ConvergedField& field, double r, double mu_s,
                                              const PsiQuadrature& quadrature);
 
+// Psi at (r, mu_s) as the table's slices hold it: the isotropic value
+// (compute_converged_multiscattering), then with a view shape (nu_nodes >=
+// 2) its nodes, fitted to the source of orders >= 2 over the grid's
+// directions (fit_view_nodes) with the estimator's weights: relative, the
+// ground viewers' (plus kViewNodeOtherViews of their mean for the directions
+// no ground viewer looks along, which viewers above the ground see) over the
+// whole source; mean, the solid angle. q needs the phase kernels
+// (psi_quadrature of a spec with nu_slices or the relative estimator).
+// Thread-safe.
+constexpr double kViewNodeOtherViews = 0.05;
+std::vector<glm::dvec3> compute_converged_multiscattering_slices(
+    const Atmosphere& atm, const Texture& transmittance_lut, const ConvergedField& field, double r,
+    double mu_s, const PsiQuadrature& q, PsiViewShape shape);
+
 // The range over view directions of the source of orders >= 2 at (r, mu_s),
 // j(v) per unit of sigma_s E (docs/reference.md "The relative estimator"),
 // per channel: min and max over the grid's half cells. Every Psi that is a
@@ -102,7 +125,9 @@ SourceRange converged_source_range(const Atmosphere& atm, const Texture& transmi
 
 // The table; rows in parallel, each texel independent (same data for any
 // thread count). Metadata as bake_multiscattering_lut's, model "converged",
-// with the iteration's orders and last residual.
+// with the iteration's orders and last residual; with nu_slices, a volume
+// of 1 + nu_slices + zenith_slices slices and the keys "nu_slices",
+// "zenith_slices" and "view_slices" (the slices' formula).
 Texture bake_converged_multiscattering_lut(const Atmosphere& atm, const Texture& transmittance_lut,
                                            const MultiscatteringLutSpec& table,
                                            const ConvergedMultiscatteringSpec& spec,

@@ -444,6 +444,16 @@ AltitudeMapping altitude_mapping_of(const Texture& lut) {
 MultiscatteringMapping multiscattering_mapping_of(const Texture& lut) {
   MultiscatteringMapping m;
   m.altitude = altitude_mapping_of(lut);
+  if (lut.metadata.count("nu_slices")) {
+    m.nu_slices = meta_int(lut.metadata, "nu_slices");
+    if (lut.metadata.count("zenith_slices")) m.zenith_slices = meta_int(lut.metadata, "zenith_slices");
+    if (m.nu_slices < 2 || m.zenith_slices == 1 || m.zenith_slices < 0 ||
+        lut.depth != 1 + m.nu_slices + m.zenith_slices || lut.layers != 1)
+      throw Error(fmt::format("multiscattering: expected nu_slices >= 2, zenith_slices 0 or "
+                              ">= 2 and a volume of 1 + nu_slices + zenith_slices slices, got "
+                              "{}, {} and {} slices x {} layers",
+                              m.nu_slices, m.zenith_slices, lut.depth, lut.layers));
+  }
   if (!lut.metadata.count("mu_s_mapping")) return m;
   const std::string name = meta_string(lut.metadata, "mu_s_mapping");
   if (name == "linear") return m;
@@ -473,6 +483,48 @@ MultiscatteringAtRadius multiscattering_at_radius(const Texture& lut,
   at.u_offset = 0.5 / lut.width;
   at.u_scale = 1.0 - 1.0 / lut.width;
   return at;
+}
+
+MultiscatteringView multiscattering_view(const MultiscatteringMapping& mapping, double nu) {
+  if (mapping.nu_slices == 0) return {};
+  const NodePair p = node_pair(mapping.nu_slices, nu_node_unit_from_cosine(nu));
+  return {1 + p.first, p.f};
+}
+
+glm::dvec3 lookup_multiscattering_view(const Texture& lut, const MultiscatteringAtRadius& at,
+                                       double mu_s, const MultiscatteringView& view,
+                                       double mu_v) {
+  mu_s = clamp_cosine(mu_s);
+  double x = 0.5 + 0.5 * mu_s;
+  if (at.mapping.sun == SunMapping::terminator)
+    x = std::clamp((std::atan((mu_s - at.centre) / at.mapping.width) - at.a_lo) /
+                       (at.a_hi - at.a_lo),
+                   0.0, 1.0);
+  const size_t slice = size_t(lut.width) * size_t(lut.height) * size_t(at.row.channels);
+  const auto read = [&](int k) {
+    const BilinearRow row{at.row.row0 + size_t(k) * slice, at.row.row1 + size_t(k) * slice,
+                          at.row.fy, at.row.channels};
+    return sample_bilinear_rgb(lut, row, at.u_offset + x * at.u_scale);
+  };
+  const auto blend = [&](int k, double f) {
+    const glm::dvec3 a = read(k), b = read(k + 1);
+    return a + f * (b - a);
+  };
+  glm::dvec3 psi = blend(view.first, view.f);
+  if (at.mapping.zenith_slices > 0) {
+    const NodePair p =
+        node_pair(at.mapping.zenith_slices, zenith_node_unit_from_cosine(mu_v));
+    psi += blend(1 + at.mapping.nu_slices + p.first, p.f);
+  }
+  // The fit can dip below 0 toward views no direction of its grid informed.
+  return glm::max(psi, glm::dvec3(0.0));
+}
+
+glm::dvec3 lookup_multiscattering(const Texture& lut, const MultiscatteringMapping& mapping,
+                                  const Atmosphere& atm, double r, double mu_s, double nu,
+                                  double mu_v) {
+  return lookup_multiscattering(lut, multiscattering_at_radius(lut, mapping, atm, r), mu_s,
+                                multiscattering_view(mapping, nu), mu_v);
 }
 
 glm::dvec3 lookup_multiscattering(const Texture& lut, const MultiscatteringMapping& mapping,

@@ -49,6 +49,7 @@
 #include <glm/glm.hpp>
 
 #include "atmosphere/medium.hpp"
+#include "atmosphere/psi_view_nodes.hpp"
 #include "atmosphere/sphere_rule.hpp"
 #include "atmosphere/table_convention.hpp"
 #include "core/bake_context.hpp"
@@ -65,6 +66,12 @@ struct MultiscatteringMapping {
   AltitudeMapping altitude = AltitudeMapping::linear;
   double width = 1.0;   // terminator: w, the crowded span in mu_s (> 0)
   double offset = 0.0;  // terminator: how far below the horizon's cosine the centre sits
+  // A view-dependent table (psi_view_nodes.hpp), a volume: slice 0 the
+  // isotropic Psi_ms, slices 1..nu_slices the term a at the nodes of the
+  // view-sun cosine nu, then zenith_slices slices of the term b at the nodes
+  // of the view's zenith cosine; nu_slices 0: one 2D table.
+  int nu_slices = 0;
+  int zenith_slices = 0;
 };
 
 // The terminator mapping for an atmosphere: with H the scattering-weighted
@@ -79,7 +86,7 @@ MultiscatteringMapping terminator_mapping(const Atmosphere& atm);
 
 // The mapping a baked table was made with, from its metadata ("mu_s_mapping",
 // "mu_s_mapping_width", "mu_s_mapping_offset", "altitude_mapping"; linear when
-// absent).
+// absent; "nu_slices" and "zenith_slices", 0 when absent).
 MultiscatteringMapping multiscattering_mapping_of(const Texture& lut);
 
 // x_mu_s in [0, 1] and back: the sun axis before texel centring.
@@ -214,6 +221,34 @@ inline glm::dvec3 lookup_multiscattering(const Texture& lut, const Multiscatteri
                    0.0, 1.0);
   return sample_bilinear_rgb(lut, at.row, at.u_offset + x * at.u_scale);
 }
+
+// The nu slices a view of scattering cosine nu (view ray . sun) reads in a
+// view-dependent table: `first` and first + 1, weight f on the second
+// (psi_view_nodes.hpp); unused for an isotropic table.
+struct MultiscatteringView {
+  int first = 0;
+  double f = 0.0;
+};
+MultiscatteringView multiscattering_view(const MultiscatteringMapping& mapping, double nu);
+
+// lookup_multiscattering at the radius `at` was made for, read by a view of
+// `view` whose zenith cosine at the point is mu_v: the isotropic read for
+// an isotropic table, bit for bit; else max(a(nu) + b(mu_v), 0), each term
+// the blend of two slices' bilinear reads (psi_view_nodes.hpp).
+glm::dvec3 lookup_multiscattering_view(const Texture& lut, const MultiscatteringAtRadius& at,
+                                       double mu_s, const MultiscatteringView& view, double mu_v);
+inline glm::dvec3 lookup_multiscattering(const Texture& lut, const MultiscatteringAtRadius& at,
+                                         double mu_s, const MultiscatteringView& view,
+                                         double mu_v) {
+  if (at.mapping.nu_slices == 0) return lookup_multiscattering(lut, at, mu_s);
+  return lookup_multiscattering_view(lut, at, mu_s, view, mu_v);
+}
+
+// The same from scratch at (r, mu_s) for a view of scattering cosine nu and
+// zenith cosine mu_v at the point.
+glm::dvec3 lookup_multiscattering(const Texture& lut, const MultiscatteringMapping& mapping,
+                                  const Atmosphere& atm, double r, double mu_s, double nu,
+                                  double mu_v);
 
 // Writes the mapping into a table's metadata (name, constants, formulas).
 void set_multiscattering_mapping_metadata(Metadata& m, const MultiscatteringMapping& mapping);

@@ -56,6 +56,7 @@ class RayMarcher {
         dir_(dir),
         sun_(sun_dir) {
     const double nu = clamp_cosine(glm::dot(dir, sun_dir));
+    msview_ = multiscattering_view(msmap_, nu);
     components_.reserve(atm.components.size());
     for (const MediumComponent& c : atm.components) {
       const glm::dvec3 ext = c.scattering_per_m + c.absorption_per_m;
@@ -87,7 +88,7 @@ class RayMarcher {
     const double mu_s = clamp_cosine(glm::dot(p, sun_) / r);
     glm::dvec3 source = lookup_sun_transmittance(tlut_, atm_, r, mu_s) * sigma_s_phase;
     if (mslut_)
-      source += lookup_multiscattering(*mslut_, msmap_, atm_, r, mu_s) * sigma_s;  // eq. 11
+      source += psi_ms(r, mu_s, glm::dot(p, dir_) / r) * sigma_s;  // eq. 11
     const SegmentWeights w = segment_weights(sigma_t, dt);
     st.luminance += st.transmittance * atm_.sun_illuminance * source * w.weight;
     st.transmittance *= w.transmittance;
@@ -232,6 +233,8 @@ class RayMarcher {
       std::fill(ms, ms + n, glm::dvec3(0.0));
     } else {
       read_sun_and_psi_ms(atm_, tlut_, mslut_, msmap_, b.r.data(), b.mu_s.data(), n, sun, ms);
+      view_psi_ms(b.r.data(), b.mu_s.data(), n, ms,
+                  [&](size_t i) { return 0.5 * (ends[i] + ends[i + 1]); });
     }
     const glm::dvec3 sun_illuminance = atm_.sun_illuminance;
     const bool multiscattering = mslut_ != nullptr;
@@ -273,6 +276,8 @@ class RayMarcher {
     } else {
       read_sun_and_psi_ms(atm_, tlut_, mslut_, msmap_, b.end_r.data(), b.end_mu_s.data(), n + 1,
                           end_sun, end_ms);
+      view_psi_ms(b.end_r.data(), b.end_mu_s.data(), n + 1, end_ms,
+                  [&](size_t k) { return ends[k]; });
     }
     const double* em = b.em.data();
     const glm::dvec3 *sigma_s = b.sigma_s.data(), *sigma_t = b.sigma_t.data(),
@@ -296,6 +301,26 @@ class RayMarcher {
       sums.transmittance *= transmittance;
     }
     st = sums;
+  }
+
+  // Psi_ms at (r, mu_s) as this ray's view reads it, mu_v the ray's zenith
+  // cosine there (eq. 11; a view-dependent table's layers, multiscattering_lut.hpp).
+  glm::dvec3 psi_ms(double r, double mu_s, double mu_v) const {
+    if (msmap_.nu_slices == 0) return lookup_multiscattering(*mslut_, msmap_, atm_, r, mu_s);
+    return lookup_multiscattering(*mslut_, multiscattering_at_radius(*mslut_, msmap_, atm_, r),
+                                  mu_s, msview_, mu_v);
+  }
+
+  // The block reads (read_sun_and_psi_ms) hold the isotropic layer; a
+  // view-dependent table's reads are replaced by the view's, point i at
+  // distance t_of(i) along the ray.
+  template <typename Distance>
+  void view_psi_ms(const double* r, const double* mu_s, size_t n, glm::dvec3* ms,
+                   Distance t_of) const {
+    if (!mslut_ || msmap_.nu_slices == 0) return;
+    const double od = glm::dot(origin_, dir_);
+    for (size_t i = 0; i < n; ++i)
+      ms[i] = psi_ms(r[i], mu_s[i], clamp_cosine((od + t_of(i)) / r[i]));
   }
 
   // Where the ray enters and leaves the planet's shadow, ascending: the
@@ -330,6 +355,7 @@ class RayMarcher {
   const Texture& tlut_;
   const Texture* mslut_;
   const MultiscatteringMapping msmap_;  // parsed once: the march reads it per segment
+  MultiscatteringView msview_;          // the nu slices this ray's view reads
   glm::dvec3 origin_, dir_, sun_;
   std::vector<RayComponent> components_;
 };

@@ -151,8 +151,17 @@ void bake_skyview_row(const Atmosphere& atm, const Texture& transmittance_lut,
     const double cos_s = std::cos(sun_zenith), sin_s = std::sin(sun_zenith);
     const glm::dvec3 sun_dir(sin_s, 0.0, cos_s);
     for (int x = 0; x < half; ++x) nu[x] = clamp_cosine(glm::dot(view[x], sun_dir));
-    skyview_row_luminance(row, atm, transmittance_lut, multiscattering_lut, cos_phi.data(),
-                          nu.data(), half, cos_s, sin_s, luminance.data());
+    if (mapping.nu_slices > 0) {
+      // A view-dependent Psi_ms table: each texel reads its own nu slices.
+      std::vector<glm::dvec3> scratch;
+      for (int x = 0; x < half; ++x)
+        luminance[size_t(x)] =
+            skyview_texel_luminance(row, atm, transmittance_lut, multiscattering_lut, cos_phi[x],
+                                    cos_s, sin_s, nu[x], scratch);
+    } else {
+      skyview_row_luminance(row, atm, transmittance_lut, multiscattering_lut, cos_phi.data(),
+                            nu.data(), half, cos_s, sin_s, luminance.data());
+    }
     for (int x = 0; x < half; ++x) {
       float* t = tex.texel(x, y, 0, layer);
       float* mirror = mirrored ? tex.texel(spec.width - 1 - x, y, 0, layer) : t;

@@ -68,6 +68,7 @@ SkyviewRowMarch march_skyview_row(const Atmosphere& atm, const Texture& transmit
     const SegmentWeights w = segment_weights(sigma_t, dt);
     seg.along = (r + t * dir.z) / r_t;
     seg.across = t * sin_theta / r_t;
+    seg.mu_v = clamp_cosine((t + r * dir.z) / r_t);
     seg.view_weight = transmittance * atm.sun_illuminance * w.weight;
     seg.transmittance = transmittance_at_radius(transmittance_lut, atm, r_t);
     seg.multiscattering = multiscattering_at_radius(multiscattering_lut, mapping, atm, r_t);
@@ -90,6 +91,10 @@ glm::dvec3 skyview_texel_luminance(const SkyviewRowMarch& row, const Atmosphere&
     scattering_phase[c] = m.scattering_per_m * phase_function(m.phase, m.g, nu);
   }
   const double across_scale = cos_phi * sin_theta_s;
+  // A view-dependent Psi_ms table: the texel's pair of nu slices, the same at every segment.
+  const MultiscatteringView view =
+      row.segments.empty() ? MultiscatteringView{}
+                           : multiscattering_view(row.segments.front().multiscattering.mapping, nu);
   glm::dvec3 luminance(0.0);
   const double* density = row.densities.data();
   for (const SkyviewRowSegment& seg : row.segments) {
@@ -101,7 +106,8 @@ glm::dvec3 skyview_texel_luminance(const SkyviewRowMarch& row, const Atmosphere&
         lookup_sun_transmittance(transmittance_lut, seg.transmittance, atm.bottom_radius_m, mu_s);
     const glm::dvec3 source = t_sun * sigma_s_phase +
                               lookup_multiscattering(multiscattering_lut, seg.multiscattering,
-                                                     mu_s) * seg.sigma_s;  // eq. 11
+                                                     mu_s, view, seg.mu_v) *
+                                  seg.sigma_s;  // eq. 11
     luminance += seg.view_weight * source;
   }
   return luminance;

@@ -30,6 +30,7 @@ namespace skybake {
 
 struct SkyviewRowSegment {
   double along = 0.0, across = 0.0;  // mu_s = along cos(theta_s) + across cos(phi) sin(theta_s)
+  double mu_v = 0.0;  // the view ray's zenith cosine at the midpoint, (t + r0 mu) / r
   glm::dvec3 sigma_s{0.0};           // scattering of every component at the midpoint, 1/m
   // E T(viewer, segment start) (1 - exp(-sigma_t dt)) / sigma_t: what the
   // segment's source term is multiplied by (sky_integrator.hpp segment_weights).

@@ -13,6 +13,7 @@
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/error_measures.hpp"
 #include "pipeline/product_graph.hpp"
+#include "pipeline/table_conventions.hpp"
 #include "pipeline/product_options.hpp"
 #include "pipeline/product_tables.hpp"
 #include "pipeline/runtime_metadata.hpp"
@@ -87,6 +88,10 @@ MultiscatteringLutSpec multiscattering_spec(const OutputSpec& spec) {
   return lut;
 }
 
+bool multiscattering_is_angular(const OutputSpec& spec) {
+  return spec.options.value("angular", std::string("none")) == "nu_zenith";
+}
+
 bool multiscattering_is_converged(const OutputSpec& spec) {
   return spec.options.value("model", std::string("hillaire2020")) == "converged";
 }
@@ -105,6 +110,10 @@ ConvergedMultiscatteringSpec converged_multiscattering_spec(const OutputSpec& sp
   c.estimator = spec.options.value("estimator", std::string("relative")) == "mean"
                     ? PsiEstimator::mean
                     : PsiEstimator::relative;
+  if (multiscattering_is_angular(spec)) {
+    c.nu_slices = option_int(spec, "nu_slices", kDefaultNuSlices);
+    c.zenith_slices = option_int(spec, "zenith_slices", kDefaultZenithSlices);
+  }
   return c;
 }
 
@@ -240,6 +249,23 @@ std::vector<ProductProblem> converged_field_problems(const OutputSpec& spec) {
 
 namespace {
 
+// The view-dependent source (docs/reference.md "Psi_ms by view") is the
+// converged model's, in skybake's layout; its slice counts need it. (No
+// schema defaults: the keys are there only when the preset sets them.)
+std::vector<ProductProblem> angular_multiscattering_problems(const OutputSpec& spec) {
+  const bool angular = multiscattering_is_angular(spec);
+  if (angular && !multiscattering_is_converged(spec))
+    return {{"/angular", "applies to model \"converged\" only (its source per view comes from "
+                         "the converged iteration)"}};
+  if (angular && output_convention(spec) != TableConvention::skybake)
+    return {{"/angular", "applies to convention \"skybake\" only (Hillaire's demo reads one "
+                         "isotropic layer)"}};
+  for (const char* key : {"nu_slices", "zenith_slices"})
+    if (!angular && spec.options.contains(key))
+      return {{std::string("/") + key, "applies to angular \"nu_zenith\" only"}};
+  return {};
+}
+
 // The converged model's 4D iteration must be one bake_bruneton accepts; the
 // direction rule belongs to the hillaire2020 integral, which it does not run.
 std::vector<ProductProblem> converged_multiscattering_problems(const OutputSpec& spec) {
@@ -254,6 +280,7 @@ std::vector<ProductProblem> converged_multiscattering_problems(const OutputSpec&
     return {{"/estimator",
              "applies to model \"converged\" only (model \"hillaire2020\" computes its "
              "Psi_ms from L_2nd and f_ms)"}};
+  if (auto p = angular_multiscattering_problems(spec); !p.empty()) return p;
   if (!multiscattering_is_converged(spec) && !skyview_uses_multiple4d(spec)) return {};
   return converged_field_problems(spec);
 }
@@ -283,6 +310,8 @@ void add_atmosphere_products(std::vector<ProductInfo>& r) {
       {"mu_s", "h"}, {32, 32}, {1024, 1024}, {"transmittance"}, bake_multiscattering, 32000.0,
       measure_multiscattering_error);
   ms.check = converged_multiscattering_problems;
+  // The source by view (angular) is a volume: its view slices along w.
+  ms.sampling.wrap = {"clamp", "clamp", "clamp"};
   ms.reads_mie_phase = false;  // isotropic (Hillaire 2020 eq. 7); "converged" records it
   r.push_back(std::move(ms));
   ProductInfo skyview = atmosphere_product(

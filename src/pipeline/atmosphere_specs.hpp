@@ -26,7 +26,12 @@ TransmittanceLutSpec transmittance_spec(const OutputSpec& spec);
 MultiscatteringLutSpec multiscattering_spec(const OutputSpec& spec);
 // "model": "converged" (docs/reference.md "Converged Psi_ms"), and its 4D iteration.
 bool multiscattering_is_converged(const OutputSpec& spec);
-// The 4D iteration of either ("scattering_shape", "tolerance", "bands").
+// "angular": "nu_zenith" (docs/reference.md "Psi_ms by view"), with
+// "nu_slices" and "zenith_slices" (defaults below).
+bool multiscattering_is_angular(const OutputSpec& spec);
+constexpr int kDefaultNuSlices = 8, kDefaultZenithSlices = 8;
+// The 4D iteration of either ("scattering_shape", "tolerance", "bands"),
+// the estimator and the view-dependent source's slices.
 ConvergedMultiscatteringSpec converged_multiscattering_spec(const OutputSpec& spec);
 // Sky-view: "multiple_scattering": "scattering4d" (skyview_multiple4d.hpp).
 bool skyview_uses_multiple4d(const OutputSpec& spec);

@@ -270,6 +270,14 @@ std::string sky_section(const nlohmann::json& sky, bool quick) {
           "orders",
           sky["converged_relative_vs_path_tracer"]);
     }
+    if (sky.contains("converged_angular_vs_path_tracer")) {
+      s += target_paragraph("the converged Psi_ms by view (a(nu) + b(mu_v))",
+                            sky["converged_angular_target"], quick);
+      s += radiance_table(
+          "With multiple scattering (converged Psi_ms by view, relative weights) vs path tracer, "
+          "all orders",
+          sky["converged_angular_vs_path_tracer"]);
+    }
     s += target_paragraph("the sky-view with the 4D orders \u2265 2",
                           sky["skyview_multiple4d_target"], quick);
     s += radiance_table(

@@ -12,7 +12,8 @@ PsiWeights sky_view_psi_weights(const Atmosphere& atm, const Texture& transmitta
   PsiWeights w;
   w.width = layout.width;
   w.height = layout.height;
-  const size_t texels = size_t(w.width) * size_t(w.height), per_sun = camera.dirs.size();
+  w.depth = layout.depth;
+  const size_t texels = w.texels(), per_sun = camera.dirs.size();
   w.views = sun_elevations_deg.size() * per_sun;
   w.weights.assign(w.views * texels, glm::dvec3(0.0));
   Texture zero = layout;
@@ -43,7 +44,7 @@ PsiWeights sky_view_psi_weights(const Atmosphere& atm, const Texture& transmitta
 
 std::vector<glm::dvec3> apply_psi_weights(const PsiWeights& w, const Texture& table) {
   std::vector<glm::dvec3> out = w.single;
-  const size_t texels = size_t(w.width) * size_t(w.height), channels = table.channels.size();
+  const size_t texels = w.texels(), channels = table.channels.size();
   for (size_t v = 0; v < w.views; ++v)
     for (size_t k = 0; k < texels; ++k)
       for (int c = 0; c < 3; ++c)

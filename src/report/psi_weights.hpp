@@ -6,7 +6,10 @@
 // with x_k,c texel k's value in channel c (channels do not mix). The
 // weights are found by rendering the views with unit tables through the
 // report's own rendering (render_sky_views), so they are exactly what the
-// report measures, float32 layers included.
+// report measures, float32 layers included. A table by view
+// (docs/reference.md "Psi_ms by view") is a volume: its texels are every
+// slice's, k = (z * height + y) * width + x (slice 0, which the views do
+// not read, weighs nothing).
 #pragma once
 
 #include <vector>
@@ -20,12 +23,15 @@ namespace skybake {
 
 struct PsiWeights {
   int width = 0, height = 0;        // the table's texels
+  int depth = 1;                    // its slices (a table by view)
   size_t views = 0;                 // sun elevations x camera.dirs, sun outer (the report's order)
   std::vector<glm::dvec3> single;   // per view: the rendering with Psi_ms = 0
-  std::vector<glm::dvec3> weights;  // [view * width * height + y * width + x], per channel
+  std::vector<glm::dvec3> weights;  // [view * texels + texel], per channel
 
-  glm::dvec3 weight(size_t view, int x, int y) const {
-    return weights[(view * size_t(height) + size_t(y)) * size_t(width) + size_t(x)];
+  size_t texels() const { return size_t(width) * size_t(height) * size_t(depth); }
+  glm::dvec3 weight(size_t view, int x, int y, int z = 0) const {
+    return weights[view * texels() + (size_t(z) * size_t(height) + size_t(y)) * size_t(width) +
+                   size_t(x)];
   }
 };
 

@@ -72,6 +72,7 @@ struct ViewResult {
   glm::dvec3 lut{0.0}, lut_second{0.0}, lut_single{0.0}, quadrature_single{0.0};
   glm::dvec3 lut_converged{0.0};  // the same views with the converged Psi_ms (mean)
   glm::dvec3 lut_converged_relative{0.0};  // and with its relative estimator
+  glm::dvec3 lut_converged_angular{0.0};   // and its source by view angle (nu slices)
   glm::dvec3 lut_multiple4d{0.0};  // sky-view: single marched + the 4D orders >= 2
   RadianceEstimate all, second, single;  // path tracer: every order, 2 vertices, 1 vertex
 };
@@ -83,6 +84,7 @@ nlohmann::json view_json(const ViewResult& v) {
           {"lut", vec_json(v.lut)},
           {"lut_converged", vec_json(v.lut_converged)},
           {"lut_converged_relative", vec_json(v.lut_converged_relative)},
+          {"lut_converged_angular", vec_json(v.lut_converged_angular)},
           {"lut_skyview_multiple4d", vec_json(v.lut_multiple4d)},
           {"path_traced", vec_json(v.all.mean)},
           {"path_traced_ci95", vec_json(v.all.ci95)},
@@ -260,11 +262,12 @@ struct SkyRadianceScene {
   // Both Psi_ms models at the operating point's size and mapping, each
   // baked once more and timed (docs/report.md "Two Psi_ms models").
   Texture converged, converged_relative;  // estimators mean and relative
+  Texture converged_angular;  // relative, with kReportNuSlices nu slices
   ConvergedField field;  // the iteration behind `converged`, shared with the 4D sky-view
   // The 4D sky-view's own iteration at the shape of orders_resolution.hpp,
   // where the Mie group shapes the orders (full level); else empty.
   ConvergedField field_mie_lobe;
-  double hillaire_seconds = 0.0, converged_seconds = 0.0;
+  double hillaire_seconds = 0.0, converged_seconds = 0.0, angular_table_seconds = 0.0;
   int converged_orders = 0;
   double converged_residual = 1.0;
 };
@@ -289,6 +292,12 @@ void bake_both_models(const ReportInputs& in, SkyRadianceScene& s) {
   spec.estimator = PsiEstimator::relative;
   s.converged_relative = converged_multiscattering_table(atm, in.transmittance, table, spec,
                                                          s.field, BakeContext{});
+  t0 = clock::now();
+  spec.nu_slices = kReportNuSlices;
+  spec.zenith_slices = kReportZenithSlices;
+  s.converged_angular = converged_multiscattering_table(atm, in.transmittance, table, spec,
+                                                        s.field, BakeContext{});
+  s.angular_table_seconds = std::chrono::duration<double>(clock::now() - t0).count();
   s.converged_orders = meta_int(s.converged.metadata, "orders_used");
   s.converged_residual = meta_double(s.converged.metadata, "last_residual");
 }
@@ -326,7 +335,8 @@ void measure_sun(const ReportInputs& in, const SkyRadianceSetup& setup, SkyRadia
   const std::vector<glm::dvec3> full = render(in.multiscattering), second = render(s.second_order),
                                 single = render(s.no_multiscattering),
                                 converged = render(s.converged),
-                                converged_relative = render(s.converged_relative);
+                                converged_relative = render(s.converged_relative),
+                                converged_angular = render(s.converged_angular);
   SkyviewLutSpec sky = cam.sky;
   sky.views = {{cam.altitude_m, kPi / 2 - sun_elevation * kDeg}};
   const Texture multiple4d =
@@ -346,6 +356,7 @@ void measure_sun(const ReportInputs& in, const SkyRadianceSetup& setup, SkyRadia
     r.lut = full[v];
     r.lut_converged = converged[v];
     r.lut_converged_relative = converged_relative[v];
+    r.lut_converged_angular = converged_angular[v];
     r.lut_multiple4d = render_sky_luminance(atm, luts4d, cam.position, dir, sun_dir, no_disk);
     r.lut_second = second[v];
     r.lut_single = single[v];
@@ -381,6 +392,12 @@ nlohmann::json comparisons_json(const std::vector<ViewResult>& views) {
        compare(views,
                [](const ViewResult& v) {
                  return RadiancePair{v.lut_converged_relative, v.all.mean, v.all.ci95,
+                                     v.all.mean};
+               })},
+      {"converged_angular_vs_path_tracer",
+       compare(views,
+               [](const ViewResult& v) {
+                 return RadiancePair{v.lut_converged_angular, v.all.mean, v.all.ci95,
                                      v.all.mean};
                })},
       {"skyview_multiple4d_vs_path_tracer",
@@ -447,6 +464,10 @@ nlohmann::json sky_radiance_report(const ReportInputs& in, const SkyRadianceSetu
                       {"converged_relative", compare(these, [](const ViewResult& v) {
                          return RadiancePair{v.lut_converged_relative, v.all.mean, v.all.ci95,
                                              v.all.mean};
+                       })},
+                      {"converged_angular", compare(these, [](const ViewResult& v) {
+                         return RadiancePair{v.lut_converged_angular, v.all.mean, v.all.ci95,
+                                             v.all.mean};
                        })}});
   }
   nlohmann::json rows = nlohmann::json::array();
@@ -454,6 +475,7 @@ nlohmann::json sky_radiance_report(const ReportInputs& in, const SkyRadianceSetu
   nlohmann::json out = comparisons_json(views);
   out["converged_target"] = target_json(out["converged_vs_path_tracer"]);
   out["converged_relative_target"] = target_json(out["converged_relative_vs_path_tracer"]);
+  out["converged_angular_target"] = target_json(out["converged_angular_vs_path_tracer"]);
   out["skyview_multiple4d_target"] = target_json(out["skyview_multiple4d_vs_path_tracer"]);
   out["models"] = {
       {"hillaire2020", {{"bake_seconds", scene.hillaire_seconds}}},
@@ -462,7 +484,10 @@ nlohmann::json sky_radiance_report(const ReportInputs& in, const SkyRadianceSetu
         {"orders_used", scene.converged_orders},
         {"last_residual", scene.converged_residual},
         {"scattering_shape", meta_string(scene.converged.metadata, "scattering_shape")},
-        {"tolerance", meta_double(scene.converged.metadata, "tolerance")}}}};
+        {"tolerance", meta_double(scene.converged.metadata, "tolerance")}}},
+      {"converged_angular",
+       {{"bake_seconds", scene.converged_seconds + scene.angular_table_seconds},
+        {"nu_slices", kReportNuSlices}}}};
   out.update(
       {{"camera_altitude_m", scene.camera.altitude_m},
        {"sun_elevations_deg", setup.sun_elevations_deg},

@@ -115,6 +115,11 @@ nlohmann::json radiance_stats(const std::vector<RadiancePair>& rows);
 
 constexpr double kDaytimeRelativeRmseTarget = 0.01;
 
+// The nu slices of the converged model's view-dependent table the report
+// renders beside the isotropic ones (docs/report.md "Two Psi_ms models").
+constexpr int kReportNuSlices = 8;
+constexpr int kReportZenithSlices = 8;
+
 // The daytime target judged on radiance statistics (radiance_stats): "met"
 // when even the noisy worst-channel rel_rmse is below it, "not met" when the
 // denoised one is above it, else "undetermined".

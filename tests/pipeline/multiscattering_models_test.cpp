@@ -2,7 +2,8 @@
 // mapping and the quadratic altitude axis, the converged Psi_ms model and
 // the sky-view with the 4D table's orders >= 2 bake through the command
 // line, record what they are in the manifest with an error measurement, and
-// bad option values are refused at load with the output's JSON pointer.
+// bad option values are refused at load with the output's JSON pointer; the
+// source by view bakes a volume.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -156,6 +157,49 @@ TEST(MultiscatteringModels, BadOptionsAreRefusedWithTheirPointer) {
   r = test::run_skybake({"validate", bad_estimator.string()});
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_NE((r.out + r.err).find("/outputs/1/estimator"), std::string::npos) << r.out << r.err;
+}
+
+// The source by view (docs/reference.md "Psi_ms by view"): a volume of
+// 1 + nu_slices + zenith_slices slices in every format, named in the
+// metadata, read by the sky-view bake; the option is refused where it does
+// not apply.
+TEST(MultiscatteringModels, SourceByViewBakesAVolumeAndIsRefusedElsewhere) {
+  const fs::path dir = test::fresh_dir("ms_by_view");
+  const nlohmann::json view = {{"product", "multiscattering"}, {"size", {8, 8}},
+                               {"formats", {"exr", "dds"}}, {"model", "converged"},
+                               {"scattering_shape", {4, 16, 4, 2}}, {"tolerance", 0.01},
+                               {"angular", "nu_zenith"}, {"nu_slices", 4}, {"zenith_slices", 3}};
+  const fs::path preset = write_scene(dir, view, kSmallSkyview);
+  auto r = test::run_skybake({"bake", preset.string(), "-o", (dir / "out").string(), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto ms = manifest_entry(dir / "out", "multiscattering");
+  EXPECT_EQ(ms["metadata"]["nu_slices"], 4) << ms.dump();
+  EXPECT_EQ(ms["metadata"]["zenith_slices"], 3);
+  EXPECT_EQ(ms["metadata"]["wrap_w"], "clamp");
+  r = test::run_skybake({"info", (dir / "out/small/multiscattering.dds").string()});
+  EXPECT_NE(r.out.find("8x8x8"), std::string::npos) << r.out;  // 1 + 4 + 3 slices
+  EXPECT_TRUE(manifest_entry(dir / "out", "skyview")["error"].contains("max_rel"));
+
+  const auto refused = [&](nlohmann::json ms_output, const std::string& pointer,
+                           const std::string& words) {
+    const fs::path file = write_scene(dir, ms_output, kSmallSkyview);
+    const auto v = test::run_skybake({"validate", file.string()});
+    EXPECT_EQ(v.exit_code, 1) << v.out << v.err;
+    EXPECT_NE((v.out + v.err).find(pointer), std::string::npos) << v.out << v.err;
+    EXPECT_NE((v.out + v.err).find(words), std::string::npos) << v.out << v.err;
+  };
+  nlohmann::json hillaire = view;
+  hillaire.erase("model");
+  refused(hillaire, "/outputs/1/angular", "converged");
+  nlohmann::json demo = view;
+  demo["convention"] = "hillaire_demo";
+  refused(demo, "/outputs/1/angular", "skybake");
+  nlohmann::json slices_alone = view;
+  slices_alone.erase("angular");
+  refused(slices_alone, "/outputs/1/nu_slices", "nu_zenith");
+  nlohmann::json one_slice = view;
+  one_slice["zenith_slices"] = 1;
+  refused(one_slice, "/outputs/1/zenith_slices", "");
 }
 
 }  // namespace

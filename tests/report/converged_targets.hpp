@@ -66,6 +66,7 @@ inline double sky_error(const Atmosphere& atm, const Texture& transmittance, con
 
 struct ModelErrors {
   double hillaire = 0.0, mean = 0.0, relative = 0.0;
+  double view = 0.0;  // relative, with the source by view (8 nu x 8 zenith slices)
 };
 
 inline ModelErrors model_errors(const Atmosphere& atm, const Views& views, bool small_iteration) {
@@ -87,6 +88,8 @@ inline ModelErrors model_errors(const Atmosphere& atm, const Views& views, bool 
   spec.estimator = PsiEstimator::relative;
   e.relative =
       sky_error(atm, t, converged_multiscattering_table(atm, t, table, spec, field, {}), views);
+  spec.nu_slices = spec.zenith_slices = 8;
+  e.view = sky_error(atm, t, converged_multiscattering_table(atm, t, table, spec, field, {}), views);
   return e;
 }
 
@@ -119,6 +122,17 @@ inline Atmosphere small_mars() {
                                exponential_profile(3.095e3 / k), PhaseKind::cornette_shanks,
                                0.85)};
   return atm;
+}
+
+// Mars shrunk (small_mars, above) over the report's 72 views, `paths` paths
+// a view: the source by view within 8 %, worst channel, at most half the
+// isotropic relative estimator's error and below Hillaire's table's.
+inline void expect_mars_view_source_within_eight_percent(int paths) {
+  const Atmosphere atm = small_mars();
+  const ModelErrors e = model_errors(atm, trace_views(atm, 200.0 / kMarsScale, paths, 8, 0.0), false);
+  EXPECT_LT(e.view, 0.08) << "relative " << e.relative << ", Hillaire " << e.hillaire;
+  EXPECT_LT(e.view, 0.5 * e.relative) << "relative " << e.relative;
+  EXPECT_LT(e.view, e.hillaire) << "Hillaire " << e.hillaire;
 }
 
 }  // namespace skybake::converged_targets

@@ -164,6 +164,7 @@ void check_sky_radiance() {
     }
   for (const char* section :
        {"multiple", "converged_vs_path_tracer", "converged_relative_vs_path_tracer",
+        "converged_angular_vs_path_tracer",
         "second_order_vs_path_tracer", "single_vs_path_tracer", "single_vs_quadrature"})
     for (const json& c : sky[section]["channels"]) {
       EXPECT_TRUE(std::isfinite(c["rel_rmse"].get<double>())) << section;
