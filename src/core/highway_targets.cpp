@@ -6,10 +6,16 @@
 //
 // A target is supported when the CPU (and the OS, for the AVX state) has every
 // feature Highway compiles that target with (hwy/ops/set_macros-inl.h,
-// HWY_TARGET_STR_*); GCC's __builtin_cpu_supports checks the OS's XSAVE state
-// for the AVX and AVX-512 features.
+// HWY_TARGET_STR_*); __builtin_cpu_supports checks the OS's XSAVE state for
+// the AVX and AVX-512 features. Clang's builtin does not know "f16c", so that
+// one bit is read from CPUID leaf 1 (ECX bit 29) on both compilers; the AVX
+// state it needs is the one the "avx" test already checked.
 #include <atomic>
 #include <cstdint>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <cpuid.h>
+#endif
 
 #include <hwy/targets.h>
 
@@ -24,10 +30,18 @@ bool has_sse4_features() {
          __builtin_cpu_supports("pclmul") && __builtin_cpu_supports("aes");
 }
 
+#if defined(__x86_64__) || defined(__i386__)
+bool has_f16c() {
+  unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+  if (!__get_cpuid(1, &eax, &ebx, &ecx, &edx)) return false;
+  return (ecx & (1u << 29)) != 0;
+}
+#endif
+
 bool has_avx2_features() {
   return has_sse4_features() && __builtin_cpu_supports("avx") && __builtin_cpu_supports("avx2") &&
          __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2") &&
-         __builtin_cpu_supports("fma") && __builtin_cpu_supports("f16c");
+         __builtin_cpu_supports("fma") && has_f16c();
 }
 
 bool has_avx3_features() {
