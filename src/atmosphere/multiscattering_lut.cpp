@@ -494,12 +494,7 @@ MultiscatteringView multiscattering_view(const MultiscatteringMapping& mapping, 
 glm::dvec3 lookup_multiscattering_view(const Texture& lut, const MultiscatteringAtRadius& at,
                                        double mu_s, const MultiscatteringView& view,
                                        double mu_v) {
-  mu_s = clamp_cosine(mu_s);
-  double x = 0.5 + 0.5 * mu_s;
-  if (at.mapping.sun == SunMapping::terminator)
-    x = std::clamp((std::atan((mu_s - at.centre) / at.mapping.width) - at.a_lo) /
-                       (at.a_hi - at.a_lo),
-                   0.0, 1.0);
+  const double x = multiscattering_sun_unit(at, mu_s);
   const size_t slice = size_t(lut.width) * size_t(lut.height) * size_t(at.row.channels);
   const auto read = [&](int k) {
     const BilinearRow row{at.row.row0 + size_t(k) * slice, at.row.row1 + size_t(k) * slice,

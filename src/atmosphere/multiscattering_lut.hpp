@@ -209,16 +209,21 @@ MultiscatteringAtRadius multiscattering_at_radius(const Texture& lut,
                                                   const MultiscatteringMapping& mapping,
                                                   const Atmosphere& atm, double r);
 
+// The sun axis's unit coordinate of mu_s at the radius `at` was made for
+// (linear, or the terminator mapping).
+inline double multiscattering_sun_unit(const MultiscatteringAtRadius& at, double mu_s) {
+  mu_s = clamp_cosine(mu_s);
+  if (at.mapping.sun != SunMapping::terminator) return 0.5 + 0.5 * mu_s;
+  return std::clamp((std::atan((mu_s - at.centre) / at.mapping.width) - at.a_lo) /
+                        (at.a_hi - at.a_lo),
+                    0.0, 1.0);
+}
+
 // lookup_multiscattering(lut, at.mapping, atm, r, mu_s) at the radius `at`
 // was made for, bit for bit.
 inline glm::dvec3 lookup_multiscattering(const Texture& lut, const MultiscatteringAtRadius& at,
                                          double mu_s) {
-  mu_s = clamp_cosine(mu_s);
-  double x = 0.5 + 0.5 * mu_s;
-  if (at.mapping.sun == SunMapping::terminator)
-    x = std::clamp((std::atan((mu_s - at.centre) / at.mapping.width) - at.a_lo) /
-                       (at.a_hi - at.a_lo),
-                   0.0, 1.0);
+  const double x = multiscattering_sun_unit(at, mu_s);
   return sample_bilinear_rgb(lut, at.row, at.u_offset + x * at.u_scale);
 }
 
