@@ -15,6 +15,7 @@
 #include <tbb/parallel_for.h>
 
 #include "atmosphere/bruneton_outputs.hpp"
+#include "atmosphere/energy_balance.hpp"
 #include "atmosphere/geometric_tail.hpp"
 #include "atmosphere/irradiance_lut.hpp"
 #include "atmosphere/order_progress.hpp"
@@ -297,6 +298,9 @@ BrunetonTextures bake_bruneton(const Atmosphere& atm, const Texture& transmittan
   Texture irradiance = orders.take_irradiance(out.tail_factor, out.direct_irradiance);
   assemble_bruneton_outputs(atm, spec, orders.accumulated(), std::move(single.mie),
                             std::move(irradiance), out);
+  const glm::dvec3 balance = sun_zenith_out_over_in(atm, out, spec.irradiance_includes_direct);
+  set_meta(out.scattering.metadata, "energy_out_over_in", balance);
+  set_meta(out.irradiance.metadata, "energy_out_over_in", balance);
   out.single_rayleigh = std::move(single.rayleigh);
   if (ctx.on_progress) ctx.on_progress(1.0);
   return out;

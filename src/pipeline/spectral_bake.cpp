@@ -69,6 +69,16 @@ double spectral_group_luminance(const SpectralScene& s, const SpectralGrid& grid
   return (xyz * glm::dvec3(1.0)).y;
 }
 
+// A group's channels are wavelengths: the table's energy balance is the
+// worst over every wavelength, in all three channels.
+void keep_largest_energy_balance(Metadata& out, const Metadata& group) {
+  const glm::dvec3* a = find_meta<glm::dvec3>(out, "energy_out_over_in");
+  const glm::dvec3* b = find_meta<glm::dvec3>(group, "energy_out_over_in");
+  if (!a || !b) return;
+  const double worst = std::max({a->x, a->y, a->z, b->x, b->y, b->z});
+  set_meta(out, "energy_out_over_in", glm::dvec3(worst));
+}
+
 // out += M * rgb of `group` texel by texel; a fourth channel adds
 // weight * value, or for the 4D table's combined Mie alpha the red of M
 // times the group's single Mie (Bruneton 2017, the combined texture).
@@ -79,6 +89,7 @@ void spectral_accumulate(Texture& out, const Texture& group, const glm::dmat3& m
     out = Texture(group.width, group.height, group.depth, group.layers, group.channels);
     out.metadata = group.metadata;
   }
+  keep_largest_energy_balance(out.metadata, group.metadata);
   if (nc < 3 || out.data.size() != group.data.size())
     throw Error("spectral bake: a table changed shape between wavelength groups");
   for (size_t t = 0; t < texels; ++t) {

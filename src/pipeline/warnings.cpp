@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "atmosphere/energy_balance.hpp"
 #include "pipeline/product_options.hpp"
 
 namespace skybake {
@@ -90,6 +91,19 @@ void order_warnings(const Texture& t, std::vector<OutputWarning>& out) {
          {{"geometric_tail", tail}, {"last_residual", residual}, {"tail_share", tail * residual}}});
 }
 
+// A 4D table that returns more than the sunlight (atmosphere/energy_balance.hpp).
+void energy_warnings(const Texture& t, std::vector<OutputWarning>& out) {
+  const double ratio = meta_max(t, "energy_out_over_in");
+  if (!(ratio > 1.0 + kEnergyGainTolerance)) return;
+  out.push_back({"energy_gain",
+                 fmt::format("with the sun at the zenith the table returns {:.3g} of the sunlight "
+                             "(up through the top + absorbed by the ground, at most 1): a sharp "
+                             "forward phase lerped over too few mu texels; more mu texels "
+                             "(scattering.shape) bring it down",
+                             ratio),
+                 {{"out_over_in", ratio}, {"tolerance", kEnergyGainTolerance}}});
+}
+
 // Texels of the transmittance table that are 0 in some channel: the optical
 // depth to the top is above ~103 there and float32 holds 0, so an engine's
 // transmittance between two points, a ratio of two reads, is 0 / 0.
@@ -139,6 +153,7 @@ std::vector<OutputWarning> output_warnings(const Scene& scene, const OutputSpec&
                                            const nlohmann::json& tiling) {
   std::vector<OutputWarning> out;
   if (kSumsOrders.count(spec.product)) order_warnings(texture, out);
+  energy_warnings(texture, out);
   if (spec.product == "multiscattering") multiscattering_warnings(texture, out);
   if (spec.product == "transmittance") underflow_warnings(texture, out);
   if (kScatteredLight.count(spec.product) && scatters(scene, spec.product) &&

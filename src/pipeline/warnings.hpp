@@ -5,6 +5,7 @@
 //   not_converged      orders stopped at max_orders above the tolerance
 //   tail_dominates     the geometric tail stands for much of the table
 //   fms_clamped        f_ms of multiple scattering reached 1 and was clamped
+//   energy_gain        a 4D table returns more light than the sun gives
 //   black_output       every colour texel is 0 though the medium scatters
 //   transmittance_underflow  transmittance texels that float32 holds as 0
 //   error_above_limit  the measured max_rel is above max_error (or the

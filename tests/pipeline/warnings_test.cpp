@@ -96,6 +96,20 @@ TEST(Warnings, ClampedMultipleScatteringTransfer) {
   EXPECT_TRUE(output_warnings(scene, spec_of("multiscattering"), t, json(), json()).empty());
 }
 
+TEST(Warnings, TableThatReturnsMoreThanTheSunlight) {
+  const Scene scene = scene_with(fixtures::earth_atmosphere());
+  Texture t = lit();
+  set_meta(t.metadata, "energy_out_over_in", glm::dvec3(1.02, 1.28, 0.9));
+  const std::vector<OutputWarning> w =
+      output_warnings(scene, spec_of("scattering"), t, json(), json());
+  ASSERT_EQ(codes(w), std::set<std::string>{"energy_gain"});
+  EXPECT_DOUBLE_EQ(w[0].numbers["out_over_in"].get<double>(), 1.28);
+  EXPECT_NE(w[0].message.find("1.28"), std::string::npos) << w[0].message;
+  // The shell's curvature and absorption only lower out / in: no warning.
+  set_meta(t.metadata, "energy_out_over_in", glm::dvec3(0.97, 1.04, 0.6));
+  EXPECT_TRUE(output_warnings(scene, spec_of("irradiance"), t, json(), json()).empty());
+}
+
 TEST(Warnings, BlackOnlyWhenTheMediumScatters) {
   Texture black = lit();
   for (float& v : black.data) v = 0.0f;

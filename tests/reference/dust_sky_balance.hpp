@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "atmosphere/geometry.hpp"
+#include "atmosphere/energy_balance.hpp"
 #include "atmosphere/irradiance_lut.hpp"
 #include "atmosphere/orders_resolution.hpp"
 #include "atmosphere/scattering_orders.hpp"
@@ -34,22 +34,10 @@ inline Atmosphere dust_sky(double tau, double absorption, double g) {
 }
 
 // Upward flux at the top plus what the black ground absorbs (direct and
-// sky), sun at the zenith, over the sun's input: midpoint rule on 2000
-// cosines (with the sun at the zenith the table has no azimuth).
+// sky), sun at the zenith, over the sun's input, in green: the bake's own
+// record of it (atmosphere/energy_balance.hpp).
 inline double dust_out_over_in(const Atmosphere& atm, const BrunetonTextures& t) {
-  double up = 0.0;
-  const int n = 2000;
-  for (int i = 0; i < n; ++i) {
-    const double mu = -(i + 0.5) / n;
-    up += 2.0 * kPi * (-mu) / n *
-          lookup_scattering(t.scattering, t.single_mie, t.shape, atm, atm.top_radius_m, mu, 1.0, mu,
-                            ray_intersects_ground(atm.bottom_radius_m, atm.top_radius_m, mu))
-              .g;
-  }
-  const double ground = (lookup_irradiance(t.direct_irradiance, atm, atm.bottom_radius_m, 1.0) +
-                         lookup_irradiance(t.irradiance, atm, atm.bottom_radius_m, 1.0))
-                            .g;
-  return (up + ground) / atm.sun_illuminance.g;
+  return sun_zenith_out_over_in(atm, t, false).g;
 }
 
 }  // namespace skybake::dust_sky_balance
