@@ -1,6 +1,8 @@
 """The whole-command figures of the bench/ scripts: one process's CPU and wall
-time, and the machine line printed with every table (figures depend on the
-load, so the load goes with them)."""
+time, the machine line printed with every table (figures depend on the
+load, so the load goes with them), and presets made to bake from a scratch
+folder."""
+import json
 import os
 import subprocess
 import sys
@@ -72,3 +74,13 @@ def append_results(repo, name, command, rows):
         for benchmark, figure, unit, value in rows:
             w.writerow([benchmark, figure, unit, value, what, where, command])
     print(f"appended {len(rows)} rows to {path}")
+
+
+def absolute_preset(preset):
+    """The preset with its file references made absolute, so it bakes from elsewhere."""
+    doc = json.load(open(preset))
+    base = os.path.dirname(os.path.abspath(preset))
+    for key in ("$schema", "planet", "atmosphere", "clouds"):
+        if isinstance(doc.get(key), str):
+            doc[key] = os.path.normpath(os.path.join(base, doc[key]))
+    return doc

@@ -28,19 +28,13 @@ RUNS="${RUNS:-3}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-/usr/bin/python3 - "$exe" "$RUNS" "$work" "${presets[@]}" <<'PY'
+PYTHONPATH="$here" /usr/bin/python3 - "$exe" "$RUNS" "$work" "${presets[@]}" <<'PY'
 import json, os, subprocess, sys
+
+from process_timing import absolute_preset
 
 exe, runs, work, presets = sys.argv[1], int(sys.argv[2]), sys.argv[3], sys.argv[4:]
 
-def absolute(preset):
-    """The preset with its file references made absolute, so it bakes from elsewhere."""
-    doc = json.load(open(preset))
-    base = os.path.dirname(os.path.abspath(preset))
-    for key in ("$schema", "planet", "atmosphere", "clouds"):
-        if isinstance(doc.get(key), str):
-            doc[key] = os.path.normpath(os.path.join(base, doc[key]))
-    return doc
 
 def bake(path, name, out):
     """(cpu, wall, bake) seconds of one bake."""
@@ -57,7 +51,7 @@ print("| scene | converged: CPU s / wall s / bake s | by view: CPU s / wall s / 
       "| by view / converged (CPU, bake) |")
 print("|---|---|---|---|")
 for preset in presets:
-    doc = absolute(preset)
+    doc = absolute_preset(preset)
     keep = [o for o in doc["outputs"] if o["product"] in ("transmittance", "multiscattering")]
     if not any(o["product"] == "multiscattering" for o in keep):
         keep.append({"product": "multiscattering", "size": [32, 32]})

@@ -26,24 +26,13 @@ namespace {
 
 using nlohmann::json;
 
-std::string run(const std::string& command, int* status) {
-  std::string out;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return out;
-  char buf[65536];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
-  *status = pclose(pipe);
-  return out;
-}
-
 // ktx-parse's view of `path`; fails the test (with the reason) when it cannot run.
 json ktx_parse(const std::string& path) {
   const std::string script = test::source_path("tests/js/ktx2_dump.mjs").string();
   const std::string module =
       test::source_path("tests/js/node_modules/ktx-parse/package.json").string();
   int status = -1;
-  run("command -v node > /dev/null 2>&1", &status);
+  test::run_shell("command -v node > /dev/null 2>&1", &status);
   if (status != 0) {
     ADD_FAILURE() << "node is not installed (scripts/install-deps.sh installs it)";
     return json();
@@ -55,7 +44,7 @@ json ktx_parse(const std::string& path) {
                      "(scripts/install-deps.sh runs npm ci there)";
     return json();
   }
-  const std::string out = run("node '" + script + "' '" + path + "' 2>&1", &status);
+  const std::string out = test::run_shell("node '" + script + "' '" + path + "' 2>&1", &status);
   if (status != 0) {
     ADD_FAILURE() << "ktx-parse failed on " << path << ": " << out;
     return json();

@@ -137,17 +137,6 @@ TEST(SkyEnvironment, ShAgreesWithTheIrradianceProjection) {
   RecordProperty("sh_irradiance_rms", std::to_string(rms));
 }
 
-std::string run_node(const std::string& command, int* status) {
-  std::string out;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return out;
-  char buf[65536];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
-  *status = pclose(pipe);
-  return out;
-}
-
 // three.js's KTX2Loader reads the cube's levels; its first texel of each
 // face and level is the one skybake's reader finds.
 TEST(SkyEnvironment, ThreeJsKtx2LoaderReadsTheCube) {
@@ -159,7 +148,7 @@ TEST(SkyEnvironment, ThreeJsKtx2LoaderReadsTheCube) {
       << "three is not installed in tests/js/node_modules (scripts/install-deps.sh runs npm ci)";
   int status = -1;
   const std::string out =
-      run_node("node '" + script + "' '" + (dir / "env.ktx2").string() + "' 2>&1", &status);
+      test::run_shell("node '" + script + "' '" + (dir / "env.ktx2").string() + "' 2>&1", &status);
   ASSERT_EQ(status, 0) << out;
   const nlohmann::json three = nlohmann::json::parse(out);
   const Ktx2Image ours = read_ktx2((dir / "env.ktx2").string());

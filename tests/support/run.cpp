@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -91,6 +92,18 @@ std::vector<std::string> list_files(const fs::path& dir) {
     if (e.is_regular_file()) files.push_back(fs::relative(e.path(), dir).string());
   std::sort(files.begin(), files.end());
   return files;
+}
+
+std::string run_shell(const std::string& command, int* status) {
+  std::string out;
+  *status = -1;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return out;
+  char buf[65536];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
+  *status = pclose(pipe);
+  return out;
 }
 
 }  // namespace skybake::test

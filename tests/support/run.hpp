@@ -21,6 +21,10 @@ std::string skybake_exe();
 // Runs skybake_exe() with the arguments (shell-quoted here), in `cwd` if given.
 RunResult run_skybake(const std::vector<std::string>& args, const std::filesystem::path& cwd = {});
 
+// The standard output of a shell command (popen), its wait status in
+// `status` (-1 when it could not start).
+std::string run_shell(const std::string& command, int* status);
+
 // An empty folder under SKYBAKE_TEST_TMP named after the test (and this
 // process, since ctest runs cases in parallel processes).
 std::filesystem::path fresh_dir(const std::string& name);
