@@ -171,29 +171,49 @@ bool contains(const std::vector<std::string>& list, const std::string& item) {
   return std::find(list.begin(), list.end(), item) != list.end();
 }
 
-// Keys written in a valid scene that change nothing (docs/presets.md
-// "Keys that have no effect"); `written` is the scene before defaults.
-std::vector<PresetProblem> no_effect_warnings(const json& written, const Scene& scene,
-                                              const std::string& file) {
-  std::vector<PresetProblem> warnings;
+bool read_by_an_output(const Scene& scene, const std::string& section) {
+  for (const OutputSpec& o : scene.outputs)
+    if (contains(find_product(o.product)->scene_sections, section)) return true;
+  return false;
+}
+
+// The scene's sections and scene-wide keys that no output reads.
+void section_warnings(const json& written, const Scene& scene, const std::string& file,
+                      const Source& atmosphere_src, std::vector<PresetProblem>& warnings) {
   auto warn = [&](const std::string& pointer, const std::string& rule) {
     warnings.push_back({file, pointer, "has no effect: " + rule});
   };
-  auto read_by_an_output = [&](const std::string& section) {
-    for (const OutputSpec& o : scene.outputs)
-      if (contains(find_product(o.product)->scene_sections, section)) return true;
-    return false;
-  };
-  if (written.contains("clouds") && !read_by_an_output("clouds"))
+  if (written.contains("clouds") && !read_by_an_output(scene, "clouds"))
     warn("/clouds", "no output reads the clouds section (weather, cloud_types, height_gradients "
                     "and cirrus do)");
-  if (written.contains("atmosphere") && !read_by_an_output("atmosphere"))
+  if (written.contains("atmosphere") && !read_by_an_output(scene, "atmosphere"))
     warn("/atmosphere", "no output reads the planet and atmosphere (the atmosphere tables do)");
+  // The per-wavelength physics is read by a spectral bake only; the RGB
+  // coefficients stand for it otherwise.
+  if (!written.contains("spectral") && written.contains("atmosphere") &&
+      written["atmosphere"].is_object() && written["atmosphere"].contains("spectrum") &&
+      read_by_an_output(scene, "atmosphere"))
+    warnings.push_back({atmosphere_src.file, atmosphere_src.prefix + "/spectrum",
+                        "has no effect: the scene bakes RGB tables from the atmosphere's RGB "
+                        "coefficients; a \"spectral\" section in the scene (e.g. "
+                        "{\"wavelengths\": 15}) bakes from the spectrum"});
   if (written.contains("convention") &&
       std::none_of(scene.outputs.begin(), scene.outputs.end(),
                    [](const OutputSpec& o) { return takes_convention(o.product); }))
     warn("/convention", "no output is a table it lays out (transmittance, multiscattering, "
                         "skyview, aerial_perspective)");
+}
+
+// Keys written in a valid scene that change nothing (docs/presets.md
+// "Keys that have no effect"); `written` is the scene before defaults.
+std::vector<PresetProblem> no_effect_warnings(const json& written, const Scene& scene,
+                                              const std::string& file,
+                                              const Source& atmosphere_src) {
+  std::vector<PresetProblem> warnings;
+  auto warn = [&](const std::string& pointer, const std::string& rule) {
+    warnings.push_back({file, pointer, "has no effect: " + rule});
+  };
+  section_warnings(written, scene, file, atmosphere_src, warnings);
   for (size_t i = 0; i < scene.outputs.size(); ++i) {
     const json& out = written["outputs"][i];
     const OutputSpec& spec = scene.outputs[i];
@@ -369,7 +389,7 @@ Scene load_scene(const fs::path& file) {
   if (problems.empty())  // every output within its own budgets
     problems.collect([&] { check_scene_budget(scene.outputs, scene_src); });
   problems.throw_if_any();
-  scene.warnings = no_effect_warnings(written, scene, display);
+  scene.warnings = no_effect_warnings(written, scene, display, atmosphere_src);
   scene.resolved = std::move(doc);
   return scene;
 }

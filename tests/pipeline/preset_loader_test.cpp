@@ -350,6 +350,23 @@ TEST(PresetLoader, MaxErrorOnlyWhereTheBakeMeasuresAnError) {
       << warned.warnings[0].rule;
 }
 
+TEST(PresetLoader, SpectrumWithoutSpectralHasNoEffect) {
+  const fs::path dir = scratch("spectrum_rgb");
+  // The shipped spectral Earth, its atmosphere file referenced from elsewhere.
+  json scene = read_json(kPresets / "earth_spectral.json");
+  scene["atmosphere"] = (kPresets / "atmospheres" / "earth_spectral.json").string();
+  scene["$schema"] = (kRoot / "schemas" / "scene.schema.json").string();
+  EXPECT_TRUE(load_scene(write(dir / "spectral.json", scene.dump())).warnings.empty());
+
+  scene.erase("spectral");
+  const Scene rgb = load_scene(write(dir / "rgb.json", scene.dump()));
+  ASSERT_EQ(rgb.warnings.size(), 1u);
+  EXPECT_EQ(fs::path(rgb.warnings[0].file).filename(), "earth_spectral.json");
+  EXPECT_NE(fs::path(rgb.warnings[0].file).parent_path(), dir);  // the atmosphere's file
+  EXPECT_EQ(rgb.warnings[0].pointer, "/spectrum");
+  EXPECT_NE(rgb.warnings[0].rule.find("has no effect"), std::string::npos) << rgb.warnings[0].rule;
+}
+
 TEST(PresetLoader, SchemaDirCanBeOverriddenAtRunTime) {
   const fs::path dir = scratch("schema_dir");
   fs::copy(kRoot / "schemas", dir / "schemas", fs::copy_options::recursive);
