@@ -204,10 +204,22 @@ class SceneBake {
   }
 
   Texture take_spectral(size_t i, const BakeContext& ctx) {
-    if (spectral_.empty()) spectral_ = bake_spectral_graph(scene_, graph_, needed_, ctx);
-    Texture tex = std::move(*spectral_.at(i));
-    spectral_[i].reset();
+    if (spectral_.textures.empty()) {
+      std::vector<char> measured(graph_.nodes.size(), 0);
+      for (size_t k = 0; k < measured.size(); ++k) measured[k] = measures_error(k);
+      spectral_ = bake_spectral_graph(scene_, graph_, needed_, measured, ctx);
+    }
+    Texture tex = std::move(*spectral_.textures.at(i));
+    spectral_.textures[i].reset();
     return tex;
+  }
+
+  // Whether output i gets an error record: a stale output of a measured
+  // product in skybake's layout.
+  bool measures_error(size_t i) const {
+    const GraphNode& node = graph_.nodes[i];
+    return node.requested && stale_[i] && node.info->measure_error &&
+           output_convention(node.spec) == TableConvention::skybake;
   }
 
   bool has_dependents(size_t i) const {
@@ -242,11 +254,12 @@ class SceneBake {
     OutputRecord rec{node.info->name, "baked", reasons_[i],
                      make_entry(node, tex, std::move(files), seconds)};
     const auto t_measure = Clock::now();
-    // Error records are measured on tables in skybake's layout.
-    // (A spectral table has no RGB reference to be measured against.)
-    if (node.info->measure_error && output_convention(node.spec) == TableConvention::skybake &&
-        !scene_.spectral)
-      rec.entry.error = node.info->measure_error(scene_, node.spec, inputs_of(node), tex);
+    // Error records are measured on tables in skybake's layout; a spectral
+    // table's, group by group as it was baked (spectral_bake.hpp).
+    if (measures_error(i))
+      rec.entry.error = scene_.spectral
+                            ? spectral_.errors.at(i)
+                            : node.info->measure_error(scene_, node.spec, inputs_of(node), tex);
     if (node.info->tileable) rec.entry.tiling = tiling_record(tex);
     rec.entry.error_seconds = seconds_since(t_measure);
     for (const OutputWarning& w :
@@ -337,7 +350,7 @@ class SceneBake {
   std::vector<char> stale_, needed_;
   std::vector<std::string> reasons_;
   std::vector<std::optional<Texture>> textures_;
-  std::vector<std::optional<Texture>> spectral_;  // a spectral scene's tables until taken
+  SpectralTables spectral_;  // a spectral scene's tables until taken, and their error records
   std::vector<std::optional<Texture>> twins_;  // skybake's layout of an output in another
   std::vector<std::optional<Freshness>> freshness_;
   BakeLog log_;

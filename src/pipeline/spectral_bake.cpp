@@ -69,6 +69,20 @@ double spectral_group_luminance(const SpectralScene& s, const SpectralGrid& grid
   return (xyz * glm::dvec3(1.0)).y;
 }
 
+// The record of the group farthest from its reference (largest max_rel).
+void keep_worst_error(nlohmann::json& worst, nlohmann::json group, const glm::dvec3& nm,
+                      size_t groups) {
+  if (!group.is_object()) return;
+  const double max_rel = group.value("max_rel", 0.0);
+  if (worst.is_object() && worst.value("max_rel", 0.0) >= max_rel) return;
+  group["wavelength_groups"] = groups;
+  group["worst_group_nm"] = {nm.x, nm.y, nm.z};
+  group["reference"] = group.value("reference", std::string()) +
+                       "; each wavelength group's table against its own reference at its three "
+                       "wavelengths, the worst group recorded";
+  worst = std::move(group);
+}
+
 // A group's channels are wavelengths: the table's energy balance is the
 // worst over every wavelength, in all three channels.
 void keep_largest_energy_balance(Metadata& out, const Metadata& group) {
@@ -150,14 +164,14 @@ void add_spectral_metadata(const SpectralScene& spectral, const ProductInfo& pro
                                                                       : "radiance"));
 }
 
-std::vector<std::optional<Texture>> bake_spectral_graph(const Scene& scene,
-                                                        const ProductGraph& graph,
-                                                        const std::vector<char>& needed,
-                                                        const BakeContext& ctx) {
+SpectralTables bake_spectral_graph(const Scene& scene, const ProductGraph& graph,
+                                   const std::vector<char>& needed,
+                                   const std::vector<char>& measured, const BakeContext& ctx) {
   const SpectralScene& s = *scene.spectral;
   const SpectralGrid grid = s.grid();
   const size_t n = graph.nodes.size(), groups = grid.groups.size();
-  std::vector<std::optional<Texture>> out(n);
+  SpectralTables result{std::vector<std::optional<Texture>>(n), std::vector<nlohmann::json>(n)};
+  std::vector<std::optional<Texture>>& out = result.textures;
   glm::dvec3 sun(0.0);
   double luminance = 0.0;
   for (size_t g = 0; g < groups; ++g) {
@@ -179,6 +193,9 @@ std::vector<std::optional<Texture>> bake_spectral_graph(const Scene& scene,
       t.tables[i] = node.info->bake(sg, node.spec, in, gctx);
       if (output_convention(node.spec) != TableConvention::skybake && spectral_has_dependents(graph, i))
         t.twins[i] = node.info->bake(sg, skybake_layout_twin(node.spec), in, {});
+      if (measured[i])
+        keep_worst_error(result.errors[i], node.info->measure_error(sg, node.spec, in, *t.tables[i]),
+                         grid.groups[g], groups);
       const SpectralMieAlpha mie(node.info->name, *t.tables[i], sg, in, gctx);
       if (!out[i]) out[i].emplace();
       spectral_accumulate(*out[i], *t.tables[i], m, weight, mie.texture());
@@ -189,7 +206,7 @@ std::vector<std::optional<Texture>> bake_spectral_graph(const Scene& scene,
     if (out[i])
       spectral_finish(*out[i], spectral_rule(graph.nodes[i].info->name), sun, luminance,
                       spectral_has_mie_alpha(graph.nodes[i].info->name, *out[i]));
-  return out;
+  return result;
 }
 
 }  // namespace skybake

@@ -9,6 +9,8 @@
 #include <optional>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/bake_context.hpp"
 #include "pipeline/product_graph.hpp"
 
@@ -23,12 +25,20 @@ enum class SpectralRule {
 
 SpectralRule spectral_rule(const std::string& product);
 
+struct SpectralTables {
+  std::vector<std::optional<Texture>> textures;
+  // Per node with measured[i]: the error record (error_measures.hpp) of the
+  // wavelength group whose table is farthest from its reference, each group
+  // measured at its own three wavelengths, with "wavelength_groups" and
+  // "worst_group_nm"; null for the other nodes.
+  std::vector<nlohmann::json> errors;
+};
+
 // The textures of graph.nodes[i] for every i with needed[i], the others
 // empty. scene.spectral must be set.
-std::vector<std::optional<Texture>> bake_spectral_graph(const Scene& scene,
-                                                        const ProductGraph& graph,
-                                                        const std::vector<char>& needed,
-                                                        const BakeContext& ctx);
+SpectralTables bake_spectral_graph(const Scene& scene, const ProductGraph& graph,
+                                   const std::vector<char>& needed,
+                                   const std::vector<char>& measured, const BakeContext& ctx);
 
 // What a spectral table's metadata records (docs/formats.md "Metadata"):
 // spectral_wavelengths, spectral_range_nm, colour_space, spectral_units,

@@ -73,7 +73,7 @@ Texture colour_skyview(const Scene& sc) {
   const size_t n = g.nodes.size();
   std::vector<std::optional<Texture>> t(n);
   if (sc.spectral) {
-    t = bake_spectral_graph(sc, g, std::vector<char>(n, 1), {});
+    t = bake_spectral_graph(sc, g, std::vector<char>(n, 1), std::vector<char>(n, 0), {}).textures;
   } else {
     for (size_t i = 0; i < n; ++i) {
       ProductInputs in;

@@ -142,6 +142,45 @@ TEST(SpectralBake, GreySkyIsTheRgbSkyTimesTheSunsColour) {
       EXPECT_NEAR(sp.data[t * 3 + c], rgb.data[t * 3] * sun[c], 2e-5 * rgb.data[t * 3] + 1e-9);
 }
 
+// The error records of a bake of `scene`, by product.
+std::map<std::string, json> error_records(const json& scene) {
+  const fs::path dir = test::test_dir("spectral_errors");
+  std::ofstream(dir / "scene.json") << scene.dump(2);
+  BakeOptions o;
+  o.out_dir = dir / "out";
+  std::map<std::string, json> out;
+  for (const OutputRecord& r : bake_scene(load_scene(dir / "scene.json"), o).outputs)
+    out[r.product] = r.entry.error;
+  return out;
+}
+
+TEST(SpectralBake, GreySkyRecordsTheRgbBakesErrorPerGroup) {
+  // Every group of a grey sky bakes the RGB bake's tables against the same
+  // references: each spectral record is the RGB one, with its groups named.
+  const json spectrum = {{"sun", {{"constant", {{"irradiance_w_m2_nm", 1.0}}}}}};
+  const json outputs = {
+      {{"product", "transmittance"}, {"size", {32, 8}}, {"formats", {"exr"}}},
+      {{"product", "multiscattering"}, {"size", {8, 8}}, {"formats", {"exr"}}, {"directions", 16}},
+      {{"product", "skyview"},
+       {"size", {16, 8}},
+       {"formats", {"exr"}},
+       {"views", {{{"altitude_km", 0.5}, {"sun_zenith_deg", 70}}}}}};
+  const auto rgb = error_records(slab_scene(nullptr, spectrum, outputs));
+  const auto sp = error_records(slab_scene({{"wavelengths", 6}}, spectrum, outputs));
+  for (const char* product : {"transmittance", "multiscattering", "skyview"}) {
+    SCOPED_TRACE(product);
+    ASSERT_TRUE(rgb.at(product).is_object());
+    ASSERT_TRUE(sp.at(product).is_object());
+    EXPECT_NEAR(sp.at(product)["max_rel"].get<double>(), rgb.at(product)["max_rel"].get<double>(),
+                1e-6 * rgb.at(product)["max_rel"].get<double>() + 1e-12);
+    EXPECT_EQ(sp.at(product)["queries"], rgb.at(product)["queries"]);
+    EXPECT_EQ(sp.at(product)["wavelength_groups"], 2);
+    ASSERT_EQ(sp.at(product)["worst_group_nm"].size(), 3u);
+    for (double nm : sp.at(product)["worst_group_nm"]) EXPECT_TRUE(nm > 360.0 && nm < 830.0);
+    EXPECT_FALSE(rgb.at(product).contains("wavelength_groups"));
+  }
+}
+
 TEST(SpectralBake, GreyFourAndThreeDTablesAreTheRgbTimesTheSunsColour) {
   // As above for the 4D and 3D tables, whose alpha is the single Mie's red:
   // with a flat medium every channel, alpha included, is the RGB bake's
