@@ -86,17 +86,33 @@ Texture render_panel(const Atmosphere& atm, const Texture& transmittance,
 
 }  // namespace
 
-Texture bake_sky_preview(const Atmosphere& atm, const Texture& transmittance,
-                         const Texture& multiscattering, const SkyPreviewSpec& spec,
-                         const BakeContext& ctx) {
+Texture render_sky_preview_radiance(const Atmosphere& atm, const Texture& transmittance,
+                                    const Texture& multiscattering, const SkyPreviewSpec& spec,
+                                    const BakeContext& ctx) {
   const int n = int(spec.panels.size());
   Texture out(spec.width, spec.height, 1, n, {"R", "G", "B"});
   const size_t panel_values = size_t(spec.width) * spec.height * 3;
   for (int p = 0; p < n; ++p) {
     const Texture hdr = render_panel(atm, transmittance, multiscattering, spec, spec.panels[p]);
-    const double exposure = auto_exposure(hdr);
+    std::copy(hdr.data.begin(), hdr.data.begin() + panel_values,
+              out.data.begin() + ptrdiff_t(size_t(p) * panel_values));
+    ctx.report(size_t(p + 1), size_t(n));
+  }
+  return out;
+}
+
+Texture tone_map_sky_preview(const Texture& radiance, const Atmosphere& atm,
+                             const SkyPreviewSpec& spec) {
+  const int n = int(spec.panels.size());
+  Texture out(spec.width, spec.height, 1, n, {"R", "G", "B"});
+  const size_t panel_values = size_t(spec.width) * spec.height * 3;
+  for (int p = 0; p < n; ++p) {
+    Texture panel(spec.width, spec.height, 1, 1, {"R", "G", "B"});
+    const float* src = radiance.data.data() + size_t(p) * panel_values;
+    std::copy(src, src + panel_values, panel.data.begin());
+    const double exposure = auto_exposure(panel);
     float* dst = out.data.data() + size_t(p) * panel_values;
-    for (size_t i = 0; i < panel_values; ++i) dst[i] = tonemap(exposure * hdr.data[i]);
+    for (size_t i = 0; i < panel_values; ++i) dst[i] = tonemap(exposure * src[i]);
     set_meta(out.metadata, fmt::format("panel_{}", p), spec.panels[p].label);
     // What the PNG's label of the panel says (png_preview.hpp panel_labels).
     set_meta(out.metadata, fmt::format("panel_{}_sun_elevation_deg", p),
@@ -104,12 +120,18 @@ Texture bake_sky_preview(const Atmosphere& atm, const Texture& transmittance,
     set_meta(out.metadata, fmt::format("panel_{}_camera_altitude_m", p),
              panel_altitude_m(atm, spec, spec.panels[p]));
     set_meta(out.metadata, fmt::format("exposure_{}", p), exposure);
-    ctx.report(size_t(p + 1), size_t(n));
   }
   set_meta(out.metadata, "quantity",
            "display-referred sky preview in [0, 1]: luminance * exposure_<panel>, tone mapped "
            "x (1 + x / 16) / (1 + x)");
   return out;
+}
+
+Texture bake_sky_preview(const Atmosphere& atm, const Texture& transmittance,
+                         const Texture& multiscattering, const SkyPreviewSpec& spec,
+                         const BakeContext& ctx) {
+  return tone_map_sky_preview(
+      render_sky_preview_radiance(atm, transmittance, multiscattering, spec, ctx), atm, spec);
 }
 
 }  // namespace skybake

@@ -46,4 +46,13 @@ Texture bake_sky_preview(const Atmosphere& atm, const Texture& transmittance_lut
                          const Texture& multiscattering_lut, const SkyPreviewSpec& spec,
                          const BakeContext& ctx);
 
+// The two halves of bake_sky_preview: the panels' linear radiance (RGB, one
+// layer per panel; linear in the sun, so a spectral bake sums it over
+// wavelength groups), and its exposure and tone mapping with the metadata.
+Texture render_sky_preview_radiance(const Atmosphere& atm, const Texture& transmittance_lut,
+                                    const Texture& multiscattering_lut,
+                                    const SkyPreviewSpec& spec, const BakeContext& ctx);
+Texture tone_map_sky_preview(const Texture& radiance, const Atmosphere& atm,
+                             const SkyPreviewSpec& spec);
+
 }  // namespace skybake

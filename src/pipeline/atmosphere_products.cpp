@@ -193,15 +193,27 @@ Texture bake_aerial_perspective(const Scene& scene, const OutputSpec& spec, cons
                                      *in.at("multiscattering"), aerial_perspective_spec(spec), ctx);
 }
 
-Texture bake_preview(const Scene& scene, const OutputSpec& spec, const ProductInputs& in,
-                     const BakeContext& ctx) {
+SkyPreviewSpec preview_spec(const OutputSpec& spec) {
   SkyPreviewSpec preview;
   preview.width = spec.size.at(0);
   preview.height = spec.size.at(1);
   preview.camera_altitude_m =
       option_double(spec, "camera_altitude_km", preview.camera_altitude_m * 1e-3) * 1e3;
+  return preview;
+}
+
+Texture bake_preview(const Scene& scene, const OutputSpec& spec, const ProductInputs& in,
+                     const BakeContext& ctx) {
   return bake_sky_preview(scene.atmosphere, *in.at("transmittance"), *in.at("multiscattering"),
-                          preview, ctx);
+                          preview_spec(spec), ctx);
+}
+
+// A spectral scene's preview: the panels' radiance per wavelength group,
+// summed, then exposed and tone mapped once (pipeline/spectral_bake.hpp).
+Texture bake_preview_radiance(const Scene& scene, const OutputSpec& spec, const ProductInputs& in,
+                              const BakeContext& ctx) {
+  return render_sky_preview_radiance(scene.atmosphere, *in.at("transmittance"),
+                                     *in.at("multiscattering"), preview_spec(spec), ctx);
 }
 
 }  // namespace
@@ -335,6 +347,10 @@ void add_atmosphere_products(std::vector<ProductInfo>& r) {
       bake_preview, 30000.0, nullptr);
   preview.default_formats = {"png"};
   preview.allowed_formats = {"png", "exr"};
+  preview.spectral_group_bake = bake_preview_radiance;
+  preview.spectral_finish = [](Texture radiance, const Scene& scene, const OutputSpec& spec) {
+    return tone_map_sky_preview(radiance, scene.atmosphere, preview_spec(spec));
+  };
   r.push_back(std::move(preview));
 }
 

@@ -61,6 +61,12 @@ struct ProductInfo {
   // vdb_compression when the output gives none (same measurements).
   std::string default_vdb_compression = "blosc";
   BakeFn bake;
+  // A product whose texture is not linear in the light (a tone-mapped
+  // picture): what a spectral bake bakes per wavelength group instead (the
+  // linear radiance, summed over groups), and what turns the sum into the
+  // product's texture. Empty: bake, and the sum is the texture.
+  BakeFn spectral_group_bake;
+  std::function<Texture(Texture, const Scene&, const OutputSpec&)> spectral_finish;
   // Rough cost for farm scheduling: single-thread nanoseconds per output
   // texel at default settings (measured with bench/); `plan` sums it into
   // each farm node's estimated_seconds (docs/farm.md).

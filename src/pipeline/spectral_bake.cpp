@@ -190,7 +190,9 @@ SpectralTables bake_spectral_graph(const Scene& scene, const ProductGraph& graph
       if (!needed[i]) continue;
       const GraphNode& node = graph.nodes[i];
       const ProductInputs in = t.inputs_of(node, graph);
-      t.tables[i] = node.info->bake(sg, node.spec, in, gctx);
+      const BakeFn& bake = node.info->spectral_group_bake ? node.info->spectral_group_bake
+                                                          : node.info->bake;
+      t.tables[i] = bake(sg, node.spec, in, gctx);
       if (output_convention(node.spec) != TableConvention::skybake && spectral_has_dependents(graph, i))
         t.twins[i] = node.info->bake(sg, skybake_layout_twin(node.spec), in, {});
       if (measured[i])
@@ -202,10 +204,13 @@ SpectralTables bake_spectral_graph(const Scene& scene, const ProductGraph& graph
     }
     forget_families();
   }
-  for (size_t i = 0; i < n; ++i)
-    if (out[i])
-      spectral_finish(*out[i], spectral_rule(graph.nodes[i].info->name), sun, luminance,
-                      spectral_has_mie_alpha(graph.nodes[i].info->name, *out[i]));
+  for (size_t i = 0; i < n; ++i) {
+    if (!out[i]) continue;
+    const ProductInfo& info = *graph.nodes[i].info;
+    spectral_finish(*out[i], spectral_rule(info.name), sun, luminance,
+                    spectral_has_mie_alpha(info.name, *out[i]));
+    if (info.spectral_finish) out[i] = info.spectral_finish(std::move(*out[i]), scene, graph.nodes[i].spec);
+  }
   return result;
 }
 

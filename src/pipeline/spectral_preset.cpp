@@ -191,11 +191,6 @@ bool spectral_reads_atmosphere(const std::string& product) {
 
 void check_spectral_outputs(const json& spectral, const std::vector<OutputSpec>& outputs,
                             const Source& scene_src, Problems& problems) {
-  for (const OutputSpec& o : outputs)
-    if (o.product == "sky_preview")
-      problems.add(scene_src, o.pointer + "/product",
-                   "a spectral scene bakes no sky_preview (its tone mapping does not add up over "
-                   "wavelengths); bake the preview without \"spectral\"");
   if (spectral.value("units", std::string("relative")) != "photometric") return;
   for (const OutputSpec& o : outputs)
     if (o.precision == "half" && spectral_reads_atmosphere(o.product))

@@ -13,6 +13,7 @@
 #include <ImfStandardAttributes.h>
 #include <nlohmann/json.hpp>
 
+#include "atmosphere/sky_preview.hpp"
 #include "atmosphere/spectral_medium.hpp"
 #include "core/colour.hpp"
 #include "core/spectral_data.hpp"
@@ -179,6 +180,41 @@ TEST(SpectralBake, GreySkyRecordsTheRgbBakesErrorPerGroup) {
     for (double nm : sp.at(product)["worst_group_nm"]) EXPECT_TRUE(nm > 360.0 && nm < 830.0);
     EXPECT_FALSE(rgb.at(product).contains("wavelength_groups"));
   }
+}
+
+TEST(SpectralBake, GreySkyPreviewIsTheRgbRadianceInTheSunsColourToneMapped) {
+  // The preview's radiance adds up over groups; the picture is its sum
+  // exposed and tone mapped once.
+  const json spectrum = {{"sun", {{"constant", {{"irradiance_w_m2_nm", 1.0}}}}}};
+  const json outputs = {
+      {{"product", "transmittance"}, {"size", {64, 16}}, {"formats", {"exr"}}},
+      {{"product", "multiscattering"}, {"size", {8, 8}}, {"formats", {"exr"}}, {"directions", 16}},
+      {{"product", "sky_preview"}, {"size", {32, 18}}, {"formats", {"exr"}}}};
+  const fs::path rgb_dir = bake_json(slab_scene(nullptr, spectrum, outputs));
+  const Texture rgb_t = read_exr(rgb_dir, "transmittance");
+  const Texture rgb_ms = read_exr(rgb_dir, "multiscattering");
+  const fs::path sp_dir = bake_json(slab_scene({{"wavelengths", 6}}, spectrum, outputs));
+  const Texture sp = read_exr(sp_dir, "sky_preview");
+  const glm::dvec3 sun = std::get<glm::dvec3>(read_exr(sp_dir, "transmittance").metadata.at("solar_irradiance"));
+
+  // The slab under a white sun of 1, as each group sees it.
+  Atmosphere white = load_scene(sp_dir.parent_path().parent_path() / "scene.json").atmosphere;
+  white.sun_illuminance = glm::dvec3(1.0);
+  SkyPreviewSpec spec;
+  spec.width = 32, spec.height = 18;
+  Texture radiance = render_sky_preview_radiance(white, rgb_t, rgb_ms, spec, {});
+  for (size_t t = 0; t < radiance.texel_count(); ++t)
+    for (int c = 0; c < 3; ++c) radiance.data[t * 3 + c] *= float(sun[c]);
+  const Texture expected = tone_map_sky_preview(radiance, white, spec);
+  ASSERT_EQ(sp.data.size(), expected.data.size());
+  double worst = 0.0;
+  for (size_t i = 0; i < sp.data.size(); ++i)
+    worst = std::max(worst, std::abs(double(sp.data[i]) - expected.data[i]));
+  EXPECT_LT(worst, 2e-4);
+  for (int p = 0; p < 5; ++p)
+    EXPECT_NEAR(std::get<double>(sp.metadata.at(fmt::format("exposure_{}", p))),
+                std::get<double>(expected.metadata.at(fmt::format("exposure_{}", p))),
+                1e-4 * std::get<double>(expected.metadata.at(fmt::format("exposure_{}", p))));
 }
 
 TEST(SpectralBake, GreyFourAndThreeDTablesAreTheRgbTimesTheSunsColour) {
