@@ -23,8 +23,7 @@ struct SpectralGroupTables {
   std::vector<std::optional<Texture>> tables, twins;
   ProductInputs inputs_of(const GraphNode& node, const ProductGraph& graph) const {
     ProductInputs in;
-    for (size_t d : node.deps)
-      in[graph.nodes[d].info->name] = twins[d] ? &*twins[d] : &*tables[d];
+    for (size_t d : node.deps) in[graph.nodes[d].info->name] = twins[d] ? &*twins[d] : &*tables[d];
     return in;
   }
 };
@@ -136,7 +135,8 @@ void spectral_finish(Texture& out, SpectralRule rule, const glm::dvec3& sun, dou
 
 }  // namespace
 
-void add_spectral_metadata(const SpectralScene& spectral, const ProductInfo& product, Texture& tex) {
+void add_spectral_metadata(const SpectralScene& spectral, const ProductInfo& product,
+                           Texture& tex) {
   if (std::find(product.scene_sections.begin(), product.scene_sections.end(), "atmosphere") ==
       product.scene_sections.end())
     return;
@@ -159,7 +159,7 @@ void add_spectral_metadata(const SpectralScene& spectral, const ProductInfo& pro
         q->replace(at, std::string::npos, "RGB in colour_space (spectral_quantity)");
   const bool mean = spectral_rule(product.name) == SpectralRule::sun_mean;
   set_meta(tex.metadata, "spectral_quantity",
-           std::string(mean ? "sun_weighted_mean"
+           std::string(mean                                           ? "sun_weighted_mean"
                        : spectral.units == SpectralUnits::photometric ? "luminance"
                                                                       : "radiance"));
 }
@@ -179,25 +179,29 @@ SpectralTables bake_spectral_graph(const Scene& scene, const ProductGraph& graph
     sg.spectral = nullptr;
     sg.atmosphere = atmosphere_at_wavelengths(scene.atmosphere, s.medium, grid.groups[g]);
     // The 4D and 3D families are cached by the atmosphere section: one entry per group.
-    sg.resolved["atmosphere"]["spectral_group_nm"] = {grid.groups[g][0], grid.groups[g][1], grid.groups[g][2]};
+    sg.resolved["atmosphere"]["spectral_group_nm"] = {grid.groups[g][0], grid.groups[g][1],
+                                                      grid.groups[g][2]};
     const glm::dmat3 m = s.group_matrix(grid, g);
     const double weight = spectral_group_luminance(s, grid, g);
     sun += m * glm::dvec3(1.0);
     luminance += weight;
     const BakeContext gctx = stage_context(ctx, double(g) / groups, double(g + 1) / groups);
-    SpectralGroupTables t{std::vector<std::optional<Texture>>(n), std::vector<std::optional<Texture>>(n)};
+    SpectralGroupTables t{std::vector<std::optional<Texture>>(n),
+                          std::vector<std::optional<Texture>>(n)};
     for (size_t i = 0; i < n; ++i) {
       if (!needed[i]) continue;
       const GraphNode& node = graph.nodes[i];
       const ProductInputs in = t.inputs_of(node, graph);
-      const BakeFn& bake = node.info->spectral_group_bake ? node.info->spectral_group_bake
-                                                          : node.info->bake;
+      const BakeFn& bake =
+          node.info->spectral_group_bake ? node.info->spectral_group_bake : node.info->bake;
       t.tables[i] = bake(sg, node.spec, in, gctx);
-      if (output_convention(node.spec) != TableConvention::skybake && spectral_has_dependents(graph, i))
+      if (output_convention(node.spec) != TableConvention::skybake &&
+          spectral_has_dependents(graph, i))
         t.twins[i] = node.info->bake(sg, skybake_layout_twin(node.spec), in, {});
       if (measured[i])
-        keep_worst_error(result.errors[i], node.info->measure_error(sg, node.spec, in, *t.tables[i]),
-                         grid.groups[g], groups);
+        keep_worst_error(result.errors[i],
+                         node.info->measure_error(sg, node.spec, in, *t.tables[i]), grid.groups[g],
+                         groups);
       const SpectralMieAlpha mie(node.info->name, *t.tables[i], sg, in, gctx);
       if (!out[i]) out[i].emplace();
       spectral_accumulate(*out[i], *t.tables[i], m, weight, mie.texture());
@@ -209,7 +213,8 @@ SpectralTables bake_spectral_graph(const Scene& scene, const ProductGraph& graph
     const ProductInfo& info = *graph.nodes[i].info;
     spectral_finish(*out[i], spectral_rule(info.name), sun, luminance,
                     spectral_has_mie_alpha(info.name, *out[i]));
-    if (info.spectral_finish) out[i] = info.spectral_finish(std::move(*out[i]), scene, graph.nodes[i].spec);
+    if (info.spectral_finish)
+      out[i] = info.spectral_finish(std::move(*out[i]), scene, graph.nodes[i].spec);
   }
   return result;
 }

@@ -64,12 +64,14 @@ TEST(SpectralBake, OneWavelengthThroughARayleighSlab) {
   // The sun shines only inside the bin of 501 nm (N = 15: bins of 470/15 nm,
   // the fifth centred on 360 + 4.5 * 470/15 = 501 nm): every channel of the
   // sun-weighted transmittance is T(501 nm) = exp(-sigma(501) H).
-  const json sun = {{"table", {{"wavelengths_nm", {490, 491, 511, 512}}, {"values", {0, 1, 1, 0}}}}};
+  const json sun = {
+      {"table", {{"wavelengths_nm", {490, 491, 511, 512}}, {"values", {0, 1, 1, 0}}}}};
   const json spectrum = {
       {"sun", sun},
       {"rayleigh", {{"power_law", {{"scattering_per_m", kSigma550}, {"reference_nm", 550}}}}}};
   const json outputs = {{{"product", "transmittance"}, {"size", {32, 8}}, {"formats", {"exr"}}}};
-  const Texture t = read_exr(bake_json(slab_scene({{"wavelengths", 15}}, spectrum, outputs)), "transmittance");
+  const Texture t =
+      read_exr(bake_json(slab_scene({{"wavelengths", 15}}, spectrum, outputs)), "transmittance");
   const double nm = 360.0 + 4.5 * 470.0 / 15.0;
   const double expected = std::exp(-kSigma550 * std::pow(nm / 550.0, -4.0) * kSlabKm * 1e3);
   // Texel (0, 0): the ground looking at the zenith.
@@ -87,7 +89,8 @@ TEST(SpectralBake, SunAtZeroAirMassIsTheSolarSpectrumsXyz) {
     const Texture t = read_exr(dir, "transmittance");
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(t.at(0, t.height - 1, 0, 0, c), 1.0, 1e-6);
     const glm::dvec3 sun = std::get<glm::dvec3>(t.metadata.at("solar_irradiance"));
-    const ColourSpace cs = std::string(space) == "acescg" ? ColourSpace::acescg : ColourSpace::rec709;
+    const ColourSpace cs =
+        std::string(space) == "acescg" ? ColourSpace::acescg : ColourSpace::rec709;
     const glm::dvec3 xyz = xyz_from_rgb(chromaticities_of(cs)) * sun;
     const glm::dvec3 fine = spectrum_xyz(astm_g173_solar_irradiance, 0.25);
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(xyz[i] / fine[i], 1.0, 1e-4) << space << i;
@@ -108,7 +111,8 @@ TEST(SpectralBake, LuminanceScaleOfEachUnitSystem) {
   std::map<std::string, double> scale;
   for (const char* units : {"relative", "radiometric", "photometric"}) {
     const json spectral = {{"wavelengths", 15}, {"units", units}};
-    const Texture t = read_exr(bake_json(slab_scene(spectral, json::object(), outputs)), "transmittance");
+    const Texture t =
+        read_exr(bake_json(slab_scene(spectral, json::object(), outputs)), "transmittance");
     scale[units] = std::get<double>(t.metadata.at("luminance_scale_cd_m2"));
     const glm::dvec3 sun = std::get<glm::dvec3>(t.metadata.at("solar_irradiance"));
     const double y = (xyz_from_rgb(chromaticities_of(ColourSpace::rec709)) * sun).y;
@@ -133,7 +137,8 @@ TEST(SpectralBake, GreySkyIsTheRgbSkyTimesTheSunsColour) {
        {"formats", {"exr"}},
        {"views", {{{"altitude_km", 0.5}, {"sun_zenith_deg", 70}}}}}};
   const Texture rgb = read_exr(bake_json(slab_scene(nullptr, spectrum, outputs)), "skyview");
-  const Texture sp = read_exr(bake_json(slab_scene({{"wavelengths", 6}}, spectrum, outputs)), "skyview");
+  const Texture sp =
+      read_exr(bake_json(slab_scene({{"wavelengths", 6}}, spectrum, outputs)), "skyview");
   const glm::dvec3 sun = std::get<glm::dvec3>(sp.metadata.at("solar_irradiance"));
   const glm::dvec3 e = rgb_from_xyz(chromaticities_of(ColourSpace::rec709)) * glm::dvec3(1.0);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(sun[c], e[c], 1e-3 * e[c]);  // illuminant E, Y = 1
@@ -195,7 +200,8 @@ TEST(SpectralBake, GreySkyPreviewIsTheRgbRadianceInTheSunsColourToneMapped) {
   const Texture rgb_ms = read_exr(rgb_dir, "multiscattering");
   const fs::path sp_dir = bake_json(slab_scene({{"wavelengths", 6}}, spectrum, outputs));
   const Texture sp = read_exr(sp_dir, "sky_preview");
-  const glm::dvec3 sun = std::get<glm::dvec3>(read_exr(sp_dir, "transmittance").metadata.at("solar_irradiance"));
+  const glm::dvec3 sun =
+      std::get<glm::dvec3>(read_exr(sp_dir, "transmittance").metadata.at("solar_irradiance"));
 
   // The slab under a white sun of 1, as each group sees it.
   Atmosphere white = load_scene(sp_dir.parent_path().parent_path() / "scene.json").atmosphere;
@@ -246,7 +252,8 @@ TEST(SpectralBake, GreyFourAndThreeDTablesAreTheRgbTimesTheSunsColour) {
       for (int c = 0; c < 4; ++c) {
         // Grey: the RGB bake's channels are equal, the sky's colour is the sun's.
         const double want = c == 3 ? a[3] * sun[0] : a[0] * sun[c];
-        ASSERT_NEAR(b[c], want, 2e-5 * std::abs(want) + 1e-12) << name << " texel " << t << " " << c;
+        ASSERT_NEAR(b[c], want, 2e-5 * std::abs(want) + 1e-12)
+            << name << " texel " << t << " " << c;
       }
     }
   }
@@ -262,9 +269,11 @@ TEST(SpectralBake, ShippedRgbCoefficientsAreTheirSpectraAtRgbWavelengths) {
       for (int c = 0; c < 3; ++c) {
         const MediumComponent& want = at.components[i];
         const MediumComponent& got = scene.atmosphere.components[i];
-        EXPECT_NEAR(got.scattering_per_m[c], want.scattering_per_m[c], 1e-4 * want.scattering_per_m[c])
+        EXPECT_NEAR(got.scattering_per_m[c], want.scattering_per_m[c],
+                    1e-4 * want.scattering_per_m[c])
             << preset << " " << got.name << c;
-        EXPECT_NEAR(got.absorption_per_m[c], want.absorption_per_m[c], 1e-4 * want.absorption_per_m[c])
+        EXPECT_NEAR(got.absorption_per_m[c], want.absorption_per_m[c],
+                    1e-4 * want.absorption_per_m[c])
             << preset << " " << got.name << c;
       }
   }
@@ -292,7 +301,8 @@ TEST(SpectralPreset, ProblemsNameFilePointerAndRule) {
       {"rayleigh", {{"table", {{"wavelengths_nm", {500, 400}}, {"values", {1e-5, 2e-5}}}}}},
       {"ozone", {{"column", {{"dobson", 300}}}}},
       {"ground_albedo",
-       {{"table", {{"wavelengths_nm", {400, 700}}, {"values", {0.2, 1.5}}, {"absorption", {0, 0}}}}}}};
+       {{"table",
+         {{"wavelengths_nm", {400, 700}}, {"values", {0.2, 1.5}}, {"absorption", {0, 0}}}}}}};
   json scene = slab_scene({{"units", "photometric"}}, spectrum,
                           {{{"product", "transmittance"}, {"precision", "half"}}});
   std::ofstream(dir / "bad.json") << scene.dump(2);
@@ -301,7 +311,8 @@ TEST(SpectralPreset, ProblemsNameFilePointerAndRule) {
     FAIL() << "loaded";
   } catch (const PresetError& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("/atmosphere/spectrum/rayleigh/table/wavelengths_nm/1"), std::string::npos) << what;
+    EXPECT_NE(what.find("/atmosphere/spectrum/rayleigh/table/wavelengths_nm/1"), std::string::npos)
+        << what;
     EXPECT_NE(what.find("/atmosphere/spectrum/ozone"), std::string::npos) << what;
     EXPECT_NE(what.find("needs the atmosphere's 'ozone' component"), std::string::npos) << what;
     EXPECT_NE(what.find("/outputs/0/precision"), std::string::npos) << what;

@@ -27,8 +27,8 @@
 #include <glm/glm.hpp>
 
 #include "atmosphere/phase.hpp"
-#include "core/math.hpp"
 #include "atmosphere/sphere_rule.hpp"
+#include "core/math.hpp"
 
 namespace skybake::thin_slab {
 
@@ -67,7 +67,7 @@ inline double single(const Slab& s, double z, const glm::dvec3& w) {
 // J(z, w): sigma int p(w'.w) L1(z, w') dw'.
 inline double source(const Slab& s, double z, const glm::dvec3& w, int azimuths = 720) {
   const glm::dvec3 e1 = glm::normalize(std::abs(w.x) < 0.9 ? glm::cross(w, glm::dvec3(1, 0, 0))
-                                                            : glm::cross(w, glm::dvec3(0, 1, 0)));
+                                                           : glm::cross(w, glm::dvec3(0, 1, 0)));
   const glm::dvec3 e2 = glm::cross(w, e1);
   // cos(alpha) panels: the peak of g = 0.85 is some 0.1 rad wide.
   static const double edges[] = {-1.0, 0.0, 0.7, 0.9, 0.97, 0.99, 0.997, 0.9995, 1.0};
@@ -102,6 +102,8 @@ inline double second_order_at_ground(const Slab& s, const glm::dvec3& v, int azi
 }
 
 // L1 at the ground toward the view v, in closed form.
-inline double single_at_ground(const Slab& s, const glm::dvec3& v) { return single(s, 0.0, -v); }
+inline double single_at_ground(const Slab& s, const glm::dvec3& v) {
+  return single(s, 0.0, -v);
+}
 
 }  // namespace skybake::thin_slab

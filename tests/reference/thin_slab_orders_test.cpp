@@ -108,8 +108,9 @@ TEST(ThinSlabOrders, SecondOrderOfTheTableOrItsWarning) {
     slab.sun = v.sun();
     const glm::dvec3 dir = v.view();
     const double nu = glm::dot(dir, slab.sun), rb = atm.bottom_radius_m;
-    const double total =
-        lookup_scattering(t.scattering, t.single_mie, t.shape, atm, rb, dir.z, slab.sun.z, nu, false).g;
+    const double total = lookup_scattering(t.scattering, t.single_mie, t.shape, atm, rb, dir.z,
+                                           slab.sun.z, nu, false)
+                             .g;
     const double single =
         henyey_greenstein_phase(nu, slab.g) *
         lookup_scattering_rgb(t.single_mie, t.shape, atm, rb, dir.z, slab.sun.z, nu, false).g;
@@ -126,9 +127,8 @@ TEST(ThinSlabOrders, SecondOrderOfTheTableOrItsWarning) {
   RecordProperty("out_over_in", fmt::format("{:.4f}", balance->g));
   // Within 5 % RMS, or the bake's energy balance flags the table
   // (energy_gain): never wrong in silence.
-  EXPECT_TRUE(rms < 0.05 || balance->g > 1.0 + kEnergyGainTolerance)
-      << fmt::format("second order {:.3g} RMS off the quadrature, out / in {:.4f}", rms,
-                     balance->g);
+  EXPECT_TRUE(rms < 0.05 || balance->g > 1.0 + kEnergyGainTolerance) << fmt::format(
+      "second order {:.3g} RMS off the quadrature, out / in {:.4f}", rms, balance->g);
 }
 
 }  // namespace
