@@ -151,8 +151,6 @@ class BrunetonIteration {
         // The density reads the previous order with its ground rows per
         // opacity (header, ground_row_opacity); the irradiance reads only the sky.
         opacity_(ground_row_opacity(atm, shape_)),
-        single_r_per_opacity_(divide_ground_rows_by_opacity(single.rayleigh, shape_, opacity_)),
-        single_m_per_opacity_(divide_ground_rows_by_opacity(single.mie, shape_, opacity_)),
         accumulated_(single.rayleigh),
         irradiance_(spec.irradiance_width, spec.irradiance_height, 1, 1, {"R", "G", "B"}),
         previous_{&single.rayleigh, &single.mie, nullptr, &phases} {}
@@ -162,6 +160,10 @@ class BrunetonIteration {
   double add_next_order(int k, const BakeContext& ctx) {
     bake_scattering_density(atm_, lut_, shape_, density_previous(k), ground_,
                             spec_.density_directions, stage_context(ctx, 0.0, 0.45), density_);
+    // Order 1 per opacity is read by order 2's density alone: two tables
+    // fewer from here on (the bake's peak memory is the orders after it).
+    single_r_per_opacity_ = Texture();
+    single_m_per_opacity_ = Texture();
     Texture E = bake_indirect_irradiance(atm_, shape_, previous_, spec_.irradiance_width,
                                          spec_.irradiance_height, spec_.irradiance_directions,
                                          BakeContext{});
@@ -205,9 +207,12 @@ class BrunetonIteration {
  private:
   // Order k - 1 as the density reads it, ground rows per opacity.
   ScatteringOrder density_previous(int k) {
-    if (k < 3)
+    if (k < 3) {
+      single_r_per_opacity_ = divide_ground_rows_by_opacity(single_.rayleigh, shape_, opacity_);
+      single_m_per_opacity_ = divide_ground_rows_by_opacity(single_.mie, shape_, opacity_);
       return ScatteringOrder{&single_r_per_opacity_, &single_m_per_opacity_, nullptr, &phases_,
                              true};
+    }
     // Copied into the buffer of the order before (no fresh pages to fault
     // in), in parallel: a serial copy of the table each order held back the
     // second thread.
@@ -227,7 +232,7 @@ class BrunetonIteration {
   const SingleScatteringTables& single_;
   const TexelPhases phase_;
   const std::vector<glm::dvec3> opacity_;
-  const Texture single_r_per_opacity_, single_m_per_opacity_;
+  Texture single_r_per_opacity_, single_m_per_opacity_;  // order 2's density only
   Texture accumulated_;           // RGB of the scattering texture
   Texture irradiance_;            // E_1 .. E_{k-1}
   Texture previous_radiance_;     // DeltaS of the previous order (k >= 3)
