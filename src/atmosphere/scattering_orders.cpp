@@ -204,6 +204,17 @@ class BrunetonIteration {
 
   const Texture& accumulated() const { return accumulated_; }
 
+  // After take_irradiance nothing reads the next order's buffers: freed
+  // before the outputs are assembled, whose copies would otherwise peak on
+  // top of them.
+  void release_order_buffers() {
+    density_ = Texture();
+    delta_ = Texture();
+    previous_per_opacity_ = Texture();
+    previous_radiance_ = Texture();
+    ground_table_ = Texture();
+  }
+
  private:
   // Order k - 1 as the density reads it, ground rows per opacity.
   ScatteringOrder density_previous(int k) {
@@ -301,6 +312,7 @@ BrunetonTextures bake_bruneton(const Atmosphere& atm, const Texture& transmittan
   out.direct_irradiance = bake_direct_irradiance(atm, transmittance_lut, spec.irradiance_width,
                                                  spec.irradiance_height, BakeContext{});
   Texture irradiance = orders.take_irradiance(out.tail_factor, out.direct_irradiance);
+  orders.release_order_buffers();
   assemble_bruneton_outputs(atm, spec, orders.accumulated(), std::move(single.mie),
                             std::move(irradiance), out);
   const glm::dvec3 balance = sun_zenith_out_over_in(atm, out, spec.irradiance_includes_direct);
