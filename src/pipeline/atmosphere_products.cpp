@@ -239,7 +239,8 @@ ProductInfo atmosphere_lut_product(std::string name, std::string summary,
   return p;
 }
 
-// The iteration holds about ten tables of the field's shape (RGB float32).
+// The iteration holds seven tables of the field's shape (RGB float32) at its
+// peak, besides the field it returns: 4 Mi texels keep it near 400 MB.
 constexpr double kMaxConvergedTexels = 4.0 * 1024 * 1024;
 
 std::vector<ProductProblem> converged_field_problems(const OutputSpec& spec) {
