@@ -81,6 +81,8 @@ ConvergedField compute_converged_field(const Atmosphere& atm, const Texture& tra
   f.ground_irradiance = std::move(t.irradiance);
   f.orders_used = t.orders_used;
   f.last_residual = t.last_residual;
+  if (const glm::dvec3* b = find_meta<glm::dvec3>(t.scattering.metadata, "energy_out_over_in"))
+    f.energy_out_over_in = *b;
   return f;
 }
 
@@ -432,6 +434,7 @@ Texture converged_multiscattering_table(const Atmosphere& atm, const Texture& tr
   set_meta(m, "tolerance", b.tolerance);
   set_meta(m, "orders_used", field.orders_used);
   set_meta(m, "last_residual", field.last_residual);
+  set_meta(m, "energy_out_over_in", field.energy_out_over_in);
   set_meta(m, "bands", spec.bands);
   set_meta(m, "estimator", std::string(psi_estimator_name(spec.estimator)));
   if (spec.nu_slices > 0) {

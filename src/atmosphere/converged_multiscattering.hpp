@@ -66,6 +66,9 @@ struct ConvergedField {
   ScatteringPhases phases;
   int orders_used = 0;
   double last_residual = 1.0;
+  // The iteration's energy balance (energy_balance.hpp); the products read
+  // from the field record it as "energy_out_over_in".
+  glm::dvec3 energy_out_over_in{0.0};
 };
 ConvergedField compute_converged_field(const Atmosphere& atm, const Texture& transmittance_lut,
                                        const ConvergedMultiscatteringSpec& spec,

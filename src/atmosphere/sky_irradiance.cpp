@@ -182,6 +182,7 @@ Texture bake_sky_irradiance(const Atmosphere& atm, const SkyRadianceSource& sour
   Metadata& m = tex.metadata;
   set_meta(m, "parameterization", std::string("sky_irradiance_sh_l2"));
   set_meta(m, "radiance_source", std::string(source.field ? "field" : "psi_ms"));
+  if (source.field) set_meta(m, "energy_out_over_in", source.field->energy_out_over_in);
   set_meta(m, "sh_layers",
            std::string("ln(L00), L10/L00, L11/L00, L20/L00, L21/L00, L22/L00"));
   set_meta(m, "sh_frame",

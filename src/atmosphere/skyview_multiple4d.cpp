@@ -53,6 +53,7 @@ Texture bake_skyview_lut_multiple4d(const Atmosphere& atm, const Texture& transm
                std::to_string(field.shape.mu_s_size) + "x" + std::to_string(field.shape.nu_size));
   set_meta(meta, "orders_used", field.orders_used);
   set_meta(meta, "last_residual", field.last_residual);
+  set_meta(meta, "energy_out_over_in", field.energy_out_over_in);
   return tex;
 }
 

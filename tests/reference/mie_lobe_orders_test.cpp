@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "atmosphere/converged_multiscattering.hpp"
 #include "atmosphere/orders_resolution.hpp"
 #include "reference/dust_sky_balance.hpp"
 
@@ -47,6 +48,24 @@ TEST(MieLobeOrders, ForwardDustOnACoarseMuAxisRecordsItsGain) {
   ASSERT_NE(recorded, nullptr);
   RecordProperty("out_over_in", fmt::format("{:.4f}", recorded->g));
   EXPECT_GT(recorded->g, 1.0 + kEnergyGainTolerance);
+}
+
+TEST(MieLobeOrders, TablesFromAFieldThatGainsEnergyRecordItsBalance) {
+  // The converged Psi_ms table reads the same kind of iteration: its
+  // metadata carries the field's balance, which the energy_gain warning reads.
+  const Atmosphere atm = dust_sky_balance::dust_sky(0.5, 0.0, 0.85);
+  const Texture lut = bake_transmittance_lut(atm, {128, 32, 40}, BakeContext{});
+  ConvergedMultiscatteringSpec spec;
+  spec.bruneton = with_mie_lobe_shape(spec.bruneton);
+  spec.bruneton.r_size = 8, spec.bruneton.mu_size = 32;
+  const ConvergedField field = compute_converged_field(atm, lut, spec, BakeContext{});
+  EXPECT_GT(field.energy_out_over_in.g, 1.0 + kEnergyGainTolerance);
+  MultiscatteringLutSpec table;
+  table.width = table.height = 8;
+  const Texture psi = converged_multiscattering_table(atm, lut, table, spec, field, BakeContext{});
+  const glm::dvec3* recorded = find_meta<glm::dvec3>(psi.metadata, "energy_out_over_in");
+  ASSERT_NE(recorded, nullptr);
+  EXPECT_EQ(*recorded, field.energy_out_over_in);
 }
 
 }  // namespace
