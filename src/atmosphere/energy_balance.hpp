@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include "atmosphere/medium.hpp"
+#include "atmosphere/scattering3d_lut.hpp"
 #include "atmosphere/scattering_orders.hpp"
 
 namespace skybake {
@@ -25,6 +26,13 @@ namespace skybake {
 // Midpoint rule on `cosines` downward cosines at the top.
 glm::dvec3 sun_zenith_out_over_in(const Atmosphere& atm, const BrunetonTextures& t,
                                   bool irradiance_includes_direct, int cosines = 2000);
+
+// The same for the azimuth-free 3D table, whose read is exact in azimuth
+// with the sun at the zenith; the ground's light from the table's sky
+// (int L mu dw over the upper hemisphere, same cosines) and the direct sun
+// through the transmittance table.
+glm::dvec3 sun_zenith_out_over_in_3d(const Atmosphere& atm, const Scattering3dTextures& t,
+                                     const Texture& transmittance_lut, int cosines = 2000);
 
 // A gain above this (out / in - 1, worst channel) is the table's error, not
 // the shell's curvature, which only lowers out / in.

@@ -12,6 +12,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "atmosphere/energy_balance.hpp"
 #include "atmosphere/gathering_lut.hpp"
 #include "atmosphere/geometric_tail.hpp"
 #include "atmosphere/geometry.hpp"
@@ -540,6 +541,9 @@ Scattering3dTextures bake_scattering3d(const Atmosphere& atm, const Texture& tra
                         out);
   out.gathering_sum = std::move(orders.gathering_sum());
   set_gathering_sum_metadata(out.gathering_sum.metadata, atm, spec, out);
+  const glm::dvec3 balance = sun_zenith_out_over_in_3d(atm, out, transmittance_lut);
+  for (Texture* t : {&out.scattering, &out.gathering_sum})
+    set_meta(t->metadata, "energy_out_over_in", balance);
   if (ctx.on_progress) ctx.on_progress(1.0);
   return out;
 }
