@@ -124,18 +124,29 @@ TEST(SpectralBake, LuminanceScaleOfEachUnitSystem) {
   EXPECT_NEAR(scale["relative"], 683.0 * spectrum_xyz(astm_g173_solar_irradiance, 0.25).y, 1.0);
 }
 
-TEST(SpectralBake, GreySkyIsTheRgbSkyTimesTheSunsColour) {
-  // Coefficients flat in wavelength and a flat sun: every group bakes the
-  // same grey sky-view as the RGB bake, and the groups add up to it times
-  // the sun's colour (relative units: the sun's luminance is 1).
-  const json spectrum = {{"sun", {{"constant", {{"irradiance_w_m2_nm", 1.0}}}}}};
-  const json outputs = {
+// A sun of spectral irradiance 1 at every wavelength.
+json flat_sun() {
+  return {{"sun", {{"constant", {{"irradiance_w_m2_nm", 1.0}}}}}};
+}
+
+// Hillaire's set at small sizes, a sky-view layer 500 m up under a sun 20
+// degrees high.
+json small_hillaire_set() {
+  return {
       {{"product", "transmittance"}, {"size", {32, 8}}, {"formats", {"exr"}}},
       {{"product", "multiscattering"}, {"size", {8, 8}}, {"formats", {"exr"}}, {"directions", 16}},
       {{"product", "skyview"},
        {"size", {16, 8}},
        {"formats", {"exr"}},
        {"views", {{{"altitude_km", 0.5}, {"sun_zenith_deg", 70}}}}}};
+}
+
+TEST(SpectralBake, GreySkyIsTheRgbSkyTimesTheSunsColour) {
+  // Coefficients flat in wavelength and a flat sun: every group bakes the
+  // same grey sky-view as the RGB bake, and the groups add up to it times
+  // the sun's colour (relative units: the sun's luminance is 1).
+  const json spectrum = flat_sun();
+  const json outputs = small_hillaire_set();
   const Texture rgb = read_exr(bake_json(slab_scene(nullptr, spectrum, outputs)), "skyview");
   const Texture sp =
       read_exr(bake_json(slab_scene({{"wavelengths", 6}}, spectrum, outputs)), "skyview");
@@ -163,14 +174,8 @@ std::map<std::string, json> error_records(const json& scene) {
 TEST(SpectralBake, GreySkyRecordsTheRgbBakesErrorPerGroup) {
   // Every group of a grey sky bakes the RGB bake's tables against the same
   // references: each spectral record is the RGB one, with its groups named.
-  const json spectrum = {{"sun", {{"constant", {{"irradiance_w_m2_nm", 1.0}}}}}};
-  const json outputs = {
-      {{"product", "transmittance"}, {"size", {32, 8}}, {"formats", {"exr"}}},
-      {{"product", "multiscattering"}, {"size", {8, 8}}, {"formats", {"exr"}}, {"directions", 16}},
-      {{"product", "skyview"},
-       {"size", {16, 8}},
-       {"formats", {"exr"}},
-       {"views", {{{"altitude_km", 0.5}, {"sun_zenith_deg", 70}}}}}};
+  const json spectrum = flat_sun();
+  const json outputs = small_hillaire_set();
   const auto rgb = error_records(slab_scene(nullptr, spectrum, outputs));
   const auto sp = error_records(slab_scene({{"wavelengths", 6}}, spectrum, outputs));
   for (const char* product : {"transmittance", "multiscattering", "skyview"}) {
@@ -190,7 +195,7 @@ TEST(SpectralBake, GreySkyRecordsTheRgbBakesErrorPerGroup) {
 TEST(SpectralBake, GreySkyPreviewIsTheRgbRadianceInTheSunsColourToneMapped) {
   // The preview's radiance adds up over groups; the picture is its sum
   // exposed and tone mapped once.
-  const json spectrum = {{"sun", {{"constant", {{"irradiance_w_m2_nm", 1.0}}}}}};
+  const json spectrum = flat_sun();
   const json outputs = {
       {{"product", "transmittance"}, {"size", {64, 16}}, {"formats", {"exr"}}},
       {{"product", "multiscattering"}, {"size", {8, 8}}, {"formats", {"exr"}}, {"directions", 16}},
