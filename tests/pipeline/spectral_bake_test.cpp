@@ -232,7 +232,7 @@ TEST(SpectralBake, GreyFourAndThreeDTablesAreTheRgbTimesTheSunsColour) {
   // As above for the 4D and 3D tables, whose alpha is the single Mie's red:
   // with a flat medium every channel, alpha included, is the RGB bake's
   // times the sun's colour (alpha: its red).
-  json spectrum = {{"sun", {{"constant", {{"irradiance_w_m2_nm", 1.0}}}}}};
+  json spectrum = flat_sun();
   const json outputs = {
       {{"product", "transmittance"}, {"size", {32, 8}}, {"formats", {"exr"}}},
       {{"product", "scattering"}, {"size", {4, 16, 8, 4}}, {"orders", 2}, {"formats", {"exr"}}},
