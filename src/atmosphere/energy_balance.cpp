@@ -1,4 +1,4 @@
-// Energy balance of a baked 4D table. See the header.
+// Energy balance of a baked 4D or 3D table. See the header.
 #include "atmosphere/energy_balance.hpp"
 
 #include "atmosphere/geometry.hpp"

@@ -1,5 +1,5 @@
-// Energy balance of a baked 4D table: a bake-time check that the table does
-// not return more light than the sun gives (docs/decisions/warnings.md).
+// Energy balance of a baked 4D or 3D table: a bake-time check that the table
+// does not return more light than the sun gives (docs/decisions/warnings.md).
 //
 // Sun at the zenith, the light leaving the atmosphere is what goes up
 // through the top plus what the ground absorbs:

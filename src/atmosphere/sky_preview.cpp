@@ -22,9 +22,9 @@ double luminance(const float* rgb) {
 
 // Exposure that maps the panel's 90th-percentile luminance to 0.8: robust to
 // the sun disk, which covers far fewer than 10 % of the pixels.
-double auto_exposure(const Texture& image) {
-  std::vector<double> y(image.texel_count());
-  for (size_t i = 0; i < y.size(); ++i) y[i] = luminance(&image.data[i * 3]);
+double auto_exposure(const float* rgb, size_t texels) {
+  std::vector<double> y(texels);
+  for (size_t i = 0; i < y.size(); ++i) y[i] = luminance(&rgb[i * 3]);
   const size_t k = size_t(0.9 * double(y.size() - 1));
   std::nth_element(y.begin(), y.begin() + k, y.end());
   return y[k] > 0.0 ? 0.8 / y[k] : 1.0;
@@ -107,10 +107,8 @@ Texture tone_map_sky_preview(const Texture& radiance, const Atmosphere& atm,
   Texture out(spec.width, spec.height, 1, n, {"R", "G", "B"});
   const size_t panel_values = size_t(spec.width) * spec.height * 3;
   for (int p = 0; p < n; ++p) {
-    Texture panel(spec.width, spec.height, 1, 1, {"R", "G", "B"});
     const float* src = radiance.data.data() + size_t(p) * panel_values;
-    std::copy(src, src + panel_values, panel.data.begin());
-    const double exposure = auto_exposure(panel);
+    const double exposure = auto_exposure(src, panel_values / 3);
     float* dst = out.data.data() + size_t(p) * panel_values;
     for (size_t i = 0; i < panel_values; ++i) dst[i] = tonemap(exposure * src[i]);
     set_meta(out.metadata, fmt::format("panel_{}", p), spec.panels[p].label);

@@ -2,7 +2,7 @@
 // texture (VDB plugin only: includes OpenVDB). vdb.cpp's reference build
 // copies each channel into a dense array and runs OpenVDB's copyFromDense,
 // then activates the texture's box; that costs a 4-byte-per-voxel copy of
-// every channel (fresh pages) and a second pass over it. Where the result
+// every channel (fresh pages) and another walk over it. Where the result
 // is provably that same tree, the leaves are filled here instead.
 //
 // What copyFromDense makes (openvdb/tools/Dense.h, CopyFromDense and

@@ -349,7 +349,7 @@ void add_atmosphere_products(std::vector<ProductInfo>& r) {
   preview.default_formats = {"png"};
   preview.allowed_formats = {"png", "exr"};
   preview.spectral_group_bake = bake_preview_radiance;
-  preview.spectral_finish = [](Texture radiance, const Scene& scene, const OutputSpec& spec) {
+  preview.finish_spectral_sum = [](Texture radiance, const Scene& scene, const OutputSpec& spec) {
     return tone_map_sky_preview(radiance, scene.atmosphere, preview_spec(spec));
   };
   r.push_back(std::move(preview));

@@ -171,6 +171,12 @@ bool contains(const std::vector<std::string>& list, const std::string& item) {
   return std::find(list.begin(), list.end(), item) != list.end();
 }
 
+// A key written in `file` at `pointer` that changes nothing, and why.
+PresetProblem no_effect(const std::string& file, const std::string& pointer,
+                        const std::string& rule) {
+  return {file, pointer, "has no effect: " + rule};
+}
+
 bool read_by_an_output(const Scene& scene, const std::string& section) {
   for (const OutputSpec& o : scene.outputs)
     if (contains(find_product(o.product)->scene_sections, section)) return true;
@@ -181,7 +187,7 @@ bool read_by_an_output(const Scene& scene, const std::string& section) {
 void section_warnings(const json& written, const Scene& scene, const std::string& file,
                       const Source& atmosphere_src, std::vector<PresetProblem>& warnings) {
   auto warn = [&](const std::string& pointer, const std::string& rule) {
-    warnings.push_back({file, pointer, "has no effect: " + rule});
+    warnings.push_back(no_effect(file, pointer, rule));
   };
   if (written.contains("clouds") && !read_by_an_output(scene, "clouds"))
     warn("/clouds", "no output reads the clouds section (weather, cloud_types, height_gradients "
@@ -193,10 +199,10 @@ void section_warnings(const json& written, const Scene& scene, const std::string
   if (!written.contains("spectral") && written.contains("atmosphere") &&
       written["atmosphere"].is_object() && written["atmosphere"].contains("spectrum") &&
       read_by_an_output(scene, "atmosphere"))
-    warnings.push_back({atmosphere_src.file, atmosphere_src.prefix + "/spectrum",
-                        "has no effect: the scene bakes RGB tables from the atmosphere's RGB "
-                        "coefficients; a \"spectral\" section in the scene (e.g. "
-                        "{\"wavelengths\": 15}) bakes from the spectrum"});
+    warnings.push_back(no_effect(atmosphere_src.file, atmosphere_src.prefix + "/spectrum",
+                                 "the scene bakes RGB tables from the atmosphere's RGB "
+                                 "coefficients; a \"spectral\" section in the scene (e.g. "
+                                 "{\"wavelengths\": 15}) bakes from the spectrum"));
   if (written.contains("convention") &&
       std::none_of(scene.outputs.begin(), scene.outputs.end(),
                    [](const OutputSpec& o) { return takes_convention(o.product); }))
@@ -211,7 +217,7 @@ std::vector<PresetProblem> no_effect_warnings(const json& written, const Scene& 
                                               const Source& atmosphere_src) {
   std::vector<PresetProblem> warnings;
   auto warn = [&](const std::string& pointer, const std::string& rule) {
-    warnings.push_back({file, pointer, "has no effect: " + rule});
+    warnings.push_back(no_effect(file, pointer, rule));
   };
   section_warnings(written, scene, file, atmosphere_src, warnings);
   for (size_t i = 0; i < scene.outputs.size(); ++i) {

@@ -66,7 +66,7 @@ struct ProductInfo {
   // linear radiance, summed over groups), and what turns the sum into the
   // product's texture. Empty: bake, and the sum is the texture.
   BakeFn spectral_group_bake;
-  std::function<Texture(Texture, const Scene&, const OutputSpec&)> spectral_finish;
+  std::function<Texture(Texture, const Scene&, const OutputSpec&)> finish_spectral_sum;
   // Rough cost for farm scheduling: single-thread nanoseconds per output
   // texel at default settings (measured with bench/); `plan` sums it into
   // each farm node's estimated_seconds (docs/farm.md).

@@ -213,8 +213,8 @@ SpectralTables bake_spectral_graph(const Scene& scene, const ProductGraph& graph
     const ProductInfo& info = *graph.nodes[i].info;
     spectral_finish(*out[i], spectral_rule(info.name), sun, luminance,
                     spectral_has_mie_alpha(info.name, *out[i]));
-    if (info.spectral_finish)
-      out[i] = info.spectral_finish(std::move(*out[i]), scene, graph.nodes[i].spec);
+    if (info.finish_spectral_sum)
+      out[i] = info.finish_spectral_sum(std::move(*out[i]), scene, graph.nodes[i].spec);
   }
   return result;
 }

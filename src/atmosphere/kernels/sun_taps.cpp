@@ -155,7 +155,7 @@ HWY_INLINE void TexelPairs(D d, int stride, const float* row, const int32_t* i0,
 #endif
 }
 
-// The second pass: T = visible (bottom + (top - bottom) wy), the reads of
+// After the taps: T = visible (bottom + (top - bottom) wy), the reads of
 // to_top; false (and nothing read) where the sun is below the horizon in
 // every lane.
 template <class D>
