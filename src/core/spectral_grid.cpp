@@ -9,14 +9,15 @@ namespace skybake {
 
 namespace {
 
-// Midpoints per bin: the tables are linear between their 5 and 10 nm
-// samples, and 160 steps keep every step under 1 nm for N >= 3.
-constexpr int kBinSteps = 160;
+// Midpoints per bin, at most 0.25 nm apart: the tables are linear between
+// their 5 and 10 nm samples.
+constexpr double kBinStepNm = 0.25;
 
 glm::dvec3 spectral_bin_xyz(double lo_nm, double hi_nm, const SpectrumFn& sun) {
-  const double h = (hi_nm - lo_nm) / kBinSteps;
+  const int steps = std::max(1, int(std::ceil((hi_nm - lo_nm) / kBinStepNm)));
+  const double h = (hi_nm - lo_nm) / steps;
   glm::dvec3 sum(0.0);
-  for (int i = 0; i < kBinSteps; ++i) {
+  for (int i = 0; i < steps; ++i) {
     const double nm = lo_nm + (i + 0.5) * h;
     sum += cie1931_xyz_bar(nm) * sun(nm);
   }
@@ -25,21 +26,32 @@ glm::dvec3 spectral_bin_xyz(double lo_nm, double hi_nm, const SpectrumFn& sun) {
 
 }  // namespace
 
-SpectralGrid spectral_grid(int wavelengths) {
+SpectralGrid spectral_grid(int wavelengths, SpectralSampling sampling) {
+  const bool visible = sampling == SpectralSampling::visible;
+  const double lo = visible ? kSampledMinNm : kSpectrumMinNm;
+  const double hi = visible ? kSampledMaxNm : kSpectrumMaxNm;
+  const int n = 3 * std::max(1, (wavelengths + 2) / 3);
   SpectralGrid g;
-  const int groups = std::max(1, (wavelengths + 2) / 3);
-  g.step_nm = (kSpectrumMaxNm - kSpectrumMinNm) / (3.0 * groups);
-  for (int i = 0; i < groups; ++i)
-    g.groups.push_back(kSpectrumMinNm + (3.0 * i + glm::dvec3(0.5, 1.5, 2.5)) * g.step_nm);
+  g.sampling = sampling;
+  g.step_nm = (hi - lo) / n;
+  for (int i = 0; i <= n; ++i) g.edges.push_back(lo + i * g.step_nm);
+  g.edges.front() = kSpectrumMinNm;
+  g.edges.back() = kSpectrumMaxNm;
+  for (int i = 0; i < n; i += 3)
+    g.groups.push_back(lo + (double(i) + glm::dvec3(0.5, 1.5, 2.5)) * g.step_nm);
   return g;
+}
+
+glm::dvec2 SpectralGrid::bin(size_t group, int k) const {
+  return {edges.at(3 * group + k), edges.at(3 * group + k + 1)};
 }
 
 glm::dmat3 group_colour_matrix(const SpectralGrid& grid, size_t group, const SpectrumFn& sun,
                                const glm::dmat3& rgb_from_xyz) {
   glm::dmat3 xyz(0.0);
   for (int k = 0; k < 3; ++k) {
-    const double mid = grid.groups.at(group)[k];
-    xyz[k] = spectral_bin_xyz(mid - 0.5 * grid.step_nm, mid + 0.5 * grid.step_nm, sun);
+    const glm::dvec2 b = grid.bin(group, k);
+    xyz[k] = spectral_bin_xyz(b.x, b.y, sun);
   }
   return rgb_from_xyz * xyz;
 }

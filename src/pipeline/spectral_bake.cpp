@@ -142,6 +142,7 @@ void add_spectral_metadata(const SpectralScene& spectral, const ProductInfo& pro
     return;
   set_meta(tex.metadata, "spectral_wavelengths", spectral.grid().wavelength_count());
   set_meta(tex.metadata, "spectral_range_nm", glm::dvec2(kSpectrumMinNm, kSpectrumMaxNm));
+  set_meta(tex.metadata, "spectral_sampling", spectral_sampling_name(spectral.sampling));
   set_meta(tex.metadata, "colour_space", colour_space_name(spectral.colour_space));
   set_meta(tex.metadata, "spectral_units", spectral_units_name(spectral.units));
   // The factor from the table's units to cd/m^2 (the sun's to lux): what a

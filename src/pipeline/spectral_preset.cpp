@@ -154,6 +154,8 @@ std::shared_ptr<const SpectralScene> spectral_from(const json& spectral, const j
                                                    Problems& problems) {
   auto s = std::make_shared<SpectralScene>();
   s->wavelengths = spectral.value("wavelengths", 15);
+  if (spectral.value("sampling", std::string("visible")) == "uniform")
+    s->sampling = SpectralSampling::uniform;
   if (spectral.value("colour_space", std::string("rec709")) == "acescg")
     s->colour_space = ColourSpace::acescg;
   const std::string units = spectral.value("units", std::string("relative"));

@@ -4,6 +4,10 @@
 
 namespace skybake {
 
+std::string spectral_sampling_name(SpectralSampling sampling) {
+  return sampling == SpectralSampling::uniform ? "uniform" : "visible";
+}
+
 std::string spectral_units_name(SpectralUnits units) {
   switch (units) {
     case SpectralUnits::relative: return "relative";

@@ -21,14 +21,16 @@ enum class SpectralUnits {
 };
 
 std::string spectral_units_name(SpectralUnits units);
+std::string spectral_sampling_name(SpectralSampling sampling);
 
 struct SpectralScene {
   int wavelengths = 15;  // as asked; the grid bakes 3 ceil(wavelengths / 3)
   ColourSpace colour_space = ColourSpace::rec709;
   SpectralUnits units = SpectralUnits::relative;
+  SpectralSampling sampling = SpectralSampling::visible;
   SpectralMedium medium;
 
-  SpectralGrid grid() const { return spectral_grid(wavelengths); }
+  SpectralGrid grid() const { return spectral_grid(wavelengths, sampling); }
   // The colour matrix of group g in the output's units (core/spectral_grid.hpp).
   glm::dmat3 group_matrix(const SpectralGrid& grid, size_t g) const;
   // The sun's colour at the top of the atmosphere in the output's units:

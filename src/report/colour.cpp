@@ -41,15 +41,18 @@ ColourSetup ColourSetup::quick() {
 namespace {
 
 // One table of the comparison: a name and its wavelength count (0: RGB).
+// The table at the reference's count samples the spectrum uniformly, as
+// the reference does; the others as the scene asks.
 struct ColourTable {
   std::string name;
   int wavelengths = 0;
   Texture skyview;
+  bool uniform = false;
 };
 
-// The scene's tables with a sky-view layer per view, at `wavelengths`
-// (0: the RGB coefficients with the sun's colour as the sun).
-Scene colour_scene(const Scene& base, const ColourSetup& s, int wavelengths) {
+// The scene's tables with a sky-view layer per view, for `table`
+// (0 wavelengths: the RGB coefficients with the sun's colour as the sun).
+Scene colour_scene(const Scene& base, const ColourSetup& s, const ColourTable& table) {
   Scene sc = base;
   OutputSpec sky = operating_spec(base, "skyview");
   sky.size = s.colour_skyview_size;
@@ -58,11 +61,12 @@ Scene colour_scene(const Scene& base, const ColourSetup& s, int wavelengths) {
     for (double e : s.colour_sun_elevations_deg)
       sky.options["views"].push_back({{"altitude_km", alt * 1e-3}, {"sun_zenith_deg", 90.0 - e}});
   sc.outputs = {operating_spec(base, "transmittance"), operating_spec(base, "multiscattering"), sky};
-  if (wavelengths == 0) {
+  if (table.wavelengths == 0) {
     sc.spectral = nullptr;
   } else {
     auto sp = std::make_shared<SpectralScene>(*base.spectral);
-    sp->wavelengths = wavelengths;
+    sp->wavelengths = table.wavelengths;
+    if (table.uniform) sp->sampling = SpectralSampling::uniform;
     sc.spectral = sp;
   }
   return sc;
@@ -210,18 +214,18 @@ std::string colour_previews(const ReportInputs& in, const std::vector<ColourTabl
 json colour_report(const ReportInputs& in, const ColourSetup& s) {
   if (!in.scene.spectral) return {{"skipped", "the scene asks for no spectral bake (\"spectral\")"}};
   std::vector<ColourTable> tables = {{"rgb3", 0, {}}};
-  for (int n : s.colour_wavelengths)
-    tables.push_back({fmt::format("n{}", spectral_grid(n).wavelength_count()), n, {}});
   ColourFrame f;
-  f.reference = spectral_grid(s.colour_reference_wavelengths);
+  f.reference = spectral_grid(s.colour_reference_wavelengths, SpectralSampling::uniform);
+  for (int n : s.colour_wavelengths) {
+    const int count = spectral_grid(n).wavelength_count();
+    tables.push_back({fmt::format("n{}", count), n, {}, count == f.reference.wavelength_count()});
+  }
   f.to_xyz = xyz_from_rgb(chromaticities_of(in.scene.spectral->colour_space));
   f.sun_y = (f.to_xyz * in.scene.atmosphere.sun_illuminance).y;
   for (size_t k = 0; k < tables.size(); ++k) {
     in.stage("colour: sky-view at " + tables[k].name);
-    tables[k].skyview = colour_skyview(colour_scene(in.scene, s, tables[k].wavelengths));
-    if (tables[k].wavelengths > 0 &&
-        spectral_grid(tables[k].wavelengths).wavelength_count() == f.reference.wavelength_count())
-      f.reference_table = int(k);
+    tables[k].skyview = colour_skyview(colour_scene(in.scene, s, tables[k]));
+    if (tables[k].uniform) f.reference_table = int(k);
   }
   json out = {{"reference_wavelengths", f.reference.wavelength_count()},
               {"samples", s.colour_samples},

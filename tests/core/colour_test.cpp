@@ -70,13 +70,28 @@ TEST(SpectralData, OzoneChappuisBandPeaksNear600nm) {
   EXPECT_NEAR(best, 5e-25, 0.5e-25);
 }
 
-TEST(SpectralGrid, GroupsAreBrunetonsBinMidpoints) {
+TEST(SpectralGrid, GroupsAreBinMidpointsOverTheSampledRange) {
   const SpectralGrid g = spectral_grid(15);
   ASSERT_EQ(g.groups.size(), 5u);
-  EXPECT_DOUBLE_EQ(g.step_nm, 470.0 / 15.0);
-  EXPECT_DOUBLE_EQ(g.groups[0][0], 360.0 + 0.5 * 470.0 / 15.0);
-  EXPECT_DOUBLE_EQ(g.groups[4][2], 830.0 - 0.5 * 470.0 / 15.0);
+  EXPECT_DOUBLE_EQ(g.step_nm, 300.0 / 15.0);
+  EXPECT_DOUBLE_EQ(g.groups[0][0], 395.0 + 10.0);
+  EXPECT_DOUBLE_EQ(g.groups[4][2], 695.0 - 10.0);
   EXPECT_EQ(spectral_grid(40).wavelength_count(), 42);
+  // The bins tile the CIE range: the end bins reach 360 and 830 nm.
+  EXPECT_EQ(g.bin(0, 0), glm::dvec2(360.0, 415.0));
+  EXPECT_EQ(g.bin(2, 1), glm::dvec2(535.0, 555.0));
+  EXPECT_EQ(g.bin(4, 2), glm::dvec2(675.0, 830.0));
+  for (size_t i = 0; i < g.groups.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const bool last = i + 1 == g.groups.size() && k == 2;
+      if (!last) EXPECT_DOUBLE_EQ(g.bin(i, k).y, g.bin(i + (k + 1) / 3, (k + 1) % 3).x);
+    }
+  // Uniform sampling: Bruneton's equal bins over the whole CIE range.
+  const SpectralGrid u = spectral_grid(15, SpectralSampling::uniform);
+  EXPECT_DOUBLE_EQ(u.step_nm, 470.0 / 15.0);
+  EXPECT_DOUBLE_EQ(u.groups[0][0], 360.0 + 0.5 * 470.0 / 15.0);
+  EXPECT_DOUBLE_EQ(u.groups[4][2], 830.0 - 0.5 * 470.0 / 15.0);
+  EXPECT_NEAR(u.bin(0, 0).y - u.bin(0, 0).x, 470.0 / 15.0, 1e-9);
 }
 
 TEST(SpectralGrid, FlatSpectrumGivesTheEqualEnergyWhite) {
@@ -84,11 +99,12 @@ TEST(SpectralGrid, FlatSpectrumGivesTheEqualEnergyWhite) {
   // system's white, illuminant E, at (x, y) = (1/3, 1/3), for any N (the
   // bins integrate the sun exactly).
   const SpectrumFn flat = [](double) { return 1.0; };
-  for (int n : {3, 15, 42}) {
-    const glm::dvec2 xy = xy_from_xyz(grid_xyz(spectral_grid(n), flat, flat));
-    EXPECT_NEAR(xy.x, 1.0 / 3.0, 2e-4) << n;
-    EXPECT_NEAR(xy.y, 1.0 / 3.0, 2e-4) << n;
-  }
+  for (SpectralSampling sampling : {SpectralSampling::visible, SpectralSampling::uniform})
+    for (int n : {3, 15, 42}) {
+      const glm::dvec2 xy = xy_from_xyz(grid_xyz(spectral_grid(n, sampling), flat, flat));
+      EXPECT_NEAR(xy.x, 1.0 / 3.0, 2e-4) << n;
+      EXPECT_NEAR(xy.y, 1.0 / 3.0, 2e-4) << n;
+    }
   // The sum of every group's RGB matrix applied to a flat response under a
   // flat sun is the RGB of E.
   const SpectralGrid g = spectral_grid(15);
@@ -104,11 +120,12 @@ TEST(SpectralGrid, SunAtZeroAirMassIsTheSolarSpectrumsXyz) {
   // Transmittance 1 at every wavelength: the grid reproduces the sun's own
   // XYZ whatever the number of wavelengths.
   const glm::dvec3 fine = spectrum_xyz(astm_g173_solar_irradiance, 0.25);
-  for (int n : {3, 15, 42}) {
-    const glm::dvec3 xyz =
-        grid_xyz(spectral_grid(n), [](double) { return 1.0; }, astm_g173_solar_irradiance);
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR(xyz[i] / fine[i], 1.0, 1e-4) << n;
-  }
+  for (SpectralSampling sampling : {SpectralSampling::visible, SpectralSampling::uniform})
+    for (int n : {3, 15, 42}) {
+      const glm::dvec3 xyz = grid_xyz(spectral_grid(n, sampling), [](double) { return 1.0; },
+                                      astm_g173_solar_irradiance);
+      for (int i = 0; i < 3; ++i) EXPECT_NEAR(xyz[i] / fine[i], 1.0, 1e-4) << n;
+    }
 }
 
 TEST(SpectralGrid, SmoothResponseConvergesWithTheWavelengthCount) {
@@ -117,15 +134,18 @@ TEST(SpectralGrid, SmoothResponseConvergesWithTheWavelengthCount) {
   const SpectrumFn reddened = [](double nm) { return std::exp(-0.35 * std::pow(nm / 550.0, -4.0)); };
   const glm::dvec3 fine = spectrum_xyz(
       [&](double nm) { return reddened(nm) * astm_g173_solar_irradiance(nm); }, 0.25);
-  double last = 1.0;
-  for (int n : {6, 15, 42}) {
-    const glm::dvec3 xyz = grid_xyz(spectral_grid(n), reddened, astm_g173_solar_irradiance);
-    const glm::dvec2 d = uv_prime_from_xyz(xyz) - uv_prime_from_xyz(fine);
-    const double err = std::hypot(d.x, d.y);
-    EXPECT_LT(err, last) << n;
-    last = err;
+  for (SpectralSampling sampling : {SpectralSampling::visible, SpectralSampling::uniform}) {
+    double last = 1.0;
+    for (int n : {6, 15, 42}) {
+      const glm::dvec3 xyz =
+          grid_xyz(spectral_grid(n, sampling), reddened, astm_g173_solar_irradiance);
+      const glm::dvec2 d = uv_prime_from_xyz(xyz) - uv_prime_from_xyz(fine);
+      const double err = std::hypot(d.x, d.y);
+      EXPECT_LT(err, last) << n;
+      last = err;
+    }
+    EXPECT_LT(last, 1e-4);
   }
-  EXPECT_LT(last, 1e-4);
 }
 
 }  // namespace
