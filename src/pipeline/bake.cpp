@@ -207,7 +207,7 @@ class SceneBake {
     if (spectral_.textures.empty()) {
       std::vector<char> measured(graph_.nodes.size(), 0);
       for (size_t k = 0; k < measured.size(); ++k) measured[k] = measures_error(k);
-      spectral_ = bake_spectral_graph(scene_, graph_, needed_, measured, ctx);
+      spectral_ = bake_spectral_graph(scene_, graph_, needed_, measured, ctx, summary_.scene_dir);
     }
     Texture tex = std::move(*spectral_.textures.at(i));
     spectral_.textures[i].reset();

@@ -5,6 +5,7 @@
 #include "atmosphere/order_progress.hpp"
 #include "core/error.hpp"
 #include "core/spectral_data.hpp"
+#include "io/texel_spill.hpp"
 #include "pipeline/bruneton_families.hpp"
 #include "pipeline/table_conventions.hpp"
 
@@ -167,7 +168,8 @@ void add_spectral_metadata(const SpectralScene& spectral, const ProductInfo& pro
 
 SpectralTables bake_spectral_graph(const Scene& scene, const ProductGraph& graph,
                                    const std::vector<char>& needed,
-                                   const std::vector<char>& measured, const BakeContext& ctx) {
+                                   const std::vector<char>& measured, const BakeContext& ctx,
+                                   const std::filesystem::path& spill_folder) {
   const SpectralScene& s = *scene.spectral;
   const SpectralGrid grid = s.grid();
   const size_t n = graph.nodes.size(), groups = grid.groups.size();
@@ -175,6 +177,9 @@ SpectralTables bake_spectral_graph(const Scene& scene, const ProductGraph& graph
   std::vector<std::optional<Texture>>& out = result.textures;
   glm::dvec3 sun(0.0);
   double luminance = 0.0;
+  // The running sums wait on disk while the next group's tables are made:
+  // the bake's peak memory is then the RGB bake's.
+  TexelSpill spill(groups > 1 ? spill_folder : std::filesystem::path());
   for (size_t g = 0; g < groups; ++g) {
     Scene sg = scene;
     sg.spectral = nullptr;
@@ -205,7 +210,9 @@ SpectralTables bake_spectral_graph(const Scene& scene, const ProductGraph& graph
                          groups);
       const SpectralMieAlpha mie(node.info->name, *t.tables[i], sg, in, gctx);
       if (!out[i]) out[i].emplace();
+      spill.take(i, *out[i]);
       spectral_accumulate(*out[i], *t.tables[i], m, weight, mie.texture());
+      if (g + 1 < groups) spill.put(i, *out[i]);
     }
     forget_families();
   }

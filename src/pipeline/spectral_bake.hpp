@@ -2,10 +2,12 @@
 // needed node of the product graph baked at the three wavelengths of one
 // group, converted through the group's colour matrix and added to the
 // output, group after group (Bruneton 2017's precomputed luminance). Time
-// grows with the number of groups; memory holds one group's tables besides
-// the outputs, whatever the number of wavelengths.
+// grows with the number of groups; memory holds one group's tables, the
+// outputs' running sums waiting on disk in between, whatever the number of
+// wavelengths.
 #pragma once
 
+#include <filesystem>
 #include <optional>
 #include <vector>
 
@@ -35,10 +37,12 @@ struct SpectralTables {
 };
 
 // The textures of graph.nodes[i] for every i with needed[i], the others
-// empty. scene.spectral must be set.
+// empty. scene.spectral must be set. Between groups the running sums wait
+// in an unnamed file in spill_folder (io/texel_spill.hpp); empty: in memory.
 SpectralTables bake_spectral_graph(const Scene& scene, const ProductGraph& graph,
                                    const std::vector<char>& needed,
-                                   const std::vector<char>& measured, const BakeContext& ctx);
+                                   const std::vector<char>& measured, const BakeContext& ctx,
+                                   const std::filesystem::path& spill_folder = {});
 
 // What a spectral table's metadata records (docs/formats.md "Metadata"):
 // spectral_wavelengths, spectral_range_nm, colour_space, spectral_units,

@@ -20,6 +20,8 @@
 #include "io/texture_file.hpp"
 #include "pipeline/bake.hpp"
 #include "pipeline/preset_loader.hpp"
+#include "pipeline/product_graph.hpp"
+#include "pipeline/spectral_bake.hpp"
 #include "support/run.hpp"
 
 namespace fs = std::filesystem;
@@ -277,6 +279,28 @@ TEST(SpectralBake, GreyFourAndThreeDTablesAreTheRgbTimesTheSunsColour) {
             << name << " texel " << t << " " << c;
       }
     }
+  }
+}
+
+TEST(SpectralBake, RunningSumsSpilledBetweenGroupsAreTheSameBytes) {
+  // The pipeline keeps each output's running sum on disk between groups
+  // (io/texel_spill.hpp); in memory the sums are the same, bit for bit.
+  const json outputs = {{{"product", "transmittance"}, {"size", {32, 8}}},
+                        {{"product", "multiscattering"}, {"size", {8, 8}}},
+                        {{"product", "skyview"}, {"size", {24, 16}}}};
+  const fs::path dir = test::test_dir("spectral_spill");
+  std::ofstream(dir / "scene.json") << slab_scene({{"wavelengths", 9}}, json::object(), outputs);
+  const Scene scene = load_scene(dir / "scene.json");
+  const ProductGraph g = build_product_graph(scene, {});
+  const std::vector<char> all(g.nodes.size(), 1), none(g.nodes.size(), 0);
+  const SpectralTables held = bake_spectral_graph(scene, g, all, none, {});
+  const SpectralTables spilled = bake_spectral_graph(scene, g, all, none, {}, dir);
+  ASSERT_EQ(held.textures.size(), 3u);
+  ASSERT_EQ(spilled.textures.size(), 3u);
+  for (size_t i = 0; i < 3; ++i) {
+    ASSERT_TRUE(held.textures[i] && spilled.textures[i]);
+    EXPECT_FALSE(held.textures[i]->data.empty());
+    EXPECT_EQ(held.textures[i]->data, spilled.textures[i]->data) << g.nodes[i].info->name;
   }
 }
 
