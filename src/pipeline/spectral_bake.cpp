@@ -93,30 +93,24 @@ void keep_largest_energy_balance(Metadata& out, const Metadata& group) {
   set_meta(out, "energy_out_over_in", glm::dvec3(worst));
 }
 
-// out += M * rgb of `group` texel by texel; a fourth channel adds
-// weight * value, or for the 4D table's combined Mie alpha the red of M
-// times the group's single Mie (Bruneton 2017, the combined texture).
-void spectral_accumulate(Texture& out, const Texture& group, const glm::dmat3& m, double weight,
-                         const Texture* single_mie) {
+// The group's table turned in place into its share of the output: M * rgb
+// texel by texel; a fourth channel weight * value, or for the 4D table's
+// combined Mie alpha the red of M times the group's single Mie (Bruneton
+// 2017, the combined texture).
+void spectral_share_in_place(Texture& group, const glm::dmat3& m, double weight,
+                             const Texture* single_mie) {
   const size_t nc = group.channels.size(), texels = group.texel_count();
-  if (out.data.empty()) {
-    out = Texture(group.width, group.height, group.depth, group.layers, group.channels);
-    out.metadata = group.metadata;
-  }
-  keep_largest_energy_balance(out.metadata, group.metadata);
-  if (nc < 3 || out.data.size() != group.data.size())
-    throw Error("spectral bake: a table changed shape between wavelength groups");
+  if (nc < 3) throw Error("spectral bake: a table with fewer than three channels");
   for (size_t t = 0; t < texels; ++t) {
-    const float* src = &group.data[t * nc];
-    float* dst = &out.data[t * nc];
-    const glm::dvec3 rgb = m * glm::dvec3(src[0], src[1], src[2]);
-    for (int c = 0; c < 3; ++c) dst[c] += float(rgb[c]);
+    float* v = &group.data[t * nc];
+    const glm::dvec3 rgb = m * glm::dvec3(v[0], v[1], v[2]);
+    for (int c = 0; c < 3; ++c) v[c] = float(rgb[c]);
     if (nc < 4) continue;
     if (single_mie) {
       const float* mie = &single_mie->data[t * 3];
-      dst[3] += float((m * glm::dvec3(mie[0], mie[1], mie[2])).x);
+      v[3] = float((m * glm::dvec3(mie[0], mie[1], mie[2])).x);
     } else {
-      dst[3] += float(weight * src[3]);
+      v[3] = float(weight * v[3]);
     }
   }
 }
@@ -177,9 +171,11 @@ SpectralTables bake_spectral_graph(const Scene& scene, const ProductGraph& graph
   std::vector<std::optional<Texture>>& out = result.textures;
   glm::dvec3 sun(0.0);
   double luminance = 0.0;
-  // The running sums wait on disk while the next group's tables are made:
-  // the bake's peak memory is then the RGB bake's.
-  TexelSpill spill(groups > 1 ? spill_folder : std::filesystem::path());
+  // The running sums wait on disk while the next group's tables are made,
+  // and each group's table becomes its share of the sum in place: the
+  // bake's peak memory is then the RGB bake's.
+  TexelSpill sums(groups > 1 ? spill_folder : std::filesystem::path());
+  std::vector<Metadata> meta(n);
   for (size_t g = 0; g < groups; ++g) {
     Scene sg = scene;
     sg.spectral = nullptr;
@@ -194,6 +190,7 @@ SpectralTables bake_spectral_graph(const Scene& scene, const ProductGraph& graph
     const BakeContext gctx = stage_context(ctx, double(g) / groups, double(g + 1) / groups);
     SpectralGroupTables t{std::vector<std::optional<Texture>>(n),
                           std::vector<std::optional<Texture>>(n)};
+    std::vector<std::optional<SpectralMieAlpha>> mie(n);
     for (size_t i = 0; i < n; ++i) {
       if (!needed[i]) continue;
       const GraphNode& node = graph.nodes[i];
@@ -208,11 +205,23 @@ SpectralTables bake_spectral_graph(const Scene& scene, const ProductGraph& graph
         keep_worst_error(result.errors[i],
                          node.info->measure_error(sg, node.spec, in, *t.tables[i]), grid.groups[g],
                          groups);
-      const SpectralMieAlpha mie(node.info->name, *t.tables[i], sg, in, gctx);
-      if (!out[i]) out[i].emplace();
-      spill.take(i, *out[i]);
-      spectral_accumulate(*out[i], *t.tables[i], m, weight, mie.texture());
-      if (g + 1 < groups) spill.put(i, *out[i]);
+      mie[i].emplace(node.info->name, *t.tables[i], sg, in, gctx);
+    }
+    // Once every table of the group is made (the later ones read the
+    // earlier), each becomes its share and takes the sum so far.
+    for (size_t i = 0; i < n; ++i) {
+      if (!t.tables[i]) continue;
+      Texture& table = *t.tables[i];
+      if (g == 0) meta[i] = table.metadata;
+      keep_largest_energy_balance(meta[i], table.metadata);
+      spectral_share_in_place(table, m, weight, mie[i]->texture());
+      sums.add_to(i, table);
+      if (g + 1 < groups) {
+        sums.put(i, table);
+      } else {
+        out[i] = std::move(table);
+        out[i]->metadata = meta[i];
+      }
     }
     forget_families();
   }
