@@ -19,9 +19,10 @@ namespace {
 // Floats read per piece in add_to: 64 KiB.
 constexpr size_t kPieceFloats = 16384;
 
-std::string spill_error(const std::filesystem::path& folder, const char* what) {
-  return std::string("spectral bake: ") + what + " the running sums' temporary file in " +
-         folder.string() + ": " + std::strerror(errno);
+// An I/O failure (exit 4), as for the outputs themselves.
+IoError spill_error(const std::filesystem::path& folder, const char* what) {
+  return IoError(folder.string() + ": " + what + " the spectral bake's running sums: " +
+                 std::strerror(errno));
 }
 
 }  // namespace
@@ -61,7 +62,7 @@ void TexelSpill::put(size_t key, Texture& tex) {
   while (done < bytes) {
     const ssize_t n = ::pwrite(fd_, p + done, bytes - done, off_t(slot.offset + done));
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) throw Error(spill_error(folder_, "cannot write"));
+    if (n <= 0) throw spill_error(folder_, "cannot write");
     done += size_t(n);
   }
   TexelVector().swap(tex.data);
@@ -88,7 +89,7 @@ void TexelSpill::add_to(size_t key, Texture& tex) {
       const off_t at = off_t(slot.offset + first * sizeof(float) + done);
       const ssize_t n = ::pread(fd_, p + done, bytes - done, at);
       if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) throw Error(spill_error(folder_, "cannot read"));
+      if (n <= 0) throw spill_error(folder_, "cannot read");
       done += size_t(n);
     }
     for (size_t i = 0; i < count; ++i) tex.data[first + i] += piece[i];
