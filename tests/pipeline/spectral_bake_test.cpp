@@ -62,38 +62,39 @@ Texture read_exr(const fs::path& dir, const std::string& name) {
   return read_texture_file((dir / (name + ".exr")).string()).texture;
 }
 
-TEST(SpectralBake, OneWavelengthThroughARayleighSlab) {
-  // The sun shines only inside the bin of 505 nm (N = 15: bins of 20 nm
-  // from 395 nm, the sixth centred on 395 + 5.5 * 20 = 505 nm): every channel
-  // of the sun-weighted transmittance is T(505 nm) = exp(-sigma(505) H).
-  const json sun = {
-      {"table", {{"wavelengths_nm", {496, 497, 513, 514}}, {"values", {0, 1, 1, 0}}}}};
+// The transmittance table of a Rayleigh slab under a sun that shines only
+// between sun_from_nm and sun_to_nm (a trapezoid 1 nm wide at each end).
+Texture slab_transmittance_in_sunlight(const json& spectral, double sun_from_nm, double sun_to_nm) {
+  const json sun = {{"table",
+                     {{"wavelengths_nm", {sun_from_nm - 1, sun_from_nm, sun_to_nm, sun_to_nm + 1}},
+                      {"values", {0, 1, 1, 0}}}}};
   const json spectrum = {
       {"sun", sun},
       {"rayleigh", {{"power_law", {{"scattering_per_m", kSigma550}, {"reference_nm", 550}}}}}};
   const json outputs = {{{"product", "transmittance"}, {"size", {32, 8}}, {"formats", {"exr"}}}};
-  const Texture t =
-      read_exr(bake_json(slab_scene({{"wavelengths", 15}}, spectrum, outputs)), "transmittance");
-  const double nm = 395.0 + 5.5 * 20.0;
+  return read_exr(bake_json(slab_scene(spectral, spectrum, outputs)), "transmittance");
+}
+
+// Texel (0, 0), the ground looking at the zenith: exp(-sigma(nm) H) in every channel.
+void expect_slab_transmittance_at(const Texture& t, double nm) {
   const double expected = std::exp(-kSigma550 * std::pow(nm / 550.0, -4.0) * kSlabKm * 1e3);
-  // Texel (0, 0): the ground looking at the zenith.
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(t.at(0, 0, 0, 0, c) / expected, 1.0, 2e-5) << c;
+}
+
+TEST(SpectralBake, OneWavelengthThroughARayleighSlab) {
+  // The sun shines only inside the bin of 505 nm (N = 15: bins of 20 nm
+  // from 395 nm, the sixth centred on 395 + 5.5 * 20 = 505 nm): every channel
+  // of the sun-weighted transmittance is T(505 nm).
+  expect_slab_transmittance_at(slab_transmittance_in_sunlight({{"wavelengths", 15}}, 497, 513),
+                               395.0 + 5.5 * 20.0);
 }
 
 TEST(SpectralBake, UniformSamplingIsBrunetonsBins) {
   // "uniform": bins of 470/15 nm from 360 nm, the fifth centred on 501 nm.
-  const json sun = {
-      {"table", {{"wavelengths_nm", {490, 491, 511, 512}}, {"values", {0, 1, 1, 0}}}}};
-  const json spectrum = {
-      {"sun", sun},
-      {"rayleigh", {{"power_law", {{"scattering_per_m", kSigma550}, {"reference_nm", 550}}}}}};
-  const json outputs = {{{"product", "transmittance"}, {"size", {32, 8}}, {"formats", {"exr"}}}};
-  const json spectral = {{"wavelengths", 15}, {"sampling", "uniform"}};
-  const Texture t = read_exr(bake_json(slab_scene(spectral, spectrum, outputs)), "transmittance");
+  const Texture t =
+      slab_transmittance_in_sunlight({{"wavelengths", 15}, {"sampling", "uniform"}}, 491, 511);
   EXPECT_EQ(std::get<std::string>(t.metadata.at("spectral_sampling")), "uniform");
-  const double nm = 360.0 + 4.5 * 470.0 / 15.0;
-  const double expected = std::exp(-kSigma550 * std::pow(nm / 550.0, -4.0) * kSlabKm * 1e3);
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(t.at(0, 0, 0, 0, c) / expected, 1.0, 2e-5) << c;
+  expect_slab_transmittance_at(t, 360.0 + 4.5 * 470.0 / 15.0);
 }
 
 TEST(SpectralBake, SunAtZeroAirMassIsTheSolarSpectrumsXyz) {
