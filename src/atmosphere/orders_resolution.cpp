@@ -1,6 +1,8 @@
 // The 4D table's shape for Mie-shaped multiple scattering; see the header.
 #include "atmosphere/orders_resolution.hpp"
 
+#include <algorithm>
+
 #include "atmosphere/scattering_lut.hpp"
 
 namespace skybake {
@@ -24,6 +26,13 @@ GroupScatteringDepths vertical_scattering_depths(const Atmosphere& atm) {
 bool mie_shapes_multiple_scattering(const Atmosphere& atm) {
   const GroupScatteringDepths d = vertical_scattering_depths(atm);
   return d.mie.x > d.rayleigh.x || d.mie.y > d.rayleigh.y || d.mie.z > d.rayleigh.z;
+}
+
+BrunetonSpec sky_light_field_shape(const Atmosphere& atm, BrunetonSpec spec) {
+  if (!mie_shapes_multiple_scattering(atm)) return spec;
+  spec.mu_size = std::max(spec.mu_size, kSkyLightMieMu);
+  spec.nu_size = std::max(spec.nu_size, kSkyLightMieNu);
+  return spec;
 }
 
 BrunetonSpec with_mie_lobe_shape(BrunetonSpec spec) {

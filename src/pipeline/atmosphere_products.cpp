@@ -121,16 +121,29 @@ bool skyview_uses_multiple4d(const OutputSpec& spec) {
   return spec.options.value("multiple_scattering", std::string("hillaire2020")) == "scattering4d";
 }
 
+namespace {
+
+// The options carry the schema's default shape, which stands for "the
+// default": refined where the Mie group shapes the orders.
+bool has_default_field_shape(const BrunetonSpec& b) {
+  const BrunetonSpec d = ConvergedMultiscatteringSpec::default_converged_bruneton_spec();
+  return b.r_size == d.r_size && b.mu_size == d.mu_size && b.mu_s_size == d.mu_s_size &&
+         b.nu_size == d.nu_size;
+}
+
+}  // namespace
+
 ConvergedMultiscatteringSpec skyview_multiple4d_spec(const OutputSpec& spec,
                                                      const Atmosphere& atm) {
   ConvergedMultiscatteringSpec c = converged_multiscattering_spec(spec);
-  // The options carry the schema's default shape, which stands for "the
-  // default": the lobe's where the Mie group shapes the orders.
-  const BrunetonSpec d = ConvergedMultiscatteringSpec::default_converged_bruneton_spec();
-  const BrunetonSpec& b = c.bruneton;
-  const bool default_shape = b.r_size == d.r_size && b.mu_size == d.mu_size &&
-                             b.mu_s_size == d.mu_s_size && b.nu_size == d.nu_size;
-  if (default_shape && mie_shapes_multiple_scattering(atm)) c.bruneton = with_mie_lobe_shape(b);
+  if (has_default_field_shape(c.bruneton) && mie_shapes_multiple_scattering(atm))
+    c.bruneton = with_mie_lobe_shape(c.bruneton);
+  return c;
+}
+
+ConvergedMultiscatteringSpec sky_light_field_spec(const OutputSpec& spec, const Atmosphere& atm) {
+  ConvergedMultiscatteringSpec c = converged_multiscattering_spec(spec);
+  if (has_default_field_shape(c.bruneton)) c.bruneton = sky_light_field_shape(atm, c.bruneton);
   return c;
 }
 

@@ -40,6 +40,10 @@ bool skyview_uses_multiple4d(const OutputSpec& spec);
 // and "scattering_shape" is the schema's default.
 ConvergedMultiscatteringSpec skyview_multiple4d_spec(const OutputSpec& spec,
                                                      const Atmosphere& atm);
+// The field of the sky-light products (sky_irradiance, sky_environment):
+// converged_multiscattering_spec, with the default shape refined where the
+// Mie group shapes the orders (orders_resolution.hpp sky_light_field_shape).
+ConvergedMultiscatteringSpec sky_light_field_spec(const OutputSpec& spec, const Atmosphere& atm);
 SkyviewLutSpec skyview_spec(const OutputSpec& spec);
 AerialPerspectiveSpec aerial_perspective_spec(const OutputSpec& spec);
 // Sky irradiance (sky_light_products.cpp): its spec, and whether its

@@ -71,7 +71,7 @@ void make_sky_light_source(SkyLightSource& out, const Scene& scene, const Output
     out.source = psi_ms_source(atm, transmittance, *in.at("multiscattering"), s);
     return;
   }
-  out.field = compute_converged_field(atm, transmittance, converged_multiscattering_spec(spec), ctx);
+  out.field = compute_converged_field(atm, transmittance, sky_light_field_spec(spec, atm), ctx);
   out.source.transmittance = &transmittance;
   out.source.field = &out.field;
 }
@@ -115,7 +115,7 @@ Texture bake_sky_irradiance_product(const Scene& scene, const OutputSpec& spec,
   }
   // The field's iteration is about half the bake (docs/decisions/sky-irradiance-source.md).
   const ConvergedField field = compute_converged_field(
-      atm, transmittance, converged_multiscattering_spec(spec), stage_context(ctx, 0.0, 0.7));
+      atm, transmittance, sky_light_field_spec(spec, atm), stage_context(ctx, 0.0, 0.7));
   SkyRadianceSource source;
   source.transmittance = &transmittance;
   source.field = &field;

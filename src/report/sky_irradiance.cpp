@@ -91,8 +91,7 @@ nlohmann::json sky_irradiance_report(const ReportInputs& in,
         if (sky_irradiance_reads_multiscattering(spec)) {
           source = psi_ms_source(atm, in.transmittance, in.multiscattering, s);
         } else {
-          field = compute_converged_field(atm, in.transmittance,
-                                          converged_multiscattering_spec(spec), {});
+          field = compute_converged_field(atm, in.transmittance, sky_light_field_spec(spec, atm), {});
           source = SkyRadianceSource{};
           source.transmittance = &in.transmittance;
           source.field = &field;
