@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <bitset>
+#include <cctype>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -269,6 +270,21 @@ void metadata(Walker& w, const char* where) {
   }
 }
 
+// Archive::readHeader reads the UUID with a stream's >>, which skips white
+// space: a UUID with a space or a line break in it would move OpenVDB one
+// byte further than this walk, onto lengths nobody checked. Only the
+// canonical form, 32 hex digits with hyphens after the 8th, 12th, 16th and
+// 20th, is taken.
+void uuid(Walker& w) {
+  char text[36];
+  w.read(text, sizeof(text), "UUID");
+  for (int i = 0; i < 36; ++i) {
+    const bool hyphen = i == 8 || i == 13 || i == 18 || i == 23;
+    const bool ok = hyphen ? text[i] == '-' : std::isxdigit(static_cast<unsigned char>(text[i])) != 0;
+    if (!ok) w.fail("expected a UUID of 32 hex digits and 4 hyphens");
+  }
+}
+
 // Transform::read: a map type, then the map's fixed-size values.
 void transform(Walker& w) {
   static const std::map<std::string, uint64_t> kMapBytes = {
@@ -293,7 +309,7 @@ void check_vdb_layout(const std::string& path) {
                        kNewestVersion));
   w.skip(8, "library version");
   if (w.get<char>("grid offsets flag") != 1) w.fail("expected a file with grid offsets");
-  w.skip(36, "UUID");
+  uuid(w);
   metadata(w, "file");
   const int32_t grids = w.get<int32_t>("grid count");
   constexpr uint64_t kDescriptorBytes = 3 * 4 + 3 * 8;

@@ -98,6 +98,23 @@ TEST(HostileVdb, MetadataLengthsAreCheckedAgainstTheFile) {
   EXPECT_THAT(refusal(path), HasSubstr("metadata name needs 2147483647 bytes"));
 }
 
+TEST(HostileVdb, AUuidWithWhiteSpaceIsRefused) {
+  // OpenVDB reads the UUID with >>, skipping white space: a line break in it
+  // would shift OpenVDB past this walk, onto an unchecked length (a fuzzer
+  // input made it allocate 4 GB for a grid's instance parent name).
+  const std::string path = genuine("uuid");
+  const std::vector<char> good = bytes_of(path);
+  constexpr size_t kUuidAt = 8 + 4 + 8 + 1;  // magic, version, library version, offsets flag
+  for (const char c : {'\r', ' ', 'g'}) {
+    std::vector<char> b = good;
+    b[kUuidAt + 25] = c;
+    write_bytes(path, b);
+    EXPECT_THAT(refusal(path), HasSubstr("expected a UUID of 32 hex digits and 4 hyphens")) << int(c);
+  }
+  write_bytes(path, good);
+  EXPECT_NO_THROW(read_vdb(path));
+}
+
 TEST(HostileVdb, TruncatedFilesAreRefused) {
   const std::string path = genuine("truncated");
   const std::vector<char> good = bytes_of(path);
