@@ -154,7 +154,19 @@ std::optional<SchemaViolation> parse_strict_json(const std::string& text, json& 
                                        offset - line_start + 1, reason),
                            {}};
   }
-  return convert(doc, "", out);
+  if (auto bad = convert(doc, "", out)) return bad;
+  // rapidjson turns a \u escape of a lone low surrogate (\uDC00-\uDFFF
+  // with no high one before it) into bytes that are not UTF-8; every later
+  // use of the text (messages, the schema check, hashes) needs UTF-8.
+  try {
+    (void)out.dump();
+  } catch (const json::type_error&) {
+    return SchemaViolation{"", "syntax",
+                           "invalid JSON: a string is not valid Unicode (a \\u escape of a lone "
+                           "surrogate, \\uD800-\\uDFFF without its pair)",
+                           {}};
+  }
+  return std::nullopt;
 }
 
 // ---------------------------------------------------------------------------
