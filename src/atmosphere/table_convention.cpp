@@ -13,9 +13,14 @@ const char* table_convention_name(TableConvention c) {
   return c == TableConvention::hillaire_demo ? "hillaire_demo" : "skybake";
 }
 
+std::optional<TableConvention> find_table_convention(const std::string& name) {
+  for (TableConvention c : {TableConvention::skybake, TableConvention::hillaire_demo})
+    if (name == table_convention_name(c)) return c;
+  return std::nullopt;
+}
+
 TableConvention table_convention_from_name(const std::string& name) {
-  if (name == "skybake") return TableConvention::skybake;
-  if (name == "hillaire_demo") return TableConvention::hillaire_demo;
+  if (const auto c = find_table_convention(name)) return *c;
   throw Error(fmt::format("unknown table convention '{}' (expected skybake or hillaire_demo)",
                           name));
 }

@@ -35,6 +35,7 @@
 // follows the readers, which is what a renderer runs every frame.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "core/math.hpp"
@@ -46,6 +47,8 @@ enum class TableConvention { skybake, hillaire_demo };
 
 // "skybake", "hillaire_demo".
 const char* table_convention_name(TableConvention c);
+// Empty for another name.
+std::optional<TableConvention> find_table_convention(const std::string& name);
 // Throws Error for another name.
 TableConvention table_convention_from_name(const std::string& name);
 // The metadata key "convention" of a baked table; skybake when absent.

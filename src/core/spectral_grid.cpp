@@ -32,7 +32,6 @@ SpectralGrid spectral_grid(int wavelengths, SpectralSampling sampling) {
   const double hi = visible ? kSampledMaxNm : kSpectrumMaxNm;
   const int n = 3 * std::max(1, (wavelengths + 2) / 3);
   SpectralGrid g;
-  g.sampling = sampling;
   g.step_nm = (hi - lo) / n;
   for (int i = 0; i <= n; ++i) g.edges.push_back(lo + i * g.step_nm);
   g.edges.front() = kSpectrumMinNm;

@@ -33,7 +33,6 @@ enum class SpectralSampling {
 };
 
 struct SpectralGrid {
-  SpectralSampling sampling = SpectralSampling::visible;
   std::vector<glm::dvec3> groups;  // the three wavelengths of each group, nm
   double step_nm = 0.0;            // bin width inside the sampled range
   std::vector<double> edges;       // 3 groups + 1 bin edges, nm, 360 to 830

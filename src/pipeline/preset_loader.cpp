@@ -186,14 +186,13 @@ bool read_by_an_output(const Scene& scene, const std::string& section) {
 // The scene's sections and scene-wide keys that no output reads.
 void section_warnings(const json& written, const Scene& scene, const std::string& file,
                       const Source& atmosphere_src, std::vector<PresetProblem>& warnings) {
-  auto warn = [&](const std::string& pointer, const std::string& rule) {
-    warnings.push_back(no_effect(file, pointer, rule));
-  };
   if (written.contains("clouds") && !read_by_an_output(scene, "clouds"))
-    warn("/clouds", "no output reads the clouds section (weather, cloud_types, height_gradients "
-                    "and cirrus do)");
+    warnings.push_back(no_effect(file, "/clouds",
+                                 "no output reads the clouds section (weather, cloud_types, "
+                                 "height_gradients and cirrus do)"));
   if (written.contains("atmosphere") && !read_by_an_output(scene, "atmosphere"))
-    warn("/atmosphere", "no output reads the planet and atmosphere (the atmosphere tables do)");
+    warnings.push_back(no_effect(
+        file, "/atmosphere", "no output reads the planet and atmosphere (the atmosphere tables do)"));
   // The per-wavelength physics is read by a spectral bake only; the RGB
   // coefficients stand for it otherwise.
   if (!written.contains("spectral") && written.contains("atmosphere") &&
@@ -206,8 +205,9 @@ void section_warnings(const json& written, const Scene& scene, const std::string
   if (written.contains("convention") &&
       std::none_of(scene.outputs.begin(), scene.outputs.end(),
                    [](const OutputSpec& o) { return takes_convention(o.product); }))
-    warn("/convention", "no output is a table it lays out (transmittance, multiscattering, "
-                        "skyview, aerial_perspective)");
+    warnings.push_back(no_effect(file, "/convention",
+                                 "no output is a table it lays out (transmittance, "
+                                 "multiscattering, skyview, aerial_perspective)"));
 }
 
 // Keys written in a valid scene that change nothing (docs/presets.md

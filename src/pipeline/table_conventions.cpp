@@ -31,7 +31,7 @@ TableConvention output_convention(const OutputSpec& spec) {
   // A name the product's schema refuses is reported there with its pointer;
   // the checks that still run on such an output (its budget, its files)
   // read it as skybake's layout rather than failing inside.
-  return *it == "hillaire_demo" ? TableConvention::hillaire_demo : TableConvention::skybake;
+  return find_table_convention(it->get<std::string>()).value_or(TableConvention::skybake);
 }
 
 bool takes_convention(const std::string& product) {
