@@ -61,8 +61,7 @@ void set_sky_environment_metadata(Texture& tex, const Atmosphere& atm,
                                   const SkyRadianceSource& source, const SkyEnvironmentSpec& spec) {
   Metadata& m = tex.metadata;
   set_meta(m, "parameterization", std::string("sky_environment_cube"));
-  set_meta(m, "radiance_source", std::string(source.field ? "field" : "psi_ms"));
-  if (source.field) set_meta(m, "energy_out_over_in", source.field->energy_out_over_in);
+  set_sky_light_source_metadata(m, source);
   set_meta(m, "cube_frame",
            std::string("+Y zenith, sun at (sin theta_s, cos theta_s, 0); faces +X -X +Y -Y +Z -Z"));
   set_meta(m, "views", int(spec.views.size()));

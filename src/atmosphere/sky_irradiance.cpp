@@ -11,6 +11,7 @@
 #include "atmosphere/irradiance_lut.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/sky_integrator.hpp"
+#include "atmosphere/sky_ray_suns.hpp"
 #include "atmosphere/skyview_lut.hpp"
 #include "atmosphere/skyview_multiple4d.hpp"
 #include "atmosphere/sphere_rule.hpp"
@@ -30,47 +31,42 @@ glm::dvec3 ground_sky_at(const std::vector<glm::dvec3>& table, double mu_s) {
   return table[i] * (1.0 - f) + table[i + 1] * f;
 }
 
-// Radiance along one ray from the psi_ms source: the march, plus the
-// ground's response to the sky when the ray ends there (the march's lit
-// ground holds the sun's part).
-glm::dvec3 psi_ms_ray(const Atmosphere& atm, const Texture& tlut, const Texture& mslut,
-                      const MultiscatteringMapping& mapping,
-                      const std::vector<glm::dvec3>& ground_sky, bool sky_only,
-                      glm::dvec3 position, glm::dvec3 dir, glm::dvec3 sun_dir, int steps) {
-  IntegrationOptions options;
-  options.lit_ground = !sky_only;
-  options.multiscattering_mapping = &mapping;
-  const ScatteringResult s =
-      integrate_scattered_luminance(atm, tlut, &mslut, position, dir, sun_dir, INFINITY, steps,
-                                    options);
-  glm::dvec3 l = s.luminance;
-  if (sky_only || ground_sky.empty()) return l;
-  const AtmosphereSpan span = clip_ray_to_atmosphere(atm, position, dir);
-  if (!span.hits_atmosphere || !span.exits_on_ground) return l;
-  const glm::dvec3 ground = position + span.t_exit * dir;
-  const double mu_s = glm::dot(glm::normalize(ground), sun_dir);
-  return l + s.transmittance * atm.ground_albedo / kPi * ground_sky_at(ground_sky, mu_s);
+// A ray of `source`, marched once for any number of suns (sky_ray_suns.hpp):
+// the field source's march is single scattering only, the psi_ms source's
+// reads its table (`mapping`, parsed by the caller).
+SunSharedRay source_ray(const Atmosphere& atm, const SkyRadianceSource& source,
+                        const MultiscatteringMapping* mapping, glm::dvec3 position,
+                        glm::dvec3 dir, int steps) {
+  return SunSharedRay(atm, *source.transmittance, source.field ? nullptr : source.multiscattering,
+                      mapping, position, dir, steps);
 }
 
-// Radiance along one ray from the field source: single scattering marched,
-// orders >= 2 from the 4D field, and the ground lit by every order.
-glm::dvec3 field_ray(const Atmosphere& atm, const Texture& tlut, const ConvergedField& field,
-                     bool sky_only, glm::dvec3 position, glm::dvec3 dir, glm::dvec3 sun_dir,
-                     double sun_zenith_rad, int steps) {
-  const ScatteringResult s = integrate_scattered_luminance(atm, tlut, nullptr, position, dir,
-                                                           sun_dir, INFINITY, steps, {});
+// That ray's radiance for one sun.
+// - field: single scattering marched, orders >= 2 from the 4D field, and
+//   where the ray meets the ground, the ground lit by every order;
+// - psi_ms: the march with Psi_ms, the ground lit by the sun and, with a
+//   ground_sky table, by the sky.
+glm::dvec3 source_ray_radiance(const Atmosphere& atm, const SkyRadianceSource& source,
+                               const SunSharedRay& ray, bool sky_only, glm::dvec3 position,
+                               glm::dvec3 dir, glm::dvec3 sun_dir, double sun_zenith_rad) {
+  glm::dvec3 l = ray.scattered(sun_dir, !source.field);
   const double r = glm::length(position);
-  const glm::dvec3 up = position / r;
-  glm::dvec3 l = s.luminance + lookup_field_multiple_scattering(
-                                   atm, field, r, skyview_direction_from_vectors(up, dir, sun_dir),
-                                   sun_zenith_rad);
-  if (sky_only) return l;
-  const AtmosphereSpan span = clip_ray_to_atmosphere(atm, position, dir);
-  if (!span.hits_atmosphere || !span.exits_on_ground) return l;
-  const glm::dvec3 ground = position + span.t_exit * dir;
-  const double mu_s = glm::dot(glm::normalize(ground), sun_dir);
-  return l + s.transmittance * atm.ground_albedo / kPi *
-                 lookup_irradiance(field.ground_irradiance, atm, atm.bottom_radius_m, mu_s);
+  if (source.field)
+    l += lookup_field_multiple_scattering(
+        atm, *source.field, r, skyview_direction_from_vectors(position / r, dir, sun_dir),
+        sun_zenith_rad);
+  if (sky_only || !ray.meets_ground()) return l;
+  const double mu_s = glm::dot(ray.ground_up(), sun_dir);
+  const glm::dvec3 through = ray.transmittance() * atm.ground_albedo / kPi;
+  if (source.field)
+    return l + through * lookup_irradiance(source.field->ground_irradiance, atm,
+                                           atm.bottom_radius_m, mu_s);
+  l += ray.sunlit_ground(sun_dir);
+  return source.ground_sky.empty() ? l : l + through * ground_sky_at(source.ground_sky, mu_s);
+}
+
+MultiscatteringMapping source_mapping(const SkyRadianceSource& source) {
+  return source.field ? MultiscatteringMapping{} : multiscattering_mapping_of(*source.multiscattering);
 }
 
 glm::dvec3 sun_in_plane(double sun_zenith_rad) {
@@ -79,17 +75,30 @@ glm::dvec3 sun_in_plane(double sun_zenith_rad) {
 
 }  // namespace
 
+const SkyRadianceSource& source_for_sun(const SkyRadianceSource& source, double sun_zenith_rad) {
+  return source.below_horizon && sun_zenith_rad > 0.5 * kPi ? *source.below_horizon : source;
+}
+
+std::string radiance_source_name(const SkyRadianceSource& source) {
+  return source.field ? "field" : "psi_ms";
+}
+
+void set_sky_light_source_metadata(Metadata& m, const SkyRadianceSource& source) {
+  set_meta(m, "radiance_source", radiance_source_name(source));
+  if (source.field) set_meta(m, "energy_out_over_in", source.field->energy_out_over_in);
+  if (source.below_horizon)
+    set_meta(m, "radiance_source_below_horizon", radiance_source_name(*source.below_horizon));
+}
+
 glm::dvec3 sky_source_radiance(const Atmosphere& atm, const SkyRadianceSource& source,
                                bool sky_only, int steps, glm::dvec3 position, glm::dvec3 dir,
                                glm::dvec3 sun_dir) {
-  if (source.field) {
-    const double mu_s = glm::dot(glm::normalize(position), sun_dir);
-    return field_ray(atm, *source.transmittance, *source.field, sky_only, position, dir, sun_dir,
-                     std::acos(std::clamp(mu_s, -1.0, 1.0)), steps);
-  }
-  const MultiscatteringMapping mapping = multiscattering_mapping_of(*source.multiscattering);
-  return psi_ms_ray(atm, *source.transmittance, *source.multiscattering, mapping,
-                    source.ground_sky, sky_only, position, dir, sun_dir, steps);
+  const double mu_s = glm::dot(glm::normalize(position), sun_dir);
+  const double sun_zenith = std::acos(std::clamp(mu_s, -1.0, 1.0));
+  const SkyRadianceSource& src = source_for_sun(source, sun_zenith);
+  const MultiscatteringMapping mapping = source_mapping(src);
+  const SunSharedRay ray = source_ray(atm, src, &mapping, position, dir, steps);
+  return source_ray_radiance(atm, src, ray, sky_only, position, dir, sun_dir, sun_zenith);
 }
 
 double sky_irradiance_sun_zenith(const SkyIrradianceSpec& spec, int x) {
@@ -109,20 +118,29 @@ std::vector<glm::dvec3> ground_sky_irradiance(const Atmosphere& atm,
   const SphereRule rule = symmetric_gauss_rule(1, spec.above, spec.azimuths, 0.0);
   const MultiscatteringMapping mapping = multiscattering_mapping_of(multiscattering_lut);
   const glm::dvec3 position(0.0, 0.0, atm.bottom_radius_m);
-  std::vector<glm::dvec3> table(nodes, glm::dvec3(0.0));
-  tbb::parallel_for(0, nodes, [&](int i) {
-    const double mu_s = -1.0 + 2.0 * i / (nodes - 1);
-    const glm::dvec3 sun(std::sqrt(std::max(1.0 - mu_s * mu_s, 0.0)), 0.0, mu_s);
-    glm::dvec3 e(0.0);
-    for (size_t k = 0; k < rule.dirs.size(); ++k) {
-      const glm::dvec3 d = rule.dirs[k];
-      if (d.z <= 0.0) continue;
-      e += rule.weights[k] * d.z *
-           psi_ms_ray(atm, transmittance_lut, multiscattering_lut, mapping, {}, true, position, d,
-                      sun, spec.steps);
+  std::vector<size_t> upward;
+  for (size_t k = 0; k < rule.dirs.size(); ++k)
+    if (rule.dirs[k].z > 0.0) upward.push_back(k);
+  // Each ray marched once for every node's sun; the terms kept per (node,
+  // ray) and summed in the rule's order, whatever the threads.
+  const size_t m = upward.size();
+  std::vector<glm::dvec3> terms(m * size_t(nodes));
+  tbb::parallel_for(size_t(0), m, [&](size_t u) {
+    const glm::dvec3 d = rule.dirs[upward[u]];
+    const SunSharedRay ray(atm, transmittance_lut, &multiscattering_lut, &mapping, position, d,
+                           spec.steps);
+    for (int i = 0; i < nodes; ++i) {
+      const double mu_s = -1.0 + 2.0 * i / (nodes - 1);
+      const glm::dvec3 sun(std::sqrt(std::max(1.0 - mu_s * mu_s, 0.0)), 0.0, mu_s);
+      terms[size_t(i) * m + u] = rule.weights[upward[u]] * d.z * ray.scattered(sun, true);
     }
-    table[i] = 4.0 * kPi * e;
   });
+  std::vector<glm::dvec3> table(nodes, glm::dvec3(0.0));
+  for (int i = 0; i < nodes; ++i) {
+    glm::dvec3 e(0.0);
+    for (size_t u = 0; u < m; ++u) e += terms[size_t(i) * m + u];
+    table[i] = 4.0 * kPi * e;
+  }
   return table;
 }
 
@@ -137,52 +155,69 @@ SkyRadianceSource psi_ms_source(const Atmosphere& atm, const Texture& transmitta
   return source;
 }
 
-ShRadiance compute_sky_radiance_sh(const Atmosphere& atm, const SkyRadianceSource& source,
+std::vector<ShRadiance> compute_sky_radiance_sh_suns(const Atmosphere& atm,
+                                                     const SkyRadianceSource& sources,
+                                                     const SkyIrradianceSpec& spec,
+                                                     double altitude_m,
+                                                     const std::vector<double>& sun_zeniths_rad) {
+  const double r = atm.bottom_radius_m + std::clamp(altitude_m, 0.0, height_of(atm));
+  const SphereRule rule = symmetric_gauss_rule(spec.below, spec.above, spec.azimuths,
+                                               horizon_zenith_cosine(atm.bottom_radius_m, r));
+  const glm::dvec3 position(0.0, 0.0, r);
+  std::vector<ShRadiance> out(sun_zeniths_rad.size());
+  for (ShRadiance& sh : out) sh.fill(glm::dvec3(0.0));
+  for (const SkyRadianceSource* source : {&sources, sources.below_horizon}) {
+    if (!source) continue;
+    std::vector<size_t> suns;  // the columns that read this source
+    for (size_t j = 0; j < sun_zeniths_rad.size(); ++j)
+      if (&source_for_sun(sources, sun_zeniths_rad[j]) == source) suns.push_back(j);
+    if (suns.empty()) continue;
+    const MultiscatteringMapping mapping = source_mapping(*source);
+    for (size_t k = 0; k < rule.dirs.size(); ++k) {
+      const glm::dvec3 d = rule.dirs[k];
+      const SunSharedRay ray = source_ray(atm, *source, &mapping, position, d, spec.steps);
+      const std::array<double, kShL2Count> y = sh_l2_basis(d);
+      for (size_t j : suns) {
+        const glm::dvec3 l = source_ray_radiance(atm, *source, ray, spec.sky_only, position, d,
+                                                 sun_in_plane(sun_zeniths_rad[j]),
+                                                 sun_zeniths_rad[j]);
+        // The rule stands each ray for itself and its mirror image in y: the
+        // y-odd functions cancel in pairs, so only the others are summed.
+        for (int i : kShSymmetricIndex) out[j][i] += rule.weights[k] * y[i] * l;
+      }
+    }
+  }
+  for (ShRadiance& sh : out)
+    for (glm::dvec3& c : sh) c *= 4.0 * kPi;  // the weights are fractions of 4 pi
+  return out;
+}
+
+ShRadiance compute_sky_radiance_sh(const Atmosphere& atm, const SkyRadianceSource& sources,
                                    const SkyIrradianceSpec& spec, double altitude_m,
                                    double sun_zenith_rad) {
-  const double r = atm.bottom_radius_m + std::clamp(altitude_m, 0.0, height_of(atm));
-  const SphereRule rule =
-      symmetric_gauss_rule(spec.below, spec.above, spec.azimuths, horizon_zenith_cosine(atm.bottom_radius_m, r));
-  MultiscatteringMapping mapping{};
-  if (!source.field) mapping = multiscattering_mapping_of(*source.multiscattering);
-  const glm::dvec3 position(0.0, 0.0, r);
-  const glm::dvec3 sun = sun_in_plane(sun_zenith_rad);
-  ShRadiance sh;
-  sh.fill(glm::dvec3(0.0));
-  for (size_t k = 0; k < rule.dirs.size(); ++k) {
-    const glm::dvec3 d = rule.dirs[k];
-    const glm::dvec3 l =
-        source.field ? field_ray(atm, *source.transmittance, *source.field, spec.sky_only,
-                                 position, d, sun, sun_zenith_rad, spec.steps)
-                     : psi_ms_ray(atm, *source.transmittance, *source.multiscattering, mapping,
-                                  source.ground_sky, spec.sky_only, position, d, sun, spec.steps);
-    const std::array<double, kShL2Count> y = sh_l2_basis(d);
-    // The rule stands each ray for itself and its mirror image in y: the
-    // y-odd functions cancel in pairs, so only the others are summed.
-    for (int j : kShSymmetricIndex) sh[j] += rule.weights[k] * y[j] * l;
-  }
-  for (glm::dvec3& c : sh) c *= 4.0 * kPi;  // the weights are fractions of 4 pi
-  return sh;
+  return compute_sky_radiance_sh_suns(atm, sources, spec, altitude_m, {sun_zenith_rad}).front();
 }
 
 Texture bake_sky_irradiance(const Atmosphere& atm, const SkyRadianceSource& source,
                             const SkyIrradianceSpec& spec, const BakeContext& ctx) {
   Texture tex(spec.width, spec.height, 1, kShSymmetricCount, {"R", "G", "B"});
   ProgressCounter progress(ctx, size_t(spec.height));
-  tbb::parallel_for(0, spec.width * spec.height, [&](int task) {
-    const int x = task % spec.width, y = task / spec.width;
-    const ShRadiance sh = compute_sky_radiance_sh(atm, source, spec,
-                                                  sky_irradiance_altitude(atm, spec, y),
-                                                  sky_irradiance_sun_zenith(spec, x));
-    const std::array<glm::dvec3, kShSymmetricCount> stored = encode_sky_radiance_sh(sh);
-    for (int j = 0; j < kShSymmetricCount; ++j)
-      for (int c = 0; c < 3; ++c) tex.at(x, y, 0, j, c) = float(stored[j][c]);
-    if (x == spec.width - 1) progress.tick();
+  std::vector<double> zeniths(spec.width);
+  for (int x = 0; x < spec.width; ++x) zeniths[x] = sky_irradiance_sun_zenith(spec, x);
+  // A row's columns share its rays (sky_ray_suns.hpp).
+  tbb::parallel_for(0, spec.height, [&](int y) {
+    const std::vector<ShRadiance> row = compute_sky_radiance_sh_suns(
+        atm, source, spec, sky_irradiance_altitude(atm, spec, y), zeniths);
+    for (int x = 0; x < spec.width; ++x) {
+      const std::array<glm::dvec3, kShSymmetricCount> stored = encode_sky_radiance_sh(row[x]);
+      for (int j = 0; j < kShSymmetricCount; ++j)
+        for (int c = 0; c < 3; ++c) tex.at(x, y, 0, j, c) = float(stored[j][c]);
+    }
+    progress.tick();
   });
   Metadata& m = tex.metadata;
   set_meta(m, "parameterization", std::string("sky_irradiance_sh_l2"));
-  set_meta(m, "radiance_source", std::string(source.field ? "field" : "psi_ms"));
-  if (source.field) set_meta(m, "energy_out_over_in", source.field->energy_out_over_in);
+  set_sky_light_source_metadata(m, source);
   set_meta(m, "sh_layers",
            std::string("ln(L00), L10/L00, L11/L00, L20/L00, L21/L00, L22/L00"));
   set_meta(m, "sh_frame",

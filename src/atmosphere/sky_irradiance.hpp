@@ -27,13 +27,16 @@
 // horizon (sphere_rule.hpp), from one of two sources (SkyRadianceSource
 // below; docs/decisions/sky-irradiance-source.md): single scattering
 // marched plus the converged 4D field's orders >= 2 (the default), or the
-// march with a multiple-scattering table's Psi_ms (Hillaire 2020 eq. 11).
-// Rays that meet the ground add its Lambertian response, attenuated along
-// the ray. Reads: the transmittance table, and the field or the
-// multiple-scattering table.
+// march with a multiple-scattering table's Psi_ms (Hillaire 2020 eq. 11);
+// the texels with the sun below the horizon may read a source of their own
+// (sky_light_source.hpp). Rays that meet the ground add its Lambertian
+// response, attenuated along the ray. Each ray is marched once for every
+// sun column of its row (sky_ray_suns.hpp). Reads: the transmittance
+// table, and the field or the multiple-scattering table.
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -66,17 +69,33 @@ double sky_irradiance_altitude(const Atmosphere& atm, const SkyIrradianceSpec& s
 
 // Where the radiance of a ray comes from (docs/decisions/sky-irradiance-source.md):
 // - psi_ms: the march of sky_integrator.hpp with the multiple-scattering
-//   table's Psi_ms (Hillaire 2020 eq. 11, either model of that table), the
-//   ground lit by the sun and by the sky (ground_sky_irradiance);
+//   table's Psi_ms (Hillaire 2020 eq. 11, either model of that table, by
+//   view where it has view slices), the ground lit by the sun and by the
+//   sky (ground_sky_irradiance);
 // - field: single scattering marched, orders >= 2 read from the converged
 //   4D field (skyview_multiple4d.hpp), the ground lit by the field's
 //   irradiance of every order.
+// With below_horizon set, a viewer whose sun is below its horizon (sun
+// zenith > 90 degrees) reads that source instead (sky_light_source.hpp).
 struct SkyRadianceSource {
   const Texture* transmittance = nullptr;
   const Texture* multiscattering = nullptr;  // psi_ms
   const ConvergedField* field = nullptr;     // field (takes precedence)
   std::vector<glm::dvec3> ground_sky;        // psi_ms: ground_sky_irradiance's table
+  const SkyRadianceSource* below_horizon = nullptr;
 };
+
+// The source a viewer with the sun at this zenith angle reads.
+const SkyRadianceSource& source_for_sun(const SkyRadianceSource& source, double sun_zenith_rad);
+
+// The source's name in the products' metadata ("radiance_source"):
+// "field" or "psi_ms".
+std::string radiance_source_name(const SkyRadianceSource& source);
+
+// Records the source in a product's metadata: "radiance_source", a field's
+// "energy_out_over_in", and where viewers with the sun below their horizon
+// read another source, "radiance_source_below_horizon".
+void set_sky_light_source_metadata(Metadata& m, const SkyRadianceSource& source);
 
 // The sky's irradiance at the ground on a horizontal surface from the
 // psi_ms march, tabulated on `nodes` sun cosines evenly spaced over [-1, 1]:
@@ -97,6 +116,15 @@ SkyRadianceSource psi_ms_source(const Atmosphere& atm, const Texture& transmitta
 glm::dvec3 sky_source_radiance(const Atmosphere& atm, const SkyRadianceSource& source,
                                bool sky_only, int steps, glm::dvec3 position, glm::dvec3 dir,
                                glm::dvec3 sun_dir);
+
+// The coefficients at one altitude for each of several sun zeniths,
+// integrated from scratch, each ray of the rule marched once for all of
+// them (sky_ray_suns.hpp).
+std::vector<ShRadiance> compute_sky_radiance_sh_suns(const Atmosphere& atm,
+                                                     const SkyRadianceSource& source,
+                                                     const SkyIrradianceSpec& spec,
+                                                     double altitude_m,
+                                                     const std::vector<double>& sun_zeniths_rad);
 
 // The coefficients at one altitude and sun zenith, integrated from scratch.
 ShRadiance compute_sky_radiance_sh(const Atmosphere& atm, const SkyRadianceSource& source,

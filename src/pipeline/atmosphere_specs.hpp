@@ -12,6 +12,7 @@
 #include "atmosphere/scattering_orders.hpp"
 #include "atmosphere/sky_environment.hpp"
 #include "atmosphere/sky_irradiance.hpp"
+#include "atmosphere/sky_light_source.hpp"
 #include "atmosphere/skyview_lut.hpp"
 #include "atmosphere/skyview_multiple4d.hpp"
 #include "atmosphere/transmittance_lut.hpp"
@@ -44,6 +45,11 @@ ConvergedMultiscatteringSpec skyview_multiple4d_spec(const OutputSpec& spec,
 // converged_multiscattering_spec, with the default shape refined where the
 // Mie group shapes the orders (orders_resolution.hpp sky_light_field_shape).
 ConvergedMultiscatteringSpec sky_light_field_spec(const OutputSpec& spec, const Atmosphere& atm);
+// Their whole source (atmosphere/sky_light_source.hpp): that field, and a
+// twilight source where `twilight` (some viewer has the sun below its
+// horizon) unless "twilight_source" is "converged_field".
+SkyLightSourceSpec sky_light_source_spec(const OutputSpec& spec, const Atmosphere& atm,
+                                         bool twilight);
 SkyviewLutSpec skyview_spec(const OutputSpec& spec);
 AerialPerspectiveSpec aerial_perspective_spec(const OutputSpec& spec);
 // Sky irradiance (sky_light_products.cpp): its spec, and whether its

@@ -259,6 +259,11 @@ std::vector<PresetProblem> no_effect_warnings(const json& written, const Scene& 
       warn(at + "/max_error", fmt::format("the bake measures no error of {} (only of atmosphere "
                                           "tables), so max_error has nothing to limit",
                                           info.name));
+    if (out.contains("twilight_source") &&
+        out.value("radiance_source", std::string()) == "multiscattering_table")
+      warn(at + "/twilight_source",
+           "twilight_source applies to radiance_source \"converged_field\", and this output "
+           "marches with the multiscattering table at every sun");
     if (spec.options.contains("tolerance")) {
       const bool converging = spec.options["tolerance"].get<double>() > 0.0;
       for (const char* key : {"max_orders", "tail"})

@@ -12,6 +12,7 @@
 #include "core/ggx_prefilter.hpp"
 #include "core/mip_chain.hpp"
 #include "atmosphere/sky_irradiance.hpp"
+#include "atmosphere/sky_light_source.hpp"
 #include "pipeline/atmosphere_specs.hpp"
 #include "pipeline/product_options.hpp"
 #include "pipeline/product_tables.hpp"
@@ -36,6 +37,15 @@ SkyIrradianceSpec sky_irradiance_spec(const OutputSpec& spec) {
   return s;
 }
 
+SkyLightSourceSpec sky_light_source_spec(const OutputSpec& spec, const Atmosphere& atm,
+                                         bool twilight) {
+  SkyLightSourceSpec s;
+  s.field = sky_light_field_spec(spec, atm);
+  s.twilight =
+      twilight && option_string(spec, "twilight_source", "psi_ms_by_view") == "psi_ms_by_view";
+  return s;
+}
+
 SkyEnvironmentSpec sky_environment_spec(const OutputSpec& spec) {
   SkyEnvironmentSpec s;
   s.face = spec.size.at(0);
@@ -55,25 +65,25 @@ SkyEnvironmentSpec sky_environment_spec(const OutputSpec& spec) {
 
 namespace {
 
-// The radiance source both products read (docs/decisions/sky-irradiance-source.md),
-// held with the field it may own.
-struct SkyLightSource {
-  ConvergedField field;
-  SkyRadianceSource source;
+// The radiance source of one bake, held with what it may own.
+struct SkyLightHeld {
+  SkyLightSource light;
+  SkyRadianceSource psi_ms;
+  const SkyRadianceSource& source() const { return psi_ms.transmittance ? psi_ms : light.source; }
 };
 
-void make_sky_light_source(SkyLightSource& out, const Scene& scene, const OutputSpec& spec,
-                           const ProductInputs& in,
-                           const SkyIrradianceSpec& s, const BakeContext& ctx) {
+void make_sky_light_held(SkyLightHeld& out, const Scene& scene, const OutputSpec& spec,
+                         const ProductInputs& in, const SkyIrradianceSpec& s, bool twilight,
+                         const BakeContext& ctx) {
   const Atmosphere& atm = scene.atmosphere;
   const Texture& transmittance = *in.at("transmittance");
   if (sky_irradiance_reads_multiscattering(spec)) {
-    out.source = psi_ms_source(atm, transmittance, *in.at("multiscattering"), s);
+    out.psi_ms = psi_ms_source(atm, transmittance, *in.at("multiscattering"), s);
     return;
   }
-  out.field = compute_converged_field(atm, transmittance, sky_light_field_spec(spec, atm), ctx);
-  out.source.transmittance = &transmittance;
-  out.source.field = &out.field;
+  SkyLightSourceSpec light = sky_light_source_spec(spec, atm, twilight);
+  light.rays = s;
+  make_sky_light_source(out.light, atm, transmittance, light, ctx);
 }
 
 Texture bake_sky_environment_product(const Scene& scene, const OutputSpec& spec,
@@ -81,10 +91,12 @@ Texture bake_sky_environment_product(const Scene& scene, const OutputSpec& spec,
   SkyIrradianceSpec s;
   s.sky_only = spec.options.value("sky_only", false);
   s.steps = option_int(spec, "steps", s.steps);
-  SkyLightSource source;
-  make_sky_light_source(source, scene, spec, in, s, stage_context(ctx, 0.0, 0.5));
-  return bake_sky_environment(scene.atmosphere, source.source, sky_environment_spec(spec),
-                              stage_context(ctx, 0.5, 1.0));
+  const SkyEnvironmentSpec e = sky_environment_spec(spec);
+  bool twilight = false;
+  for (const SkyEnvironmentView& v : e.views) twilight = twilight || v.sun_zenith_rad > 0.5 * kPi;
+  SkyLightHeld held;
+  make_sky_light_held(held, scene, spec, in, s, twilight, stage_context(ctx, 0.0, 0.5));
+  return bake_sky_environment(scene.atmosphere, held.source(), e, stage_context(ctx, 0.5, 1.0));
 }
 
 // Levels 1.. of the cube's chain: GGX-prefiltered from level 0 (core/ggx_prefilter.hpp).
@@ -106,20 +118,12 @@ std::vector<ProductProblem> sky_environment_problems(const OutputSpec& spec) {
 
 Texture bake_sky_irradiance_product(const Scene& scene, const OutputSpec& spec,
                                     const ProductInputs& in, const BakeContext& ctx) {
-  const Atmosphere& atm = scene.atmosphere;
-  const Texture& transmittance = *in.at("transmittance");
   const SkyIrradianceSpec s = sky_irradiance_spec(spec);
-  if (sky_irradiance_reads_multiscattering(spec)) {
-    const SkyRadianceSource source = psi_ms_source(atm, transmittance, *in.at("multiscattering"), s);
-    return bake_sky_irradiance(atm, source, s, ctx);
-  }
-  // The field's iteration is about half the bake (docs/decisions/sky-irradiance-source.md).
-  const ConvergedField field = compute_converged_field(
-      atm, transmittance, sky_light_field_spec(spec, atm), stage_context(ctx, 0.0, 0.7));
-  SkyRadianceSource source;
-  source.transmittance = &transmittance;
-  source.field = &field;
-  return bake_sky_irradiance(atm, source, s, stage_context(ctx, 0.7, 1.0));
+  SkyLightHeld held;
+  // The fields' iterations are about half the bake (docs/decisions/sky-irradiance-source.md).
+  make_sky_light_held(held, scene, spec, in, s, s.max_sun_zenith_rad > 0.5 * kPi,
+                      stage_context(ctx, 0.0, 0.6));
+  return bake_sky_irradiance(scene.atmosphere, held.source(), s, stage_context(ctx, 0.6, 1.0));
 }
 
 // The field's 4D table must be one bake_bruneton accepts.

@@ -83,22 +83,24 @@ nlohmann::json sky_irradiance_report(const ReportInputs& in,
   const OutputSpec spec = operating_spec(in.scene, "sky_irradiance");
   const SkyIrradianceSpec s = sky_irradiance_spec(spec);
   in.stage("sky_irradiance bake");
-  ConvergedField field;
-  SkyRadianceSource source;
+  // The product's own source (sky_light_products.cpp), remade on each timed bake.
+  SkyLightSource light;
+  SkyRadianceSource psi;
+  const bool reads_table = sky_irradiance_reads_multiscattering(spec);
   Texture table;
   const double seconds = time_bake(
       [&] {
-        if (sky_irradiance_reads_multiscattering(spec)) {
-          source = psi_ms_source(atm, in.transmittance, in.multiscattering, s);
+        if (reads_table) {
+          psi = psi_ms_source(atm, in.transmittance, in.multiscattering, s);
         } else {
-          field = compute_converged_field(atm, in.transmittance, sky_light_field_spec(spec, atm), {});
-          source = SkyRadianceSource{};
-          source.transmittance = &in.transmittance;
-          source.field = &field;
+          SkyLightSourceSpec l = sky_light_source_spec(spec, atm, s.max_sun_zenith_rad > 0.5 * kPi);
+          l.rays = s;
+          make_sky_light_source(light, atm, in.transmittance, l, {});
         }
-        return bake_sky_irradiance(atm, source, s, {});
+        return bake_sky_irradiance(atm, reads_table ? psi : light.source, s, {});
       },
       table, in.level.min_timing_seconds, 1);
+  const SkyRadianceSource& source = reads_table ? psi : light.source;
   IrradianceReferenceRule rule;
   rule.below = setup.sky_irradiance_rays_below;
   rule.above = setup.sky_irradiance_rays_above;

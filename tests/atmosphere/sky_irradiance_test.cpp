@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "atmosphere/converged_multiscattering.hpp"
+#include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/sh_l2.hpp"
 #include "atmosphere/sky_integrator.hpp"
 #include "atmosphere/sky_irradiance.hpp"
@@ -168,6 +169,37 @@ TEST(SkyIrradiance, TwilightSingleScatteringMatchesTheQuadrature) {
               << zenith_deg << " " << el << " " << az << " " << c;
       }
   }
+}
+
+// A source with a below-horizon source: viewers with the sun above their
+// horizon read the first, the others the second, in compute_sky_radiance_sh
+// and in the baked table's columns alike; the metadata names both.
+TEST(SkyIrradiance, ViewersWithTheSunBelowTheHorizonReadTheTwilightSource) {
+  SmallSky s;
+  s.spec.width = 5;  // columns at 0, 27, 54, 81 and 108 degrees
+  const SkyRadianceSource day =
+      psi_ms_source(s.atm, s.luts.transmittance, s.luts.multiscattering, s.spec);
+  const Texture other =
+      bake_multiscattering_lut(s.atm, s.luts.transmittance, {8, 8, 16, 10}, {});
+  const SkyRadianceSource night = psi_ms_source(s.atm, s.luts.transmittance, other, s.spec);
+  SkyRadianceSource both = day;
+  both.below_horizon = &night;
+  const double h = sky_irradiance_altitude(s.atm, s.spec, 1);
+  for (int x = 0; x < s.spec.width; ++x) {
+    const double zenith = sky_irradiance_sun_zenith(s.spec, x);
+    const ShRadiance got = compute_sky_radiance_sh(s.atm, both, s.spec, h, zenith);
+    const ShRadiance want =
+        compute_sky_radiance_sh(s.atm, zenith > 0.5 * kPi ? night : day, s.spec, h, zenith);
+    const ShRadiance not_want =
+        compute_sky_radiance_sh(s.atm, zenith > 0.5 * kPi ? day : night, s.spec, h, zenith);
+    EXPECT_EQ(got[0], want[0]) << zenith / kDeg;
+    EXPECT_NE(got[0], not_want[0]) << zenith / kDeg;
+  }
+  const Texture table = bake_sky_irradiance(s.atm, both, s.spec, {});
+  EXPECT_EQ(meta_string(table.metadata, "radiance_source"), "psi_ms");
+  EXPECT_EQ(meta_string(table.metadata, "radiance_source_below_horizon"), "psi_ms");
+  const ShRadiance last = compute_sky_radiance_sh(s.atm, night, s.spec, h, 108.0 * kDeg);
+  EXPECT_FLOAT_EQ(table.at(4, 1, 0, 0, 1), float(std::log(last[0].y)));
 }
 
 // The cut-down twin of the accuracy test: Earth, one altitude and sun,

@@ -350,6 +350,23 @@ TEST(PresetLoader, MaxErrorOnlyWhereTheBakeMeasuresAnError) {
       << warned.warnings[0].rule;
 }
 
+// twilight_source chooses between the converged sources; with the
+// multiscattering table's march it changes nothing.
+TEST(PresetLoader, TwilightSourceOnlyWithTheConvergedField) {
+  const fs::path dir = scratch("twilight_source");
+  json scene = inline_earth();
+  scene["outputs"] = json::array({{{"product", "sky_irradiance"},
+                                   {"twilight_source", "converged_field"}}});
+  EXPECT_TRUE(load_scene(write(dir / "field.json", scene.dump())).warnings.empty());
+  scene["outputs"][0]["radiance_source"] = "multiscattering_table";
+  const Scene warned = load_scene(write(dir / "table.json", scene.dump()));
+  ASSERT_EQ(warned.warnings.size(), 1u);
+  EXPECT_EQ(warned.warnings[0].pointer, "/outputs/0/twilight_source");
+  scene["outputs"][0]["twilight_source"] = "hillaire";
+  EXPECT_EQ(load_error(write(dir / "bad.json", scene.dump())).pointer(),
+            "/outputs/0/twilight_source");
+}
+
 TEST(PresetLoader, SpectrumWithoutSpectralHasNoEffect) {
   const fs::path dir = scratch("spectrum_rgb");
   // The shipped spectral Earth, its atmosphere file referenced from elsewhere.

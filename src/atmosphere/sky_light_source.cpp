@@ -1,0 +1,58 @@
+// The sky-light products' radiance source; see the header.
+#include "atmosphere/sky_light_source.hpp"
+
+#include "atmosphere/order_progress.hpp"
+
+namespace skybake {
+
+ConvergedMultiscatteringSpec twilight_field_spec(const ConvergedMultiscatteringSpec& daylight) {
+  ConvergedMultiscatteringSpec c;
+  BrunetonSpec& b = c.bruneton;
+  // 64 sun cosines, 4x the daylight field's; r, mu and nu at half of it,
+  // the density's sphere and the ground's irradiance coarse too: the
+  // table below averages over directions (measured in the decision record).
+  b.r_size = 8;
+  b.mu_size = 32;
+  b.mu_s_size = 64;
+  b.nu_size = 8;
+  b.density_directions = 8;
+  b.ray_nodes = 25;
+  b.irradiance_width = 32;
+  b.irradiance_height = 8;
+  b.irradiance_directions = 16;
+  b.tolerance = daylight.bruneton.tolerance;
+  c.estimator = PsiEstimator::relative;
+  c.bands = 8;
+  c.nu_slices = 8;
+  c.zenith_slices = 8;
+  return c;
+}
+
+MultiscatteringLutSpec twilight_psi_table_spec() {
+  MultiscatteringLutSpec t;
+  t.width = 64;
+  t.height = 32;
+  t.sun_mapping = SunMapping::terminator;
+  return t;
+}
+
+void make_sky_light_source(SkyLightSource& out, const Atmosphere& atm,
+                           const Texture& transmittance_lut, const SkyLightSourceSpec& spec,
+                           const BakeContext& ctx) {
+  out.field = compute_converged_field(atm, transmittance_lut, spec.field,
+                                      stage_context(ctx, 0.0, spec.twilight ? 0.7 : 1.0));
+  out.source = SkyRadianceSource{};
+  out.source.transmittance = &transmittance_lut;
+  out.source.field = &out.field;
+  if (!spec.twilight) return;
+  const ConvergedMultiscatteringSpec twilight = twilight_field_spec(spec.field);
+  out.twilight_field =
+      compute_converged_field(atm, transmittance_lut, twilight, stage_context(ctx, 0.7, 0.9));
+  out.twilight_psi = converged_multiscattering_table(atm, transmittance_lut,
+                                                     twilight_psi_table_spec(), twilight,
+                                                     out.twilight_field, stage_context(ctx, 0.9, 1.0));
+  out.twilight = psi_ms_source(atm, transmittance_lut, out.twilight_psi, spec.rays);
+  out.source.below_horizon = &out.twilight;
+}
+
+}  // namespace skybake
