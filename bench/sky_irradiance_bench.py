@@ -7,7 +7,11 @@ skyview, aerial_perspective), whole commands, each RUNS times interleaved
 Rows:
   hillaire        presets/earth.json --only transmittance,multiscattering,skyview,aerial_perspective
   sky_irradiance  Earth, sky_irradiance with its default source (the converged
-                  4D field) and its dependencies (transmittance, multiscattering)
+                  4D field, and Psi_ms by view from a second field where the
+                  sun is below the horizon) and its dependencies
+                  (transmittance, multiscattering)
+  sky_irradiance_field  the same with twilight_source converged_field (the
+                  daylight field below the horizon too)
   sky_irradiance_psi_ms  the same with radiance_source multiscattering_table
   deps            the dependencies alone (transmittance, multiscattering)
 
@@ -49,12 +53,16 @@ def main():
     threads = os.environ.get("THREADS", "0")
     work = tempfile.mkdtemp()
     field = preset(work, "si_field", [{"product": "sky_irradiance", "formats": ["exr"]}])
+    field_only = preset(work, "si_field_only",
+                        [{"product": "sky_irradiance", "formats": ["exr"],
+                          "twilight_source": "converged_field"}])
     psi = preset(work, "si_psi", [{"product": "sky_irradiance", "formats": ["exr"],
                                    "radiance_source": "multiscattering_table"}])
     rows = {
         "hillaire": [os.path.join(REPO, "presets", "earth.json"), "--only",
                      "transmittance,multiscattering,skyview,aerial_perspective"],
         "sky_irradiance": [field],
+        "sky_irradiance_field": [field_only],
         "sky_irradiance_psi_ms": [psi],
         "deps": [field, "--only", "transmittance,multiscattering"],
     }
