@@ -29,10 +29,15 @@ ConvergedMultiscatteringSpec twilight_field_spec(const ConvergedMultiscatteringS
 }
 
 MultiscatteringLutSpec twilight_psi_table_spec() {
+  // The sun axis crowded at the terminator, the altitudes near the ground
+  // where the twilight viewers' rays cross the densest air: at the ground
+  // on Earth 9 / 44 / 75 % RMS with the sun 4 / 11 / 18 degrees down,
+  // against 15 / 53 / 74 % with 32 rows spaced evenly.
   MultiscatteringLutSpec t;
   t.width = 64;
-  t.height = 32;
+  t.height = 16;
   t.sun_mapping = SunMapping::terminator;
+  t.altitude_mapping = AltitudeMapping::quadratic;
   return t;
 }
 

@@ -6,10 +6,11 @@
 // - a viewer with the sun below it (twilight): the march with Psi_ms by
 //   view (converged_multiscattering.hpp, a(nu) + b(mu_v)), tabulated from a
 //   second field that is coarse in r, mu and nu and fine in mu_s, on a sun
-//   axis that crowds its texels at the terminator. In twilight the light
-//   falls about 2x per degree of sun; the field's orders >= 2 read directly
-//   are read across 16 sun cosines and clamped below the field's lowest
-//   one, which makes deep twilight tens of times too bright.
+//   axis that crowds its texels at the terminator and altitudes that crowd
+//   near the ground. In twilight the light falls about 2x per degree of
+//   sun; the daylight field's orders >= 2 read directly are read across 16
+//   sun cosines and clamped below the field's lowest one, which makes deep
+//   twilight tens of times too bright.
 #pragma once
 
 #include "atmosphere/converged_multiscattering.hpp"
