@@ -8,18 +8,17 @@ namespace skybake {
 ConvergedMultiscatteringSpec twilight_field_spec(const ConvergedMultiscatteringSpec& daylight) {
   ConvergedMultiscatteringSpec c;
   BrunetonSpec& b = c.bruneton;
-  // 64 sun cosines, 4x the daylight field's; r, mu and nu at half of it,
-  // the density's sphere and the ground's irradiance coarse too: the
-  // table below averages over directions (measured in the decision record).
+  // 64 sun cosines, 4x the daylight field's; r, mu and nu at half of it
+  // and the density's sphere coarse too, as the table below averages over
+  // directions. The ground's irradiance keeps its size: at 32 x 8 from 16
+  // directions Earth's sky 4 degrees into twilight was 9 % off, not 5
+  // (docs/decisions/sky-irradiance-source.md).
   b.r_size = 8;
   b.mu_size = 32;
   b.mu_s_size = 64;
   b.nu_size = 8;
   b.density_directions = 8;
   b.ray_nodes = 25;
-  b.irradiance_width = 32;
-  b.irradiance_height = 8;
-  b.irradiance_directions = 16;
   b.tolerance = daylight.bruneton.tolerance;
   c.estimator = PsiEstimator::relative;
   c.bands = 8;
@@ -30,9 +29,9 @@ ConvergedMultiscatteringSpec twilight_field_spec(const ConvergedMultiscatteringS
 
 MultiscatteringLutSpec twilight_psi_table_spec() {
   // The sun axis crowded at the terminator, the altitudes near the ground
-  // where the twilight viewers' rays cross the densest air: at the ground
-  // on Earth 9 / 44 / 75 % RMS with the sun 4 / 11 / 18 degrees down,
-  // against 15 / 53 / 74 % with 32 rows spaced evenly.
+  // where the twilight viewers' rays cross the densest air: 16 such rows
+  // take Earth's ground from 15 / 53 / 74 % RMS to 9 / 44 / 75 % with the
+  // sun 4 / 11 / 18 degrees down, against 32 rows spaced evenly.
   MultiscatteringLutSpec t;
   t.width = 64;
   t.height = 16;
