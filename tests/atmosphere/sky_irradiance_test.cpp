@@ -202,6 +202,30 @@ TEST(SkyIrradiance, ViewersWithTheSunBelowTheHorizonReadTheTwilightSource) {
   EXPECT_FLOAT_EQ(table.at(4, 1, 0, 0, 1), float(std::log(last[0].y)));
 }
 
+// A single ray (the sky_environment cube's) reads the source of its sun too.
+TEST(SkyIrradiance, OneRayReadsTheSourceOfItsSun) {
+  SmallSky s;
+  const SkyRadianceSource day =
+      psi_ms_source(s.atm, s.luts.transmittance, s.luts.multiscattering, s.spec);
+  const Texture other =
+      bake_multiscattering_lut(s.atm, s.luts.transmittance, {8, 8, 16, 10}, {});
+  const SkyRadianceSource night = psi_ms_source(s.atm, s.luts.transmittance, other, s.spec);
+  SkyRadianceSource both = day;
+  both.below_horizon = &night;
+  const glm::dvec3 position(0.0, 0.0, s.atm.bottom_radius_m + 500.0);
+  const glm::dvec3 dir = glm::normalize(glm::dvec3(0.7, 0.2, 0.1));
+  for (double zenith_deg : {80.0, 95.0}) {
+    const glm::dvec3 sun(std::sin(zenith_deg * kDeg), 0.0, std::cos(zenith_deg * kDeg));
+    const glm::dvec3 got = sky_source_radiance(s.atm, both, false, 16, position, dir, sun);
+    EXPECT_EQ(got, sky_source_radiance(s.atm, zenith_deg > 90.0 ? night : day, false, 16,
+                                       position, dir, sun))
+        << zenith_deg;
+    EXPECT_NE(got, sky_source_radiance(s.atm, zenith_deg > 90.0 ? day : night, false, 16,
+                                       position, dir, sun))
+        << zenith_deg;
+  }
+}
+
 // The cut-down twin of the accuracy test: Earth, one altitude and sun,
 // the default source (the converged field) against the path tracer, at
 // the daylight targets: 3% RMS and 8% max, relative to the mean E over the
