@@ -22,13 +22,21 @@ namespace {
 
 double height_of(const Atmosphere& atm) { return atm.top_radius_m - atm.bottom_radius_m; }
 
-// Linear read of ground_sky_irradiance's table at a sun cosine.
+// Read of ground_sky_irradiance's table at a sun cosine: geometric between
+// nodes where both are lit, as the light falls about 2x per degree of sun
+// in twilight and a linear read overshoots (Earth's sky 4 degrees into
+// twilight 4.8 -> 3.4% RMS); linear where a node is 0.
 glm::dvec3 ground_sky_at(const std::vector<glm::dvec3>& table, double mu_s) {
   const int n = int(table.size());
   const double x = std::clamp(0.5 * (mu_s + 1.0), 0.0, 1.0) * (n - 1);
   const int i = std::min(int(x), n - 2);
   const double f = x - i;
-  return table[i] * (1.0 - f) + table[i + 1] * f;
+  glm::dvec3 out;
+  for (int c = 0; c < 3; ++c) {
+    const double a = table[i][c], b = table[i + 1][c];
+    out[c] = a > 0.0 && b > 0.0 ? a * std::pow(b / a, f) : a * (1.0 - f) + b * f;
+  }
+  return out;
 }
 
 // A ray of `source`, marched once for any number of suns (sky_ray_suns.hpp):

@@ -205,7 +205,7 @@ TEST(SkyIrradianceAccuracy, TwilightSourceIsCloserThanTheFieldBelowTheHorizon) {
 // Twilight, sun 0 to 18 degrees below the horizon: the target is L2's
 // limit + 1%, against the path tracer's segment estimate of the sun, which
 // converges there (reference/path_tracer.hpp). Open: the tiny planet is
-// within 0.5 point of it, Earth and Mars 3-75% off at the ground, the
+// within 0.5 point of it, Earth and Mars 3-76% off at the ground, the
 // multiple scattering of the twilight source too bright or too dark where
 // the light falls fastest (docs/decisions/sky-irradiance-source.md). Kept,
 // disabled, as the open target.
