@@ -30,6 +30,8 @@ SunSharedRay::SunSharedRay(const Atmosphere& atm, const Texture& transmittance_l
   }
   if (media.empty()) return;
   const int n = std::max(steps, 1);
+  segments_.reserve(size_t(n));
+  single_.reserve(size_t(n) * media.size());
   const double t0 = span.t_enter, t1 = span.t_exit;
   for (int i = 1; i <= n; ++i) {
     const double a = t0 + (t1 - t0) * (double(i - 1) / n);
