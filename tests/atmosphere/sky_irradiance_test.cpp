@@ -171,58 +171,60 @@ TEST(SkyIrradiance, TwilightSingleScatteringMatchesTheQuadrature) {
   }
 }
 
-// A source with a below-horizon source: viewers with the sun above their
-// horizon read the first, the others the second, in compute_sky_radiance_sh
-// and in the baked table's columns alike; the metadata names both.
+// Two psi_ms sources from different tables, the second below the first's
+// horizon (`both`), over SmallSky with 5 columns (0, 27, 54, 81 and 108
+// degrees).
+struct DayAndNight : SmallSky {
+  Texture other;
+  SkyRadianceSource day, night, both;
+  DayAndNight() {
+    spec.width = 5;
+    other = bake_multiscattering_lut(atm, luts.transmittance, {8, 8, 16, 10}, {});
+    day = psi_ms_source(atm, luts.transmittance, luts.multiscattering, spec);
+    night = psi_ms_source(atm, luts.transmittance, other, spec);
+    both = day;
+    both.below_horizon = &night;
+  }
+  DayAndNight(const DayAndNight&) = delete;
+  const SkyRadianceSource& read(double zenith) const { return zenith > 0.5 * kPi ? night : day; }
+  const SkyRadianceSource& not_read(double zenith) const {
+    return zenith > 0.5 * kPi ? day : night;
+  }
+};
+
+// Viewers with the sun above their horizon read the first source, the
+// others the second, in compute_sky_radiance_sh and in the baked table's
+// columns alike; the metadata names both.
 TEST(SkyIrradiance, ViewersWithTheSunBelowTheHorizonReadTheTwilightSource) {
-  SmallSky s;
-  s.spec.width = 5;  // columns at 0, 27, 54, 81 and 108 degrees
-  const SkyRadianceSource day =
-      psi_ms_source(s.atm, s.luts.transmittance, s.luts.multiscattering, s.spec);
-  const Texture other =
-      bake_multiscattering_lut(s.atm, s.luts.transmittance, {8, 8, 16, 10}, {});
-  const SkyRadianceSource night = psi_ms_source(s.atm, s.luts.transmittance, other, s.spec);
-  SkyRadianceSource both = day;
-  both.below_horizon = &night;
+  const DayAndNight s;
   const double h = sky_irradiance_altitude(s.atm, s.spec, 1);
   for (int x = 0; x < s.spec.width; ++x) {
     const double zenith = sky_irradiance_sun_zenith(s.spec, x);
-    const ShRadiance got = compute_sky_radiance_sh(s.atm, both, s.spec, h, zenith);
-    const ShRadiance want =
-        compute_sky_radiance_sh(s.atm, zenith > 0.5 * kPi ? night : day, s.spec, h, zenith);
-    const ShRadiance not_want =
-        compute_sky_radiance_sh(s.atm, zenith > 0.5 * kPi ? day : night, s.spec, h, zenith);
-    EXPECT_EQ(got[0], want[0]) << zenith / kDeg;
-    EXPECT_NE(got[0], not_want[0]) << zenith / kDeg;
+    const ShRadiance got = compute_sky_radiance_sh(s.atm, s.both, s.spec, h, zenith);
+    EXPECT_EQ(got[0], compute_sky_radiance_sh(s.atm, s.read(zenith), s.spec, h, zenith)[0])
+        << zenith / kDeg;
+    EXPECT_NE(got[0], compute_sky_radiance_sh(s.atm, s.not_read(zenith), s.spec, h, zenith)[0])
+        << zenith / kDeg;
   }
-  const Texture table = bake_sky_irradiance(s.atm, both, s.spec, {});
+  const Texture table = bake_sky_irradiance(s.atm, s.both, s.spec, {});
   EXPECT_EQ(meta_string(table.metadata, "radiance_source"), "psi_ms");
   EXPECT_EQ(meta_string(table.metadata, "radiance_source_below_horizon"), "psi_ms");
-  const ShRadiance last = compute_sky_radiance_sh(s.atm, night, s.spec, h, 108.0 * kDeg);
+  const ShRadiance last = compute_sky_radiance_sh(s.atm, s.night, s.spec, h, 108.0 * kDeg);
   EXPECT_FLOAT_EQ(table.at(4, 1, 0, 0, 1), float(std::log(last[0].y)));
 }
 
 // A single ray (the sky_environment cube's) reads the source of its sun too.
 TEST(SkyIrradiance, OneRayReadsTheSourceOfItsSun) {
-  SmallSky s;
-  const SkyRadianceSource day =
-      psi_ms_source(s.atm, s.luts.transmittance, s.luts.multiscattering, s.spec);
-  const Texture other =
-      bake_multiscattering_lut(s.atm, s.luts.transmittance, {8, 8, 16, 10}, {});
-  const SkyRadianceSource night = psi_ms_source(s.atm, s.luts.transmittance, other, s.spec);
-  SkyRadianceSource both = day;
-  both.below_horizon = &night;
+  const DayAndNight s;
   const glm::dvec3 position(0.0, 0.0, s.atm.bottom_radius_m + 500.0);
   const glm::dvec3 dir = glm::normalize(glm::dvec3(0.7, 0.2, 0.1));
-  for (double zenith_deg : {80.0, 95.0}) {
-    const glm::dvec3 sun(std::sin(zenith_deg * kDeg), 0.0, std::cos(zenith_deg * kDeg));
-    const glm::dvec3 got = sky_source_radiance(s.atm, both, false, 16, position, dir, sun);
-    EXPECT_EQ(got, sky_source_radiance(s.atm, zenith_deg > 90.0 ? night : day, false, 16,
-                                       position, dir, sun))
-        << zenith_deg;
-    EXPECT_NE(got, sky_source_radiance(s.atm, zenith_deg > 90.0 ? day : night, false, 16,
-                                       position, dir, sun))
-        << zenith_deg;
+  for (double zenith : {80.0 * kDeg, 95.0 * kDeg}) {
+    const glm::dvec3 sun(std::sin(zenith), 0.0, std::cos(zenith));
+    const auto radiance = [&](const SkyRadianceSource& source) {
+      return sky_source_radiance(s.atm, source, false, 16, position, dir, sun);
+    };
+    EXPECT_EQ(radiance(s.both), radiance(s.read(zenith))) << zenith / kDeg;
+    EXPECT_NE(radiance(s.both), radiance(s.not_read(zenith))) << zenith / kDeg;
   }
 }
 
