@@ -309,6 +309,18 @@ std::string sky_section(const nlohmann::json& sky, bool quick) {
   return s + "</table>\n</details>\n";
 }
 
+// The sky_irradiance section's table of texels, each error apart.
+std::string sky_irradiance_texels(const nlohmann::json& texels) {
+  std::string s = "<table>\n" + header({"altitude (m)", "sun zenith (deg)", "decode RMS",
+                                        "decode max", "L2 limit RMS", "L2 limit max",
+                                        "between texels RMS", "between texels max"});
+  for (const auto& x : texels)
+    s += row({num(x["altitude_m"]), num(x["sun_zenith_deg"]), pct(x["decode"]["rms"]),
+              pct(x["decode"]["max"]), pct(x["l2_limit"]["rms"]), pct(x["l2_limit"]["max"]),
+              pct(x["interpolation"]["rms"]), pct(x["interpolation"]["max"])});
+  return s + "</table>\n";
+}
+
 // The sky_irradiance section (sky_irradiance.hpp): per measured texel the
 // three errors apart, the decode against the path tracer, L2's own limit
 // (the best 9-coefficient fit of the reference) and the bilinear read
@@ -332,14 +344,18 @@ std::string sky_irradiance_section(const nlohmann::json& si, bool quick) {
   if (quick && status != "met") status = "not judged by a quick run", cls = "";
   s += fmt::format("<p>Target ({}): <span class=\"{}\">{}</span> (worst decode RMS {}).</p>\n",
                    text(t["what"]), cls, status, pct(t["worst_rms"]));
-  s += "<table>\n" + header({"altitude (m)", "sun zenith (deg)", "decode RMS", "decode max",
-                             "L2 limit RMS", "L2 limit max", "between texels RMS",
-                             "between texels max"});
-  for (const auto& x : si["texels"])
-    s += row({num(x["altitude_m"]), num(x["sun_zenith_deg"]), pct(x["decode"]["rms"]),
-              pct(x["decode"]["max"]), pct(x["l2_limit"]["rms"]), pct(x["l2_limit"]["max"]),
-              pct(x["interpolation"]["rms"]), pct(x["interpolation"]["max"])});
-  return s + "</table>\n";
+  s += sky_irradiance_texels(si["texels"]);
+  if (si.contains("twilight_texels") && !si["twilight_texels"].empty()) {
+    const auto& tw = si["twilight_target"];
+    const std::string tw_status = tw.value("status", "not measured");
+    s += fmt::format(
+        "<p>Twilight, {} paths per ray and channel. Target ({}): <span class=\"{}\">{}</span> "
+        "(worst excess over it {}).</p>\n",
+        prose(si["twilight_path_tracer_samples"]), text(tw["what"]),
+        tw_status == "met" ? "met" : "notmet", tw_status, pct(tw["worst_excess"]));
+    s += sky_irradiance_texels(si["twilight_texels"]);
+  }
+  return s;
 }
 
 std::string precision_section(const nlohmann::json& precision) {

@@ -15,18 +15,21 @@ namespace skybake {
 struct SkyIrradianceReportSetup {
   std::vector<int> sky_irradiance_rows;     // altitude texel rows measured
   std::vector<int> sky_irradiance_columns;  // sun zenith texel columns (daylight)
+  std::vector<int> sky_irradiance_twilight_columns;  // columns past 90 degrees
   int sky_irradiance_normals = 64;
   int sky_irradiance_rays_below = 4, sky_irradiance_rays_above = 8;
   int sky_irradiance_azimuths = 12;
   int sky_irradiance_samples = 32;  // paths per ray and channel
+  int sky_irradiance_twilight_samples = 256;  // the same in twilight, where the light is faint
 
   static SkyIrradianceReportSetup quick();
   static SkyIrradianceReportSetup full();
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SkyIrradianceReportSetup, sky_irradiance_rows,
-                                   sky_irradiance_columns, sky_irradiance_normals,
-                                   sky_irradiance_rays_below, sky_irradiance_rays_above,
-                                   sky_irradiance_azimuths, sky_irradiance_samples)
+                                   sky_irradiance_columns, sky_irradiance_twilight_columns,
+                                   sky_irradiance_normals, sky_irradiance_rays_below,
+                                   sky_irradiance_rays_above, sky_irradiance_azimuths,
+                                   sky_irradiance_samples, sky_irradiance_twilight_samples)
 
 nlohmann::json sky_irradiance_report(const ReportInputs& in, const SkyIrradianceReportSetup& setup);
 

@@ -57,6 +57,23 @@ TEST(ReportHtml, SkyIrradianceMissIsJudgedOnlyByAFullRun) {
             std::string::npos);
 }
 
+TEST(ReportHtml, SkyIrradianceShowsTwilightTexelsAgainstTheirOwnTarget) {
+  json si = measured_sky_irradiance("met");
+  si["twilight_path_tracer_samples"] = 256;
+  si["twilight_texels"] = json::array({{{"altitude_m", 0.0},
+                                        {"sun_zenith_deg", 101.0},
+                                        {"decode", {{"rms", 0.3585}, {"max", 0.95}}},
+                                        {"l2_limit", {{"rms", 0.0401}, {"max", 0.1422}}},
+                                        {"interpolation", {{"rms", 0.02}, {"max", 0.05}}}}});
+  si["twilight_target"] = {{"what", "twilight decode"}, {"worst_excess", 0.81}, {"status", "missed"}};
+  const std::string html = report_html(report_with(si, "full"));
+  EXPECT_NE(html.find("Twilight, 256 paths"), std::string::npos);
+  EXPECT_NE(html.find("<td>35.9 %</td><td>95 %</td>"), std::string::npos);
+  EXPECT_NE(html.find("<span class=\"notmet\">missed</span> (worst excess over it 81 %)"),
+            std::string::npos);
+  EXPECT_NE(html.find("<span class=\"met\">met</span>"), std::string::npos);  // daylight's
+}
+
 TEST(ReportHtml, SkyIrradianceNotSelectedSaysSo) {
   EXPECT_NE(report_html(report_with(nullptr, "full")).find("Not run (sky_irradiance was not"),
             std::string::npos);
