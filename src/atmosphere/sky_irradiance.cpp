@@ -57,7 +57,7 @@ SunSharedRay source_ray(const Atmosphere& atm, const SkyRadianceSource& source,
 glm::dvec3 source_ray_radiance(const Atmosphere& atm, const SkyRadianceSource& source,
                                const SunSharedRay& ray, bool sky_only, glm::dvec3 position,
                                glm::dvec3 dir, glm::dvec3 sun_dir, double sun_zenith_rad) {
-  glm::dvec3 l = ray.scattered(sun_dir, !source.field);
+  glm::dvec3 l = ray.scattered(sun_dir);
   const double r = glm::length(position);
   if (source.field)
     l += lookup_field_multiple_scattering(
@@ -84,7 +84,8 @@ glm::dvec3 sun_in_plane(double sun_zenith_rad) {
 }  // namespace
 
 const SkyRadianceSource& source_for_sun(const SkyRadianceSource& source, double sun_zenith_rad) {
-  return source.below_horizon && sun_zenith_rad > 0.5 * kPi ? *source.below_horizon : source;
+  return source.below_horizon && sun_below_horizon(sun_zenith_rad) ? *source.below_horizon
+                                                                    : source;
 }
 
 std::string radiance_source_name(const SkyRadianceSource& source) {
@@ -140,7 +141,7 @@ std::vector<glm::dvec3> ground_sky_irradiance(const Atmosphere& atm,
     for (int i = 0; i < nodes; ++i) {
       const double mu_s = -1.0 + 2.0 * i / (nodes - 1);
       const glm::dvec3 sun(std::sqrt(std::max(1.0 - mu_s * mu_s, 0.0)), 0.0, mu_s);
-      terms[size_t(i) * m + u] = rule.weights[upward[u]] * d.z * ray.scattered(sun, true);
+      terms[size_t(i) * m + u] = rule.weights[upward[u]] * d.z * ray.scattered(sun);
     }
   });
   std::vector<glm::dvec3> table(nodes, glm::dvec3(0.0));
@@ -174,6 +175,8 @@ std::vector<ShRadiance> compute_sky_radiance_sh_suns(const Atmosphere& atm,
   const glm::dvec3 position(0.0, 0.0, r);
   std::vector<ShRadiance> out(sun_zeniths_rad.size());
   for (ShRadiance& sh : out) sh.fill(glm::dvec3(0.0));
+  std::vector<glm::dvec3> suns_dir(sun_zeniths_rad.size());
+  for (size_t j = 0; j < suns_dir.size(); ++j) suns_dir[j] = sun_in_plane(sun_zeniths_rad[j]);
   for (const SkyRadianceSource* source : {&sources, sources.below_horizon}) {
     if (!source) continue;
     std::vector<size_t> suns;  // the columns that read this source
@@ -187,8 +190,7 @@ std::vector<ShRadiance> compute_sky_radiance_sh_suns(const Atmosphere& atm,
       const std::array<double, kShL2Count> y = sh_l2_basis(d);
       for (size_t j : suns) {
         const glm::dvec3 l = source_ray_radiance(atm, *source, ray, spec.sky_only, position, d,
-                                                 sun_in_plane(sun_zeniths_rad[j]),
-                                                 sun_zeniths_rad[j]);
+                                                 suns_dir[j], sun_zeniths_rad[j]);
         // The rule stands each ray for itself and its mirror image in y: the
         // y-odd functions cancel in pairs, so only the others are summed.
         for (int i : kShSymmetricIndex) out[j][i] += rule.weights[k] * y[i] * l;

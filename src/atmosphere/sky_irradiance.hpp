@@ -85,6 +85,9 @@ struct SkyRadianceSource {
   const SkyRadianceSource* below_horizon = nullptr;
 };
 
+// Twilight for a viewer: the sun below its horizon (sun zenith > 90 degrees).
+inline bool sun_below_horizon(double sun_zenith_rad) { return sun_zenith_rad > 0.5 * kPi; }
+
 // The source a viewer with the sun at this zenith angle reads.
 const SkyRadianceSource& source_for_sun(const SkyRadianceSource& source, double sun_zenith_rad);
 

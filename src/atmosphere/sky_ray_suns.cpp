@@ -21,17 +21,13 @@ SunSharedRay::SunSharedRay(const Atmosphere& atm, const Texture& transmittance_l
   if (!span.hits_atmosphere) return;
   meets_ground_ = span.exits_on_ground;
   ground_up_ = glm::normalize(position + span.t_exit * dir);
-  std::vector<const MediumComponent*> media;
-  for (const MediumComponent& c : atm.components) {
-    if (c.scattering_per_m + c.absorption_per_m == glm::dvec3(0.0) || c.density.layers.empty())
-      continue;  // absent: costs nothing (the per-ray march skips it too)
-    media.push_back(&c);
-    components_.push_back({c.phase, c.g});
-  }
-  if (media.empty()) return;
+  for (const MediumComponent& c : atm.components)
+    if (c.scattering_per_m + c.absorption_per_m != glm::dvec3(0.0) && !c.density.layers.empty())
+      media_.push_back(&c);  // absent ones cost nothing (the per-ray march skips them too)
+  if (media_.empty()) return;
   const int n = std::max(steps, 1);
   segments_.reserve(size_t(n));
-  single_.reserve(size_t(n) * media.size());
+  single_.reserve(size_t(n) * media_.size());
   const double t0 = span.t_enter, t1 = span.t_exit;
   for (int i = 1; i <= n; ++i) {
     const double a = t0 + (t1 - t0) * (double(i - 1) / n);
@@ -39,11 +35,12 @@ SunSharedRay::SunSharedRay(const Atmosphere& atm, const Texture& transmittance_l
     const double dt = b - a;
     if (!(dt > 0.0)) continue;
     const glm::dvec3 p = position + (0.5 * (a + b)) * dir;
-    const double r = std::max(glm::length(p), atm.bottom_radius_m);
+    const double length = glm::length(p);
+    const double r = std::max(length, atm.bottom_radius_m);
     const double h = r - atm.bottom_radius_m;
     glm::dvec3 sigma_s(0.0), sigma_t(0.0);
     const size_t first = single_.size();
-    for (const MediumComponent* c : media) {
+    for (const MediumComponent* c : media_) {
       const double d = density_at(c->density, h);
       single_.push_back(d * c->scattering_per_m);
       sigma_s += d * c->scattering_per_m;
@@ -57,7 +54,7 @@ SunSharedRay::SunSharedRay(const Atmosphere& atm, const Texture& transmittance_l
     const glm::dvec3 k = transmittance_ * atm.sun_illuminance * w.weight;
     for (size_t j = first; j < single_.size(); ++j) single_[j] *= k;
     Segment s;
-    s.up = p / glm::length(p);
+    s.up = p / length;
     s.mu_v = glm::dot(p, dir) / r;
     s.sun_read = transmittance_at_radius(transmittance_lut, atm, std::min(r, atm.top_radius_m));
     if (mslut_) s.psi_read = multiscattering_at_radius(*mslut_, mapping_, atm, r);
@@ -67,14 +64,13 @@ SunSharedRay::SunSharedRay(const Atmosphere& atm, const Texture& transmittance_l
   }
 }
 
-glm::dvec3 SunSharedRay::scattered(glm::dvec3 sun_dir, bool psi) const {
+glm::dvec3 SunSharedRay::scattered(glm::dvec3 sun_dir) const {
   const double nu = clamp_cosine(glm::dot(dir_, sun_dir));
   thread_local std::vector<double> phase;  // kept from call to call: no allocation per sun
-  const size_t m = components_.size();
+  const size_t m = media_.size();
   phase.resize(m);
-  for (size_t k = 0; k < m; ++k) phase[k] = phase_function(components_[k].phase, components_[k].g, nu);
-  const bool with_psi = psi && mslut_;
-  const MultiscatteringView view = with_psi ? multiscattering_view(mapping_, nu) : MultiscatteringView{};
+  for (size_t k = 0; k < m; ++k) phase[k] = phase_function(media_[k]->phase, media_[k]->g, nu);
+  const MultiscatteringView view = mslut_ ? multiscattering_view(mapping_, nu) : MultiscatteringView{};
   glm::dvec3 l(0.0);
   const glm::dvec3* single = single_.data();
   for (const Segment& s : segments_) {
@@ -83,14 +79,10 @@ glm::dvec3 SunSharedRay::scattered(glm::dvec3 sun_dir, bool psi) const {
     for (size_t k = 0; k < m; ++k) source += single[k] * phase[k];
     single += m;
     l += lookup_sun_transmittance(tlut_, s.sun_read, atm_.bottom_radius_m, mu_s) * source;
-    if (with_psi) l += lookup_multiscattering(*mslut_, s.psi_read, mu_s, view, s.mu_v) * s.ms;
+    if (mslut_) l += lookup_multiscattering(*mslut_, s.psi_read, mu_s, view, s.mu_v) * s.ms;
   }
   return l;
 }
-
-}  // namespace skybake
-
-namespace skybake {
 
 glm::dvec3 SunSharedRay::sunlit_ground(glm::dvec3 sun_dir) const {
   if (!meets_ground_) return glm::dvec3(0.0);

@@ -36,9 +36,9 @@ class SunSharedRay {
                const Texture* multiscattering_lut, const MultiscatteringMapping* mapping,
                glm::dvec3 position, glm::dvec3 dir, int steps);
 
-  // In-scattered luminance for the unit sun direction, units of E; with
-  // `psi`, eq. 11's term from the multiple-scattering table too.
-  glm::dvec3 scattered(glm::dvec3 sun_dir, bool psi) const;
+  // In-scattered luminance for the unit sun direction, units of E; with a
+  // multiple-scattering table, eq. 11's term from it too.
+  glm::dvec3 scattered(glm::dvec3 sun_dir) const;
 
   // The ground's diffuse response to the sun where the ray meets it (eq. 1
   // L_o: albedo / pi E T_sun mu_s), seen through the ray; 0 elsewhere.
@@ -49,10 +49,6 @@ class SunSharedRay {
   glm::dvec3 transmittance() const { return transmittance_; }  // viewer to the ray's end
 
  private:
-  struct Component {
-    PhaseKind phase;
-    double g;
-  };
   struct Segment {
     glm::dvec3 up;    // unit position of the midpoint (mu_s = up . sun)
     double mu_v;      // the ray's zenith cosine there
@@ -65,7 +61,7 @@ class SunSharedRay {
   const Texture* mslut_;
   MultiscatteringMapping mapping_{};
   glm::dvec3 dir_;
-  std::vector<Component> components_;
+  std::vector<const MediumComponent*> media_;  // present ones, in the atmosphere's order
   std::vector<Segment> segments_;
   std::vector<glm::dvec3> single_;  // [segment][component]: E T_i w_i sigma_s,k,i
   bool meets_ground_ = false;

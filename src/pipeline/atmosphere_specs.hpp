@@ -50,6 +50,23 @@ ConvergedMultiscatteringSpec sky_light_field_spec(const OutputSpec& spec, const 
 // horizon) unless "twilight_source" is "converged_field".
 SkyLightSourceSpec sky_light_source_spec(const OutputSpec& spec, const Atmosphere& atm,
                                          bool twilight);
+// The radiance source of one sky-light bake, with what it owns: the march
+// with the scene's multiscattering table ("radiance_source":
+// "multiscattering_table") or make_sky_light_source's. Neither copied nor
+// moved once made (the source points into it).
+struct SkyLightHeld {
+  SkyLightSource light;
+  SkyRadianceSource psi_ms;
+  const SkyRadianceSource& source() const { return psi_ms.transmittance ? psi_ms : light.source; }
+};
+// Makes it for the output `spec` (the products and the report alike): `rays`
+// the march's rule, steps and sky_only; `twilight` as for
+// sky_light_source_spec; `multiscattering` read with "multiscattering_table" only.
+void make_sky_light_held(SkyLightHeld& out, const Atmosphere& atm, const OutputSpec& spec,
+                         const Texture& transmittance, const Texture& multiscattering,
+                         const SkyIrradianceSpec& rays, bool twilight, const BakeContext& ctx);
+// Whether a sky_irradiance table has columns with the sun below the horizon.
+bool sky_irradiance_has_twilight(const SkyIrradianceSpec& s);
 SkyviewLutSpec skyview_spec(const OutputSpec& spec);
 AerialPerspectiveSpec aerial_perspective_spec(const OutputSpec& spec);
 // Sky irradiance (sky_light_products.cpp): its spec, and whether its

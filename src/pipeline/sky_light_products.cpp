@@ -63,27 +63,30 @@ SkyEnvironmentSpec sky_environment_spec(const OutputSpec& spec) {
   return s;
 }
 
-namespace {
-
-// The radiance source of one bake, held with what it may own.
-struct SkyLightHeld {
-  SkyLightSource light;
-  SkyRadianceSource psi_ms;
-  const SkyRadianceSource& source() const { return psi_ms.transmittance ? psi_ms : light.source; }
-};
-
-void make_sky_light_held(SkyLightHeld& out, const Scene& scene, const OutputSpec& spec,
-                         const ProductInputs& in, const SkyIrradianceSpec& s, bool twilight,
-                         const BakeContext& ctx) {
-  const Atmosphere& atm = scene.atmosphere;
-  const Texture& transmittance = *in.at("transmittance");
+void make_sky_light_held(SkyLightHeld& out, const Atmosphere& atm, const OutputSpec& spec,
+                         const Texture& transmittance, const Texture& multiscattering,
+                         const SkyIrradianceSpec& rays, bool twilight, const BakeContext& ctx) {
   if (sky_irradiance_reads_multiscattering(spec)) {
-    out.psi_ms = psi_ms_source(atm, transmittance, *in.at("multiscattering"), s);
+    out.psi_ms = psi_ms_source(atm, transmittance, multiscattering, rays);
     return;
   }
   SkyLightSourceSpec light = sky_light_source_spec(spec, atm, twilight);
-  light.rays = s;
+  light.rays = rays;
   make_sky_light_source(out.light, atm, transmittance, light, ctx);
+}
+
+bool sky_irradiance_has_twilight(const SkyIrradianceSpec& s) {
+  return sun_below_horizon(s.max_sun_zenith_rad);
+}
+
+namespace {
+
+// The held source for a product bake: its inputs from the product graph.
+void make_product_sky_light(SkyLightHeld& out, const Scene& scene, const OutputSpec& spec,
+                            const ProductInputs& in, const SkyIrradianceSpec& rays,
+                            bool twilight, const BakeContext& ctx) {
+  make_sky_light_held(out, scene.atmosphere, spec, *in.at("transmittance"),
+                      *in.at("multiscattering"), rays, twilight, ctx);
 }
 
 Texture bake_sky_environment_product(const Scene& scene, const OutputSpec& spec,
@@ -93,9 +96,9 @@ Texture bake_sky_environment_product(const Scene& scene, const OutputSpec& spec,
   s.steps = option_int(spec, "steps", s.steps);
   const SkyEnvironmentSpec e = sky_environment_spec(spec);
   bool twilight = false;
-  for (const SkyEnvironmentView& v : e.views) twilight = twilight || v.sun_zenith_rad > 0.5 * kPi;
+  for (const SkyEnvironmentView& v : e.views) twilight = twilight || sun_below_horizon(v.sun_zenith_rad);
   SkyLightHeld held;
-  make_sky_light_held(held, scene, spec, in, s, twilight, stage_context(ctx, 0.0, 0.5));
+  make_product_sky_light(held, scene, spec, in, s, twilight, stage_context(ctx, 0.0, 0.5));
   return bake_sky_environment(scene.atmosphere, held.source(), e, stage_context(ctx, 0.5, 1.0));
 }
 
@@ -121,8 +124,8 @@ Texture bake_sky_irradiance_product(const Scene& scene, const OutputSpec& spec,
   const SkyIrradianceSpec s = sky_irradiance_spec(spec);
   SkyLightHeld held;
   // The fields' iterations are about half the bake (docs/decisions/sky-irradiance-source.md).
-  make_sky_light_held(held, scene, spec, in, s, s.max_sun_zenith_rad > 0.5 * kPi,
-                      stage_context(ctx, 0.0, 0.6));
+  make_product_sky_light(held, scene, spec, in, s, sky_irradiance_has_twilight(s),
+                         stage_context(ctx, 0.0, 0.6));
   return bake_sky_irradiance(scene.atmosphere, held.source(), s, stage_context(ctx, 0.6, 1.0));
 }
 

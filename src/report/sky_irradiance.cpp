@@ -122,23 +122,16 @@ nlohmann::json sky_irradiance_report(const ReportInputs& in,
   const SkyIrradianceSpec s = sky_irradiance_spec(spec);
   in.stage("sky_irradiance bake");
   // The product's own source (sky_light_products.cpp), remade on each timed bake.
-  SkyLightSource light;
-  SkyRadianceSource psi;
-  const bool reads_table = sky_irradiance_reads_multiscattering(spec);
+  SkyLightHeld held;
   Texture table;
   const double seconds = time_bake(
       [&] {
-        if (reads_table) {
-          psi = psi_ms_source(atm, in.transmittance, in.multiscattering, s);
-        } else {
-          SkyLightSourceSpec l = sky_light_source_spec(spec, atm, s.max_sun_zenith_rad > 0.5 * kPi);
-          l.rays = s;
-          make_sky_light_source(light, atm, in.transmittance, l, {});
-        }
-        return bake_sky_irradiance(atm, reads_table ? psi : light.source, s, {});
+        make_sky_light_held(held, atm, spec, in.transmittance, in.multiscattering, s,
+                            sky_irradiance_has_twilight(s), {});
+        return bake_sky_irradiance(atm, held.source(), s, {});
       },
       table, in.level.min_timing_seconds, 1);
-  const SkyRadianceSource& source = reads_table ? psi : light.source;
+  const SkyRadianceSource& source = held.source();
   IrradianceReferenceRule rule;
   rule.below = setup.sky_irradiance_rays_below;
   rule.above = setup.sky_irradiance_rays_above;
@@ -149,7 +142,8 @@ nlohmann::json sky_irradiance_report(const ReportInputs& in,
   double worst_rms = 0.0, worst_excess = -1.0, twilight_excess = -1.0;
   for (int y : setup.sky_irradiance_rows) {
     for (int x : setup.sky_irradiance_columns) {
-      if (x >= s.width || y >= s.height || sky_irradiance_sun_zenith(s, x) > 90.0 * kDeg) continue;
+      if (x >= s.width || y >= s.height || sun_below_horizon(sky_irradiance_sun_zenith(s, x)))
+        continue;
       const MeasuredTexel t = measure(x, y, rule);
       worst_rms = std::max(worst_rms, t.decode.rms);
       worst_excess = std::max(worst_excess, t.decode.max - std::max(0.08, t.limit.max + 0.01));
@@ -161,7 +155,7 @@ nlohmann::json sky_irradiance_report(const ReportInputs& in,
   nlohmann::json twilight = nlohmann::json::array();
   for (int y : setup.sky_irradiance_rows)
     for (int x : setup.sky_irradiance_twilight_columns) {
-      if (x >= s.width || y >= s.height || sky_irradiance_sun_zenith(s, x) <= 90.0 * kDeg)
+      if (x >= s.width || y >= s.height || !sun_below_horizon(sky_irradiance_sun_zenith(s, x)))
         continue;
       const MeasuredTexel t = measure(x, y, twilight_rule);
       twilight_excess = std::max({twilight_excess, t.decode.rms - (t.limit.rms + 0.01),
@@ -170,7 +164,7 @@ nlohmann::json sky_irradiance_report(const ReportInputs& in,
     }
   const bool met = worst_rms < 0.03 && worst_excess < 0.0;
   return {{"product", "sky_irradiance"},
-          {"radiance_source", sky_irradiance_reads_multiscattering(spec) ? "psi_ms" : "field"},
+          {"radiance_source", radiance_source_name(source)},
           {"size", {s.width, s.height}},
           {"bake_seconds", seconds},
           {"path_tracer", {{"rays_below", rule.below}, {"rays_above", rule.above},
