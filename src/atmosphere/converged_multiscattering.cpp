@@ -71,6 +71,10 @@ ConvergedField compute_converged_field(const Atmosphere& atm, const Texture& tra
   b.mu_s_min = converged_mu_s_min(atm);
   b.combined_mie_alpha = false;         // single Mie in its own table
   b.irradiance_includes_direct = true;  // the ground's light of every order
+  // The field reads its irradiance at the ground alone (the ground's light in
+  // the density, ground_irradiance, the energy balance): the table's two rows
+  // are the ground and the top, and the ground's row is the same at any height.
+  b.irradiance_height = 2;
   BrunetonTextures t = bake_bruneton(atm, transmittance_lut, b, ctx);
   ConvergedField f;
   f.shape = t.shape;

@@ -62,7 +62,7 @@ struct ConvergedField {
   ScatteringShape shape;
   SingleScatteringTables single;  // order 1, S_R and S_M
   Texture multiple;               // sum of the orders >= 2 (tail included), radiance
-  Texture ground_irradiance;      // every order at the ground, direct sunlight included
+  Texture ground_irradiance;      // every order, direct sunlight included; row 0 the ground
   ScatteringPhases phases;
   int orders_used = 0;
   double last_residual = 1.0;

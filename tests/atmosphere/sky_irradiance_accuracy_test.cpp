@@ -204,11 +204,12 @@ TEST(SkyIrradianceAccuracy, TwilightSourceIsCloserThanTheFieldBelowTheHorizon) {
 
 // Twilight, sun 0 to 18 degrees below the horizon: the target is L2's
 // limit + 1%, against the path tracer's segment estimate of the sun, which
-// converges there (reference/path_tracer.hpp). Open: the tiny planet is
-// within 0.5 point of it, Earth and Mars 3-76% off at the ground, the
-// multiple scattering of the twilight source too bright or too dark where
-// the light falls fastest (docs/decisions/sky-irradiance-source.md). Kept,
-// disabled, as the open target.
+// converges there (reference/path_tracer.hpp). Open: met at 4 of 18
+// texels (Earth's ground 4 degrees down, three of the tiny planet's);
+// Earth and Mars 8-76% off further down, the 4D iteration's multiple
+// scattering too bright or too dark where the light falls fastest
+// (docs/decisions/sky-irradiance-source.md). Kept, disabled, as the open
+// target.
 TEST(SkyIrradianceAccuracy, DISABLED_TwilightWithinL2LimitPlusOnePercent) {
   for_each_twilight_texel([](const TwilightTexel& t) {
     const auto decode = decode_errors(t.ref, texel(t.baked.table, t.x, t.y));
