@@ -7,9 +7,10 @@ skyview, aerial_perspective), whole commands, each RUNS times interleaved
 Rows:
   hillaire        presets/earth.json --only transmittance,multiscattering,skyview,aerial_perspective
   sky_irradiance  Earth, sky_irradiance with its default source (the converged
-                  4D field, and Psi_ms by view from a second field where the
+                  4D field, and a second field fine along the sun where the
                   sun is below the horizon) and its dependencies
                   (transmittance, multiscattering)
+  sky_irradiance_psi_view  the same with twilight_source psi_ms_by_view
   sky_irradiance_field  the same with twilight_source converged_field (the
                   daylight field below the horizon too)
   sky_irradiance_psi_ms  the same with radiance_source multiscattering_table
@@ -53,6 +54,9 @@ def main():
     threads = os.environ.get("THREADS", "0")
     work = tempfile.mkdtemp()
     field = preset(work, "si_field", [{"product": "sky_irradiance", "formats": ["exr"]}])
+    psi_view = preset(work, "si_psi_view",
+                      [{"product": "sky_irradiance", "formats": ["exr"],
+                        "twilight_source": "psi_ms_by_view"}])
     field_only = preset(work, "si_field_only",
                         [{"product": "sky_irradiance", "formats": ["exr"],
                           "twilight_source": "converged_field"}])
@@ -62,6 +66,7 @@ def main():
         "hillaire": [os.path.join(REPO, "presets", "earth.json"), "--only",
                      "transmittance,multiscattering,skyview,aerial_perspective"],
         "sky_irradiance": [field],
+        "sky_irradiance_psi_view": [psi_view],
         "sky_irradiance_field": [field_only],
         "sky_irradiance_psi_ms": [psi],
         "deps": [field, "--only", "transmittance,multiscattering"],

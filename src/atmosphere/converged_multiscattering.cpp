@@ -68,7 +68,7 @@ ConvergedField compute_converged_field(const Atmosphere& atm, const Texture& tra
                                        const ConvergedMultiscatteringSpec& spec,
                                        const BakeContext& ctx) {
   BrunetonSpec b = spec.bruneton;
-  b.mu_s_min = converged_mu_s_min(atm);
+  b.mu_s_min = std::min(converged_mu_s_min(atm), spec.mu_s_min_cap);
   b.combined_mie_alpha = false;         // single Mie in its own table
   b.irradiance_includes_direct = true;  // the ground's light of every order
   // The field reads its irradiance at the ground alone (the ground's light in

@@ -48,6 +48,10 @@ struct ConvergedMultiscatteringSpec {
   int nu_slices = 0;
   int zenith_slices = 0;
   PsiViewShape view_shape() const { return {nu_slices, zenith_slices}; }
+  // The table's lowest sun cosine is at most this (and converged_mu_s_min):
+  // a field read by viewers deeper in twilight than that default reaches
+  // (sky_light_source.hpp). 0: the default alone.
+  double mu_s_min_cap = 0.0;
 
   static BrunetonSpec default_converged_bruneton_spec();
 };

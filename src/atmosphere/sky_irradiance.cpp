@@ -95,8 +95,14 @@ std::string radiance_source_name(const SkyRadianceSource& source) {
 void set_sky_light_source_metadata(Metadata& m, const SkyRadianceSource& source) {
   set_meta(m, "radiance_source", radiance_source_name(source));
   if (source.field) set_meta(m, "energy_out_over_in", source.field->energy_out_over_in);
-  if (source.below_horizon)
-    set_meta(m, "radiance_source_below_horizon", radiance_source_name(*source.below_horizon));
+  if (!source.below_horizon) return;
+  const SkyRadianceSource& b = *source.below_horizon;
+  set_meta(m, "radiance_source_below_horizon", radiance_source_name(b));
+  if (!b.field) return;
+  const ScatteringShape& t = b.field->shape;
+  set_meta(m, "below_horizon_field_shape", fmt::format("{}x{}x{}x{}", t.r_size, t.mu_size,
+                                                       t.mu_s_size, t.nu_size));
+  set_meta(m, "below_horizon_mu_s_min", t.mu_s_min);
 }
 
 glm::dvec3 sky_source_radiance(const Atmosphere& atm, const SkyRadianceSource& source,

@@ -97,7 +97,8 @@ std::string radiance_source_name(const SkyRadianceSource& source);
 
 // Records the source in a product's metadata: "radiance_source", a field's
 // "energy_out_over_in", and where viewers with the sun below their horizon
-// read another source, "radiance_source_below_horizon".
+// read another source, "radiance_source_below_horizon" (and a field's
+// shape and lowest sun cosine).
 void set_sky_light_source_metadata(Metadata& m, const SkyRadianceSource& source);
 
 // The sky's irradiance at the ground on a horizontal surface from the

@@ -45,11 +45,11 @@ ConvergedMultiscatteringSpec skyview_multiple4d_spec(const OutputSpec& spec,
 // converged_multiscattering_spec, with the default shape refined where the
 // Mie group shapes the orders (orders_resolution.hpp sky_light_field_shape).
 ConvergedMultiscatteringSpec sky_light_field_spec(const OutputSpec& spec, const Atmosphere& atm);
-// Their whole source (atmosphere/sky_light_source.hpp): that field, and a
-// twilight source where `twilight` (some viewer has the sun below its
-// horizon) unless "twilight_source" is "converged_field".
+// Their whole source (atmosphere/sky_light_source.hpp): that field, and
+// the "twilight_source" where some viewer has the sun below its horizon:
+// the deepest sun is at deepest_sun_zenith_rad.
 SkyLightSourceSpec sky_light_source_spec(const OutputSpec& spec, const Atmosphere& atm,
-                                         bool twilight);
+                                         double deepest_sun_zenith_rad);
 // The radiance source of one sky-light bake, with what it owns: the march
 // with the scene's multiscattering table ("radiance_source":
 // "multiscattering_table") or make_sky_light_source's. Neither copied nor
@@ -60,13 +60,12 @@ struct SkyLightHeld {
   const SkyRadianceSource& source() const { return psi_ms.transmittance ? psi_ms : light.source; }
 };
 // Makes it for the output `spec` (the products and the report alike): `rays`
-// the march's rule, steps and sky_only; `twilight` as for
+// the march's rule, steps and sky_only; deepest_sun_zenith_rad as for
 // sky_light_source_spec; `multiscattering` read with "multiscattering_table" only.
 void make_sky_light_held(SkyLightHeld& out, const Atmosphere& atm, const OutputSpec& spec,
                          const Texture& transmittance, const Texture& multiscattering,
-                         const SkyIrradianceSpec& rays, bool twilight, const BakeContext& ctx);
-// Whether a sky_irradiance table has columns with the sun below the horizon.
-bool sky_irradiance_has_twilight(const SkyIrradianceSpec& s);
+                         const SkyIrradianceSpec& rays, double deepest_sun_zenith_rad,
+                         const BakeContext& ctx);
 SkyviewLutSpec skyview_spec(const OutputSpec& spec);
 AerialPerspectiveSpec aerial_perspective_spec(const OutputSpec& spec);
 // Sky irradiance (sky_light_products.cpp): its spec, and whether its

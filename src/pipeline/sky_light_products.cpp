@@ -38,11 +38,15 @@ SkyIrradianceSpec sky_irradiance_spec(const OutputSpec& spec) {
 }
 
 SkyLightSourceSpec sky_light_source_spec(const OutputSpec& spec, const Atmosphere& atm,
-                                         bool twilight) {
+                                         double deepest_sun_zenith_rad) {
   SkyLightSourceSpec s;
   s.field = sky_light_field_spec(spec, atm);
-  s.twilight =
-      twilight && option_string(spec, "twilight_source", "psi_ms_by_view") == "psi_ms_by_view";
+  s.deepest_sun_zenith_rad = deepest_sun_zenith_rad;
+  const std::string twilight = option_string(spec, "twilight_source", "twilight_field");
+  if (!sun_below_horizon(deepest_sun_zenith_rad) || twilight == "converged_field")
+    s.twilight = TwilightSource::daylight_field;
+  else if (twilight == "psi_ms_by_view")
+    s.twilight = TwilightSource::psi_ms_by_view;
   return s;
 }
 
@@ -65,18 +69,15 @@ SkyEnvironmentSpec sky_environment_spec(const OutputSpec& spec) {
 
 void make_sky_light_held(SkyLightHeld& out, const Atmosphere& atm, const OutputSpec& spec,
                          const Texture& transmittance, const Texture& multiscattering,
-                         const SkyIrradianceSpec& rays, bool twilight, const BakeContext& ctx) {
+                         const SkyIrradianceSpec& rays, double deepest_sun_zenith_rad,
+                         const BakeContext& ctx) {
   if (sky_irradiance_reads_multiscattering(spec)) {
     out.psi_ms = psi_ms_source(atm, transmittance, multiscattering, rays);
     return;
   }
-  SkyLightSourceSpec light = sky_light_source_spec(spec, atm, twilight);
+  SkyLightSourceSpec light = sky_light_source_spec(spec, atm, deepest_sun_zenith_rad);
   light.rays = rays;
   make_sky_light_source(out.light, atm, transmittance, light, ctx);
-}
-
-bool sky_irradiance_has_twilight(const SkyIrradianceSpec& s) {
-  return sun_below_horizon(s.max_sun_zenith_rad);
 }
 
 namespace {
@@ -84,9 +85,9 @@ namespace {
 // The held source for a product bake: its inputs from the product graph.
 void make_product_sky_light(SkyLightHeld& out, const Scene& scene, const OutputSpec& spec,
                             const ProductInputs& in, const SkyIrradianceSpec& rays,
-                            bool twilight, const BakeContext& ctx) {
+                            double deepest_sun_zenith_rad, const BakeContext& ctx) {
   make_sky_light_held(out, scene.atmosphere, spec, *in.at("transmittance"),
-                      *in.at("multiscattering"), rays, twilight, ctx);
+                      *in.at("multiscattering"), rays, deepest_sun_zenith_rad, ctx);
 }
 
 Texture bake_sky_environment_product(const Scene& scene, const OutputSpec& spec,
@@ -95,10 +96,10 @@ Texture bake_sky_environment_product(const Scene& scene, const OutputSpec& spec,
   s.sky_only = spec.options.value("sky_only", false);
   s.steps = option_int(spec, "steps", s.steps);
   const SkyEnvironmentSpec e = sky_environment_spec(spec);
-  bool twilight = false;
-  for (const SkyEnvironmentView& v : e.views) twilight = twilight || sun_below_horizon(v.sun_zenith_rad);
+  double deepest = 0.0;
+  for (const SkyEnvironmentView& v : e.views) deepest = std::max(deepest, v.sun_zenith_rad);
   SkyLightHeld held;
-  make_product_sky_light(held, scene, spec, in, s, twilight, stage_context(ctx, 0.0, 0.5));
+  make_product_sky_light(held, scene, spec, in, s, deepest, stage_context(ctx, 0.0, 0.5));
   return bake_sky_environment(scene.atmosphere, held.source(), e, stage_context(ctx, 0.5, 1.0));
 }
 
@@ -124,7 +125,7 @@ Texture bake_sky_irradiance_product(const Scene& scene, const OutputSpec& spec,
   const SkyIrradianceSpec s = sky_irradiance_spec(spec);
   SkyLightHeld held;
   // The fields' iterations are about half the bake (docs/decisions/sky-irradiance-source.md).
-  make_product_sky_light(held, scene, spec, in, s, sky_irradiance_has_twilight(s),
+  make_product_sky_light(held, scene, spec, in, s, s.max_sun_zenith_rad,
                          stage_context(ctx, 0.0, 0.6));
   return bake_sky_irradiance(scene.atmosphere, held.source(), s, stage_context(ctx, 0.6, 1.0));
 }

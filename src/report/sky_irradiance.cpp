@@ -127,7 +127,7 @@ nlohmann::json sky_irradiance_report(const ReportInputs& in,
   const double seconds = time_bake(
       [&] {
         make_sky_light_held(held, atm, spec, in.transmittance, in.multiscattering, s,
-                            sky_irradiance_has_twilight(s), {});
+                            s.max_sun_zenith_rad, {});
         return bake_sky_irradiance(atm, held.source(), s, {});
       },
       table, in.level.min_timing_seconds, 1);

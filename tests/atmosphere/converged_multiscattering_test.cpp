@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "atmosphere/phase.hpp"
+#include "atmosphere/scattering_orders.hpp"
 #include "atmosphere/transmittance_lut.hpp"
 #include "core/error.hpp"
 #include "core/error_stats.hpp"
@@ -101,6 +102,31 @@ glm::dvec3 mean_single_scattering(const Atmosphere& atm, double r, double mu_s, 
     sum += s.rayleigh * phase_function(PhaseKind::rayleigh, 0.0, nu);
   }
   return sum / double(n);
+}
+
+// The field's sun axis stops at converged_mu_s_min, or lower where a cap
+// asks (a twilight field, sky_light_source.hpp); its irradiance keeps the
+// ground's row alone, equal to a taller table's.
+TEST(ConvergedMultiscattering, SunAxisReachesItsCapAndTheGroundRowIsTheTallTables) {
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const Texture t = bake_transmittance_lut(atm, {}, {});
+  ConvergedMultiscatteringSpec spec = small_spec();
+  spec.bruneton.orders = 2;
+  spec.bruneton.tolerance = 0.0;
+  const ConvergedField plain = compute_converged_field(atm, t, spec, {});
+  EXPECT_DOUBLE_EQ(plain.shape.mu_s_min, converged_mu_s_min(atm));
+  EXPECT_EQ(plain.ground_irradiance.height, 2);
+  BrunetonSpec tall = spec.bruneton;
+  tall.mu_s_min = plain.shape.mu_s_min;
+  tall.combined_mie_alpha = false;
+  tall.irradiance_includes_direct = true;
+  const BrunetonTextures b = bake_bruneton(atm, t, tall, {});
+  ASSERT_EQ(b.irradiance.height, 8);
+  for (int x = 0; x < b.irradiance.width; ++x)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(plain.ground_irradiance.at(x, 0, 0, 0, c), b.irradiance.at(x, 0, 0, 0, c)) << x;
+  spec.mu_s_min_cap = std::cos(114.0 * kDeg);
+  EXPECT_DOUBLE_EQ(compute_converged_field(atm, t, spec, {}).shape.mu_s_min, spec.mu_s_min_cap);
 }
 
 TEST(ConvergedMultiscattering, ThinConservativeSlabIsTheMeanOfSingleScattering) {

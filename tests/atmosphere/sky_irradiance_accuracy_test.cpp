@@ -163,10 +163,17 @@ struct TwilightTexel {
   fixtures::IrradianceReference ref;
 };
 
+// Paths per ray of the twilight reference: a few long paths to the lit air
+// carry much of the light, and fewer paths come out low (Earth's blue 11
+// degrees down 16% low at 256); 1024 is within 1% of 4096 up to 11 degrees
+// down. 18 degrees down it is not converged: Earth's red at the ground
+// rises 1.2, 1.6, 2.0e-9 at 1024, 4096, 16384 (docs/report.md).
+constexpr int kTwilightPaths = 1024;
+
 template <typename Check>
 void for_each_twilight_texel(Check check) {
   fixtures::ReferenceRule rule;
-  rule.samples = 256;
+  rule.samples = kTwilightPaths;
   for (const Planet& p : planets()) {
     const auto b = bake(p);
     for (int y : kRows)
@@ -181,8 +188,8 @@ void for_each_twilight_texel(Check check) {
 
 // Below the horizon the twilight source (sky_light_source.hpp) is closer
 // to the path tracer than the daylight field read there, in RMS and max,
-// at every twilight texel: the field's orders >= 2 are read across its 16
-// sun cosines and clamped below its lowest
+// at every twilight texel: the daylight field's orders >= 2 are read
+// across its 16 sun cosines and clamped below its lowest
 // (docs/decisions/sky-irradiance-source.md). The target itself is the
 // disabled test below.
 TEST(SkyIrradianceAccuracy, TwilightSourceIsCloserThanTheFieldBelowTheHorizon) {
@@ -204,10 +211,10 @@ TEST(SkyIrradianceAccuracy, TwilightSourceIsCloserThanTheFieldBelowTheHorizon) {
 
 // Twilight, sun 0 to 18 degrees below the horizon: the target is L2's
 // limit + 1%, against the path tracer's segment estimate of the sun, which
-// converges there (reference/path_tracer.hpp). Open: met at 4 of 18
-// texels (Earth's ground 4 degrees down, three of the tiny planet's);
-// Earth and Mars 8-76% off further down, the 4D iteration's multiple
-// scattering too bright or too dark where the light falls fastest
+// converges there (reference/path_tracer.hpp) up to 11 degrees down.
+// Open: 11 and 18 degrees down on Earth and Mars, where the twilight
+// field's light is still 1.1-1.4x the path tracer's, and 18 degrees down
+// the reference itself has not converged
 // (docs/decisions/sky-irradiance-source.md). Kept, disabled, as the open
 // target.
 TEST(SkyIrradianceAccuracy, DISABLED_TwilightWithinL2LimitPlusOnePercent) {
