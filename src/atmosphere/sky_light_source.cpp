@@ -7,6 +7,28 @@
 #include "atmosphere/order_progress.hpp"
 
 namespace skybake {
+namespace {
+
+// What the two twilight fields share, on the converged default: 32 view
+// zeniths and 8 nu slices (the irradiance below averages over directions),
+// 25 ray nodes, the ground's irradiance on 512 sun cosines (below), the
+// daylight field's tolerance.
+ConvergedMultiscatteringSpec twilight_base(const ConvergedMultiscatteringSpec& daylight,
+                                           int r_size, int mu_s_size, int density_directions) {
+  ConvergedMultiscatteringSpec c;
+  BrunetonSpec& b = c.bruneton;
+  b.r_size = r_size;
+  b.mu_size = 32;
+  b.mu_s_size = mu_s_size;
+  b.nu_size = 8;
+  b.density_directions = density_directions;
+  b.ray_nodes = 25;
+  b.irradiance_width = 512;
+  b.tolerance = daylight.bruneton.tolerance;
+  return c;
+}
+
+}  // namespace
 
 ConvergedMultiscatteringSpec twilight_field_spec(const ConvergedMultiscatteringSpec& daylight,
                                                  double deepest_sun_zenith_rad) {
@@ -21,23 +43,12 @@ ConvergedMultiscatteringSpec twilight_field_spec(const ConvergedMultiscatteringS
   // nu 16) 0.6-3 points on Mars for 2.3x. The sun axis reaching 6 degrees
   // past the deepest sun keeps 18 degrees down from reading the axis's
   // edge (11x too bright).
-  ConvergedMultiscatteringSpec c;
-  BrunetonSpec& b = c.bruneton;
-  b.r_size = 16;
-  b.mu_size = 32;
-  b.mu_s_size = 128;
-  b.nu_size = 8;
-  b.density_directions = 16;
-  b.ray_nodes = 25;
-  b.irradiance_width = 512;  // as psi_view_field_spec's, below
-  b.tolerance = daylight.bruneton.tolerance;
+  ConvergedMultiscatteringSpec c = twilight_base(daylight, 16, 128, 16);
   c.mu_s_min_cap = std::cos(std::min(deepest_sun_zenith_rad + 6.0 * kDeg, 179.0 * kDeg));
   return c;
 }
 
 ConvergedMultiscatteringSpec psi_view_field_spec(const ConvergedMultiscatteringSpec& daylight) {
-  ConvergedMultiscatteringSpec c;
-  BrunetonSpec& b = c.bruneton;
   // 64 sun cosines, 4x the daylight field's; r, mu and nu at half of it
   // and the density's sphere coarse too, as the table below averages over
   // directions. The ground's irradiance has 512 sun cosines, 0.2 degrees
@@ -48,14 +59,7 @@ ConvergedMultiscatteringSpec psi_view_field_spec(const ConvergedMultiscatteringS
   // the default 32 directions: a 32 x 8 table from 16 left Earth's sky 4
   // degrees into twilight 9 % off, not 5
   // (docs/decisions/sky-irradiance-source.md).
-  b.r_size = 8;
-  b.mu_size = 32;
-  b.mu_s_size = 64;
-  b.nu_size = 8;
-  b.density_directions = 8;
-  b.ray_nodes = 25;
-  b.irradiance_width = 512;
-  b.tolerance = daylight.bruneton.tolerance;
+  ConvergedMultiscatteringSpec c = twilight_base(daylight, 8, 64, 8);
   c.estimator = PsiEstimator::relative;
   c.bands = 8;
   c.nu_slices = 8;
