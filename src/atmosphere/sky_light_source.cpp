@@ -42,8 +42,12 @@ ConvergedMultiscatteringSpec twilight_field_spec(const ConvergedMultiscatteringS
   // gain 0.5 point for 1.5x the cost, Mars's daylight refinement (mu 64,
   // nu 16) 0.6-3 points on Mars for 2.3x. The sun axis reaching 6 degrees
   // past the deepest sun keeps 18 degrees down from reading the axis's
-  // edge (11x too bright).
+  // edge (11x too bright). Its tolerance is 10x the daylight field's: the
+  // geometric tail carries the rest, the figures above move by under 0.1
+  // point, and the bake takes 0.45 s less on Earth (3x: the tiny planet
+  // 0.3 point worse).
   ConvergedMultiscatteringSpec c = twilight_base(daylight, 16, 128, 16);
+  c.bruneton.tolerance *= 10.0;
   c.mu_s_min_cap = std::cos(std::min(deepest_sun_zenith_rad + 6.0 * kDeg, 179.0 * kDeg));
   return c;
 }
