@@ -10,9 +10,8 @@ namespace skybake {
 namespace {
 
 // What the two twilight fields share, on the converged default: 32 view
-// zeniths and 8 nu slices (the irradiance below averages over directions),
-// 25 ray nodes, the ground's irradiance on 512 sun cosines (below), the
-// daylight field's tolerance.
+// zeniths, 8 nu slices, 25 ray nodes, the ground's irradiance on 512 sun
+// cosines (psi_view_field_spec says why), the daylight field's tolerance.
 ConvergedMultiscatteringSpec twilight_base(const ConvergedMultiscatteringSpec& daylight,
                                            int r_size, int mu_s_size, int density_directions) {
   ConvergedMultiscatteringSpec c;
@@ -36,11 +35,11 @@ ConvergedMultiscatteringSpec twilight_field_spec(const ConvergedMultiscatteringS
   // 11 degrees down), RMS at the ground 4 / 11 / 18 degrees down, this
   // field against psi_ms_by_view: Earth 1.8 / 5.8 / 60% against 2.4 / 20 /
   // 73%, Mars 2.6 / 9.0 / 9.2% against 2.6 / 8.0 / 15%, the tiny planet
-  // 1.4 / 1.5 / 2.1% against 1.4 / 1.2 / 1.8%. Earth 11 degrees down
+  // 1.4 / 1.5 / 2.2% against 1.4 / 1.2 / 1.8%. Earth 11 degrees down
   // (docs/decisions/sky-irradiance-source.md): 16% from 8 x 32 x 64 x 8,
   // 5.6% with 16 radii, 128 sun cosines and 16 density bands; nu 16 would
-  // gain 0.5 point for 1.5x the cost, Mars's daylight refinement (mu 64,
-  // nu 16) 0.6-3 points on Mars for 2.3x. The sun axis reaching 6 degrees
+  // gain 0.5 point for 1.5x the cost, mu 64 and nu 16 0.6-3 points on Mars
+  // for 2.3x Mars's cost. The sun axis reaching 6 degrees
   // past the deepest sun keeps 18 degrees down from reading the axis's
   // edge (11x too bright). Its tolerance is 10x the daylight field's: the
   // geometric tail carries the rest, the figures above move by under 0.1
