@@ -21,6 +21,9 @@ for t in "${tiers[@]}"; do
 done
 ./scripts/install-deps.sh
 ./scripts/build.sh
+# The tests' scratch folders are named by process id, so each run starts
+# with an empty one: kept, a developer's runs piled up 70 GB in a week.
+rm -rf build/test_tmp
 for t in "${tiers[@]}"; do
   echo "test.sh: tier $t"
   if [ "$t" = sanitize ]; then

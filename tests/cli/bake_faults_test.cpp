@@ -29,6 +29,7 @@ extern char** environ;
 namespace fs = std::filesystem;
 using nlohmann::json;
 using skybake::test::fresh_dir;
+using skybake::test::list_files;
 using skybake::test::read_file;
 using skybake::test::run_skybake;
 using skybake::test::source_path;
@@ -80,16 +81,6 @@ std::vector<std::string> bake_args(const fs::path& preset, const fs::path& out,
   return a;
 }
 
-// Every name under `dir`, hidden ones included, relative.
-std::vector<std::string> all_files(const fs::path& dir) {
-  std::vector<std::string> files;
-  if (!fs::exists(dir)) return files;
-  for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.is_regular_file()) files.push_back(fs::relative(e.path(), dir).string());
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
 bool is_temporary(const std::string& relative) {
   const std::string name = fs::path(relative).filename().string();
   return name[0] == '.' && name.find(".tmp-") != std::string::npos;
@@ -97,7 +88,7 @@ bool is_temporary(const std::string& relative) {
 
 std::vector<std::string> temporaries(const fs::path& dir) {
   std::vector<std::string> t;
-  for (const std::string& f : all_files(dir))
+  for (const std::string& f : list_files(dir))
     if (is_temporary(f)) t.push_back(f);
   return t;
 }
@@ -132,7 +123,7 @@ fs::path write_preset(const fs::path& dir, const std::string& name, const json& 
 // The files of a complete bake, by relative path, bytes (the bake log holds times).
 std::map<std::string, std::string> contents(const fs::path& scene_dir) {
   std::map<std::string, std::string> m;
-  for (const std::string& f : all_files(scene_dir))
+  for (const std::string& f : list_files(scene_dir))
     if (f != "bake_log.json" && f != ".skybake.lock") m[f] = read_file(scene_dir / f);
   return m;
 }
@@ -167,7 +158,7 @@ class KilledBake : public testing::Test {
     ASSERT_TRUE(seen) << "the bake ended before the moment: " << read_file(c.err);
     ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
 
-    for (const std::string& f : all_files(scene)) {
+    for (const std::string& f : list_files(scene)) {
       if (is_temporary(f) || f == "bake_log.json" || f == ".skybake.lock") continue;
       if (f.rfind(".stamps/", 0) == 0 || f == "manifest.json") continue;
       ASSERT_TRUE(reference_->count(f)) << f;
@@ -317,7 +308,7 @@ TEST(DiskFaults, AFullDiskIsOneClearErrorWithNoPartialFile) {
   EXPECT_NE(r.err.find(": cannot write: "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find(".tmp-"), std::string::npos) << "names the output: " << r.err;
-  EXPECT_TRUE(all_files(out).empty()) << testing::PrintToString(all_files(out));
+  EXPECT_TRUE(list_files(out).empty()) << testing::PrintToString(list_files(out));
 }
 
 TEST(DiskFaults, AReadOnlyFolderIsOneClearErrorAndLeavesTheFilesAsTheyWere) {

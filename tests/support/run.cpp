@@ -86,10 +86,17 @@ RunResult run_skybake(const std::vector<std::string>& args, const fs::path& cwd)
 }
 
 std::vector<std::string> list_files(const fs::path& dir) {
+  // Entries that vanish while listed (a live bake renaming its temporaries)
+  // are skipped; the relative name is lexical, since a canonical path needs
+  // the file to still exist.
   std::vector<std::string> files;
-  if (!fs::exists(dir)) return files;
-  for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.is_regular_file()) files.push_back(fs::relative(e.path(), dir).string());
+  std::error_code ec;
+  fs::recursive_directory_iterator it(dir, ec), end;
+  for (; !ec && it != end; it.increment(ec)) {
+    std::error_code status;
+    if (it->is_regular_file(status) && !status)
+      files.push_back(it->path().lexically_relative(dir).string());
+  }
   std::sort(files.begin(), files.end());
   return files;
 }

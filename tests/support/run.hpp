@@ -42,7 +42,9 @@ std::string scratch_file(const std::string& group, const std::string& test,
 // Path inside the source tree.
 std::filesystem::path source_path(const std::string& relative);
 
-// All regular files under a folder (recursive), relative paths, sorted.
+// All regular files under a folder (recursive), relative paths, sorted;
+// safe to call on a folder a running bake is writing (vanished entries are
+// skipped).
 std::vector<std::string> list_files(const std::filesystem::path& dir);
 
 }  // namespace skybake::test
