@@ -41,12 +41,11 @@ glm::dvec3 ground_sky_at(const std::vector<glm::dvec3>& table, double mu_s) {
 
 // A ray of `source`, marched once for any number of suns (sky_ray_suns.hpp):
 // the field source's march is single scattering only, the psi_ms source's
-// reads its table (`mapping`, parsed by the caller).
+// reads its table.
 SunSharedRay source_ray(const Atmosphere& atm, const SkyRadianceSource& source,
-                        const MultiscatteringMapping* mapping, glm::dvec3 position,
-                        glm::dvec3 dir, int steps) {
+                        glm::dvec3 position, glm::dvec3 dir, int steps) {
   return SunSharedRay(atm, *source.transmittance, source.field ? nullptr : source.multiscattering,
-                      mapping, position, dir, steps);
+                      &source.mapping, position, dir, steps);
 }
 
 // That ray's radiance for one sun.
@@ -71,10 +70,6 @@ glm::dvec3 source_ray_radiance(const Atmosphere& atm, const SkyRadianceSource& s
                                            atm.bottom_radius_m, mu_s);
   l += ray.sunlit_ground(sun_dir);
   return source.ground_sky.empty() ? l : l + through * ground_sky_at(source.ground_sky, mu_s);
-}
-
-MultiscatteringMapping source_mapping(const SkyRadianceSource& source) {
-  return source.field ? MultiscatteringMapping{} : multiscattering_mapping_of(*source.multiscattering);
 }
 
 glm::dvec3 sun_in_plane(double sun_zenith_rad) {
@@ -111,8 +106,7 @@ glm::dvec3 sky_source_radiance(const Atmosphere& atm, const SkyRadianceSource& s
   const double mu_s = glm::dot(glm::normalize(position), sun_dir);
   const double sun_zenith = std::acos(std::clamp(mu_s, -1.0, 1.0));
   const SkyRadianceSource& src = source_for_sun(source, sun_zenith);
-  const MultiscatteringMapping mapping = source_mapping(src);
-  const SunSharedRay ray = source_ray(atm, src, &mapping, position, dir, steps);
+  const SunSharedRay ray = source_ray(atm, src, position, dir, steps);
   return source_ray_radiance(atm, src, ray, sky_only, position, dir, sun_dir, sun_zenith);
 }
 
@@ -164,6 +158,7 @@ SkyRadianceSource psi_ms_source(const Atmosphere& atm, const Texture& transmitta
   SkyRadianceSource source;
   source.transmittance = &transmittance_lut;
   source.multiscattering = &multiscattering_lut;
+  source.mapping = multiscattering_mapping_of(multiscattering_lut);
   if (!spec.sky_only)
     source.ground_sky = ground_sky_irradiance(atm, transmittance_lut, multiscattering_lut, spec,
                                               kGroundSkyNodes);
@@ -189,10 +184,9 @@ std::vector<ShRadiance> compute_sky_radiance_sh_suns(const Atmosphere& atm,
     for (size_t j = 0; j < sun_zeniths_rad.size(); ++j)
       if (&source_for_sun(sources, sun_zeniths_rad[j]) == source) suns.push_back(j);
     if (suns.empty()) continue;
-    const MultiscatteringMapping mapping = source_mapping(*source);
     for (size_t k = 0; k < rule.dirs.size(); ++k) {
       const glm::dvec3 d = rule.dirs[k];
-      const SunSharedRay ray = source_ray(atm, *source, &mapping, position, d, spec.steps);
+      const SunSharedRay ray = source_ray(atm, *source, position, d, spec.steps);
       const std::array<double, kShL2Count> y = sh_l2_basis(d);
       for (size_t j : suns) {
         const glm::dvec3 l = source_ray_radiance(atm, *source, ray, spec.sky_only, position, d,

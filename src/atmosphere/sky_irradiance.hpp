@@ -43,6 +43,7 @@
 
 #include "atmosphere/converged_multiscattering.hpp"
 #include "atmosphere/medium.hpp"
+#include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/sh_l2.hpp"
 #include "core/bake_context.hpp"
 #include "core/texture.hpp"
@@ -80,6 +81,7 @@ double sky_irradiance_altitude(const Atmosphere& atm, const SkyIrradianceSpec& s
 struct SkyRadianceSource {
   const Texture* transmittance = nullptr;
   const Texture* multiscattering = nullptr;  // psi_ms
+  MultiscatteringMapping mapping{};          // psi_ms: that table's, parsed once (psi_ms_source)
   const ConvergedField* field = nullptr;     // field (takes precedence)
   std::vector<glm::dvec3> ground_sky;        // psi_ms: ground_sky_irradiance's table
   const SkyRadianceSource* below_horizon = nullptr;
