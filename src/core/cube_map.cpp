@@ -60,17 +60,22 @@ double cube_texel_solid_angle(int i, int j, int n) {
 }
 
 glm::dvec3 sample_cube(const Texture& level, int cube, glm::dvec3 d) {
-  const CubeCoord c = cube_coord(d);
+  return sample_cube(level, cube, cube_coord(d));
+}
+
+glm::dvec3 sample_cube(const Texture& level, int cube, const CubeCoord& c) {
   const int n = level.width, layer = kCubeFaces * cube + c.face;
   const double fx = std::clamp(c.s * n - 0.5, 0.0, n - 1.0);
   const double fy = std::clamp(c.t * n - 0.5, 0.0, n - 1.0);
   const int x0 = std::min(int(fx), std::max(n - 2, 0)), y0 = std::min(int(fy), std::max(n - 2, 0));
   const int x1 = std::min(x0 + 1, n - 1), y1 = std::min(y0 + 1, n - 1);
   const double ax = fx - x0, ay = fy - y0;
+  const float *p00 = level.texel(x0, y0, 0, layer), *p10 = level.texel(x1, y0, 0, layer);
+  const float *p01 = level.texel(x0, y1, 0, layer), *p11 = level.texel(x1, y1, 0, layer);
   glm::dvec3 v(0.0);
   for (int ch = 0; ch < 3; ++ch) {
-    const double a = level.at(x0, y0, 0, layer, ch) * (1 - ax) + level.at(x1, y0, 0, layer, ch) * ax;
-    const double b = level.at(x0, y1, 0, layer, ch) * (1 - ax) + level.at(x1, y1, 0, layer, ch) * ax;
+    const double a = p00[ch] * (1 - ax) + p10[ch] * ax;
+    const double b = p01[ch] * (1 - ax) + p11[ch] * ax;
     v[ch] = a * (1 - ay) + b * ay;
   }
   return v;

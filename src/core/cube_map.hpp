@@ -44,5 +44,8 @@ double cube_texel_solid_angle(int i, int j, int n);
 // clamped to the edge of the face d selects (the seams differ from a
 // seamless read by at most half a texel's gradient). RGB of channels 0-2.
 glm::dvec3 sample_cube(const Texture& level, int cube, glm::dvec3 d);
+// The same read at a direction's coordinates, for reads of one direction
+// in several levels.
+glm::dvec3 sample_cube(const Texture& level, int cube, const CubeCoord& c);
 
 }  // namespace skybake

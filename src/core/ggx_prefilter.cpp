@@ -30,8 +30,9 @@ glm::dvec3 ggx_chain_read(const std::vector<Texture>& chain, int cube, glm::dvec
   const int l0 = std::min(int(lod), int(chain.size()) - 1);
   const int l1 = std::min(l0 + 1, int(chain.size()) - 1);
   const double f = lod - l0;
-  const glm::dvec3 a = sample_cube(chain[l0], cube, d);
-  return f > 0.0 ? a * (1.0 - f) + sample_cube(chain[l1], cube, d) * f : a;
+  const CubeCoord at = cube_coord(d);
+  const glm::dvec3 a = sample_cube(chain[l0], cube, at);
+  return f > 0.0 ? a * (1.0 - f) + sample_cube(chain[l1], cube, at) * f : a;
 }
 
 }  // namespace
@@ -46,29 +47,38 @@ double ggx_distribution(double cos_h, double alpha) {
   return a2 / (kPi * q * q);
 }
 
-glm::dvec3 ggx_prefiltered_radiance(const std::vector<Texture>& box_chain, int cube, glm::dvec3 n,
-                                    double alpha, int samples) {
-  const glm::dvec3 helper = std::abs(n.z) < 0.999 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
-  const glm::dvec3 tx = glm::normalize(glm::cross(helper, n));
-  const glm::dvec3 ty = glm::cross(n, tx);
-  const int n0 = box_chain[0].width;
-  const double texel_solid_angle = 4.0 * kPi / (kCubeFaces * double(n0) * double(n0));
+std::vector<GgxSample> ggx_samples(double alpha, int samples, int face) {
+  const double texel_solid_angle = 4.0 * kPi / (kCubeFaces * double(face) * double(face));
   const double a2 = alpha * alpha;
-  glm::dvec3 sum(0.0);
-  double weight = 0.0;
+  std::vector<GgxSample> out(size_t(std::max(samples, 0)));
   for (int i = 0; i < samples; ++i) {
     const double u = (i + 0.5) / samples, v = ggx_radical_inverse(unsigned(i));
     const double phi = 2.0 * kPi * v;
-    const double cos_h = std::sqrt((1.0 - u) / (1.0 + (a2 - 1.0) * u));
-    const double sin_h = std::sqrt(std::max(0.0, 1.0 - cos_h * cos_h));
-    const glm::dvec3 h = (std::cos(phi) * tx + std::sin(phi) * ty) * sin_h + cos_h * n;
-    const glm::dvec3 l = 2.0 * cos_h * h - n;
+    GgxSample& s = out[size_t(i)];
+    s.cos_h = std::sqrt((1.0 - u) / (1.0 + (a2 - 1.0) * u));
+    s.sin_h = std::sqrt(std::max(0.0, 1.0 - s.cos_h * s.cos_h));
+    s.cos_phi = std::cos(phi);
+    s.sin_phi = std::sin(phi);
+    const double pdf = ggx_distribution(s.cos_h, alpha) / 4.0;  // of l, with V = N
+    const double sample_solid_angle = 1.0 / (samples * pdf);
+    s.lod = std::max(0.0, 0.5 * std::log2(sample_solid_angle / texel_solid_angle));
+  }
+  return out;
+}
+
+glm::dvec3 ggx_prefiltered_radiance(const std::vector<Texture>& box_chain, int cube, glm::dvec3 n,
+                                    const std::vector<GgxSample>& samples) {
+  const glm::dvec3 helper = std::abs(n.z) < 0.999 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
+  const glm::dvec3 tx = glm::normalize(glm::cross(helper, n));
+  const glm::dvec3 ty = glm::cross(n, tx);
+  glm::dvec3 sum(0.0);
+  double weight = 0.0;
+  for (const GgxSample& s : samples) {
+    const glm::dvec3 h = (s.cos_phi * tx + s.sin_phi * ty) * s.sin_h + s.cos_h * n;
+    const glm::dvec3 l = 2.0 * s.cos_h * h - n;
     const double n_l = glm::dot(n, l);
     if (n_l <= 0.0) continue;
-    const double pdf = ggx_distribution(cos_h, alpha) / 4.0;  // of l, with V = N
-    const double sample_solid_angle = 1.0 / (samples * pdf);
-    const double lod = std::max(0.0, 0.5 * std::log2(sample_solid_angle / texel_solid_angle));
-    sum += n_l * ggx_chain_read(box_chain, cube, l, lod);
+    sum += n_l * ggx_chain_read(box_chain, cube, l, s.lod);
     weight += n_l;
   }
   return weight > 0.0 ? sum / weight : glm::dvec3(0.0);
@@ -80,12 +90,13 @@ std::vector<Texture> ggx_prefilter_levels(const Texture& level0, int levels, int
   for (int m = 1; m < levels; ++m) {
     Texture level = box[size_t(m)];  // shape, channels and any channel past the third
     const double r = ggx_level_roughness(m, levels);
+    const std::vector<GgxSample> set = ggx_samples(r * r, samples, box[0].width);
     const int n = level.width;
     tbb::parallel_for(0, level.layers * n, [&](int row) {
       const int layer = row / n, j = row % n;
       for (int i = 0; i < n; ++i) {
         const glm::dvec3 d = cube_texel_direction(layer % kCubeFaces, i, j, n);
-        const glm::dvec3 p = ggx_prefiltered_radiance(box, layer / kCubeFaces, d, r * r, samples);
+        const glm::dvec3 p = ggx_prefiltered_radiance(box, layer / kCubeFaces, d, set);
         for (int c = 0; c < std::min(3, level.channel_count()); ++c)
           level.at(i, j, 0, layer, c) = float(p[c]);
       }

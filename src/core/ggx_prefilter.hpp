@@ -42,9 +42,19 @@ constexpr int kGgxDefaultSamples = 512;
 std::vector<Texture> ggx_prefilter_levels(const Texture& level0, int levels,
                                           int samples = kGgxDefaultSamples);
 
+// One sample of the estimate, the same for every texel of a level: the half
+// vector in the texel's tangent frame, and the level of the box chain its
+// solid angle reads (the lod above).
+struct GgxSample {
+  double cos_h = 1, sin_h = 0, cos_phi = 1, sin_phi = 0, lod = 0;
+};
+// The set for roughness alpha (= r^2), `samples` half vectors, level 0 of
+// `face` texels a side.
+std::vector<GgxSample> ggx_samples(double alpha, int samples, int face);
+
 // One texel's value: P(N) for cube `cube` of a box chain (level 0 first, as
-// build_mip_chain gives it), alpha = roughness^2.
+// build_mip_chain gives it), from a set of ggx_samples for level 0's face.
 glm::dvec3 ggx_prefiltered_radiance(const std::vector<Texture>& box_chain, int cube, glm::dvec3 n,
-                                    double alpha, int samples);
+                                    const std::vector<GgxSample>& samples);
 
 }  // namespace skybake
