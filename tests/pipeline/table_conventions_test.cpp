@@ -129,9 +129,11 @@ TEST(TableConventions, APsiFittedToHisMarchRecordsItsFactors) {
       const double k = tex.at(lit, j, 0, 0, c) / unfitted.at(lit, j, 0, 0, c);
       EXPECT_GT(k, 0.5);
       EXPECT_LT(k, 1.5);
-      for (int i = 0; i < lit; ++i)
-        if (unfitted.at(i, j, 0, 0, c) > 1e-30f)
+      for (int i = 0; i < lit; ++i) {
+        if (unfitted.at(i, j, 0, 0, c) > 1e-30f) {
           EXPECT_NEAR(tex.at(i, j, 0, 0, c) / unfitted.at(i, j, 0, 0, c), k, 1e-5 * k) << i << " " << j;
+        }
+      }
     }
   // And it is another output than the unfitted one.
   const ProductGraph a = build_product_graph(scene, {});
