@@ -94,6 +94,52 @@ nlohmann::json references(const Atmosphere& atm, const SkyRadianceCamera& cam,
   return {{"mean", channel_arrays(mean)}, {"ci95", channel_arrays(ci)}};
 }
 
+// The report's camera, or with `held` "heldout" / "heldout2" its held-out
+// twin: other elevations (written into `views`) and the azimuths turned
+// about the zenith by half / a quarter of a step.
+SkyRadianceCamera oracle_camera(const Scene& scene, const std::string& held,
+                                SkyRadianceSetup& views) {
+  if (held == "heldout") views.view_elevations_deg = {10.0, 35.0, 50.0};
+  if (held == "heldout2") views.view_elevations_deg = {2.0, 14.0, 75.0};
+  SkyRadianceCamera cam = sky_radiance_camera(scene, views);
+  if (held != "heldout" && held != "heldout2") return cam;
+  const double turn = held == "heldout2" ? 0.25 : 0.5;  // of an azimuth step
+  for (glm::dvec3& d : cam.dirs) {
+    const double a = 2.0 * kPi * turn / views.view_azimuths, x = d.x, y = d.y;
+    d.x = std::cos(a) * x - std::sin(a) * y;
+    d.y = std::sin(a) * x + std::cos(a) * y;
+  }
+  return cam;
+}
+
+// Each texel's altitude and sun cosine, and the range of the true source
+// over directions there: where any mean of it with weights >= 0 (any
+// estimator of that kind) must lie.
+void add_texel_source_ranges(nlohmann::json& out, const Atmosphere& atm,
+                             const Texture& transmittance, const Texture& table,
+                             const ConvergedMultiscatteringSpec& spec, const ConvergedField& field) {
+  std::vector<double> altitude, mu_s;
+  const MultiscatteringMapping mapping = multiscattering_mapping_of(table);
+  for (int y = 0; y < table.height; ++y)
+    for (int x = 0; x < table.width; ++x) {
+      const RadiusSunCosine p = r_mu_s_from_multiscattering_uv(
+          atm, {texel_center(x, table.width), texel_center(y, table.height)}, table.width,
+          table.height, mapping);
+      altitude.push_back(p.r - atm.bottom_radius_m), mu_s.push_back(p.mu_s);
+    }
+  out["texel_altitude_m"] = altitude;
+  out["texel_mu_s"] = mu_s;
+  const PsiQuadrature q = psi_quadrature(spec, field.phases);  // relative: has the kernels
+  std::vector<glm::dvec3> lo(altitude.size()), hi(altitude.size());
+  tbb::parallel_for(size_t(0), altitude.size(), [&](size_t k) {
+    const SourceRange range = converged_source_range(atm, transmittance, field,
+                                                     atm.bottom_radius_m + altitude[k], mu_s[k], q);
+    lo[k] = range.min, hi[k] = range.max;
+  });
+  out["texel_source_min"] = channel_arrays(lo);
+  out["texel_source_max"] = channel_arrays(hi);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -128,16 +174,7 @@ int main(int argc, char** argv) {
   SkyRadianceSetup views = setup;
   const std::string held = argc > 6 ? argv[6] : "";
   const bool heldout = held == "heldout" || held == "heldout2";
-  if (held == "heldout") views.view_elevations_deg = {10.0, 35.0, 50.0};
-  if (held == "heldout2") views.view_elevations_deg = {2.0, 14.0, 75.0};
-  const double turn = held == "heldout2" ? 0.25 : 0.5;  // of an azimuth step
-  SkyRadianceCamera cam = sky_radiance_camera(scene, views);
-  if (heldout)
-    for (glm::dvec3& d : cam.dirs) {  // rotated about the zenith
-      const double a = 2.0 * kPi * turn / views.view_azimuths, x = d.x, y = d.y;
-      d.x = std::cos(a) * x - std::sin(a) * y;
-      d.y = std::sin(a) * x + std::cos(a) * y;
-    }
+  const SkyRadianceCamera cam = oracle_camera(scene, held, views);
   const std::vector<double>& suns = setup.sun_elevations_deg;
   const PsiWeights w =
       sky_view_psi_weights(atm, transmittance, by_view ? view : hillaire, cam, suns);
@@ -156,28 +193,7 @@ int main(int argc, char** argv) {
     weights.push_back(channel_arrays(std::vector<glm::dvec3>(
         w.weights.begin() + long(v * w.texels()), w.weights.begin() + long((v + 1) * w.texels()))));
   out["weights"] = weights;  // [view][channel][texel], texel = (z * height + y) * width + x
-  std::vector<double> altitude, mu_s;
-  const MultiscatteringMapping mapping = multiscattering_mapping_of(hillaire);
-  for (int y = 0; y < table.height; ++y)
-    for (int x = 0; x < table.width; ++x) {
-      const RadiusSunCosine p = r_mu_s_from_multiscattering_uv(
-          atm, {texel_center(x, table.width), texel_center(y, table.height)}, table.width,
-          table.height, mapping);
-      altitude.push_back(p.r - atm.bottom_radius_m), mu_s.push_back(p.mu_s);
-    }
-  out["texel_altitude_m"] = altitude;
-  out["texel_mu_s"] = mu_s;
-  // The range of the true source over directions at each texel: where any
-  // mean of it with weights >= 0 (any estimator of that kind) must lie.
-  const PsiQuadrature q = psi_quadrature(spec, field.phases);  // relative: has the kernels
-  std::vector<glm::dvec3> lo(altitude.size()), hi(altitude.size());
-  tbb::parallel_for(size_t(0), altitude.size(), [&](size_t k) {
-    const SourceRange range = converged_source_range(atm, transmittance, field,
-                                                     atm.bottom_radius_m + altitude[k], mu_s[k], q);
-    lo[k] = range.min, hi[k] = range.max;
-  });
-  out["texel_source_min"] = channel_arrays(lo);
-  out["texel_source_max"] = channel_arrays(hi);
+  add_texel_source_ranges(out, atm, transmittance, hillaire, spec, field);
   std::vector<std::pair<const char*, const Texture*>> tables = {
       {"hillaire", &hillaire}, {"converged_mean", &mean}, {"converged_relative", &rel}};
   const Texture rel_as_view = by_view ? isotropic_as_view(rel, view) : Texture{};

@@ -231,6 +231,72 @@ float round_to_half(float v) {
   return float_from_half(half_from_float(v));
 }
 
+// The largest relative error of rounding each positive texel to half, in
+// half's normal range and below it (2^-14 = 6.1e-5), and the share of
+// texels below it.
+struct HalfStorageError {
+  double normal = 0.0, subnormal = 0.0, subnormal_share = 0.0;
+};
+HalfStorageError half_storage_error(const TexelVector& values) {
+  HalfStorageError e;
+  size_t count = 0, small = 0;
+  for (float v : values) {
+    if (!(v > 0.0f)) continue;
+    ++count;
+    const double rel = std::abs(double(round_to_half(v)) - v) / v;
+    if (v < 6.103515625e-5f) {
+      ++small;
+      e.subnormal = std::max(e.subnormal, rel);
+    } else {
+      e.normal = std::max(e.normal, rel);
+    }
+  }
+  e.subnormal_share = count ? double(small) / count : 0.0;
+  return e;
+}
+
+// The aerial perspective S(x) - T(x, y) S(y) over each length, in float
+// arithmetic from the float texels and from half-rounded texels, against
+// double arithmetic on the float texels: the largest relative error of each.
+struct ApErrors {
+  std::vector<double> float_error, half_error;
+};
+ApErrors aerial_perspective_errors(const Atmosphere& atm, const Texture& lut,
+                                   const BrunetonTextures& t, const std::vector<double>& lengths) {
+  Texture half_scattering = t.scattering, half_mie = t.single_mie;
+  for (float& v : half_scattering.data) v = round_to_half(v);
+  for (float& v : half_mie.data) v = round_to_half(v);
+  const double rb = atm.bottom_radius_m;
+  ApErrors e{std::vector<double>(lengths.size(), 0.0), std::vector<double>(lengths.size(), 0.0)};
+  for (size_t li = 0; li < lengths.size(); ++li)
+    for (double h : {2.0, 500.0, 3e3})
+      for (double mu : {0.3, 0.05, 0.0, -0.02})
+        for (double mu_s : {0.9, 0.3, 0.05}) {
+          const double nu = mu * mu_s, r = rb + h, l = lengths[li];
+          const bool hits = ray_intersects_ground(rb, r, mu);
+          if (hits && l >= distance_to_bottom_boundary(rb, r, mu)) continue;
+          const double r_y = radius_after(r, mu, l), mu_y = mu_after(r, mu, l, r_y);
+          const double mu_s_y = (r * mu_s + l * nu) / r_y;
+          const glm::dvec3 T = lookup_transmittance(lut, atm, r, mu, l, hits);
+          auto read = [&](const Texture& s, const Texture& m, double rr, double mm, double ss) {
+            return lookup_scattering(s, m, t.shape, atm, rr, mm, ss, nu, hits);
+          };
+          const glm::dvec3 Sx = read(t.scattering, t.single_mie, r, mu, mu_s);
+          const glm::dvec3 Sy = read(t.scattering, t.single_mie, r_y, mu_y, mu_s_y);
+          const glm::dvec3 Hx = read(half_scattering, half_mie, r, mu, mu_s);
+          const glm::dvec3 Hy = read(half_scattering, half_mie, r_y, mu_y, mu_s_y);
+          for (int c = 0; c < 3; ++c) {
+            const double exact = Sx[c] - T[c] * Sy[c];
+            if (!(exact > 0.0)) continue;
+            const float f = float(Sx[c]) - float(T[c]) * float(Sy[c]);
+            const float hf = float(Hx[c]) - float(T[c]) * float(Hy[c]);
+            e.float_error[li] = std::max(e.float_error[li], std::abs(f - exact) / exact);
+            e.half_error[li] = std::max(e.half_error[li], std::abs(hf - exact) / exact);
+          }
+        }
+  return e;
+}
+
 TEST(ScatteringPrecision, WhereHalfFloatsLose) {
   // Earth, 4 orders. Three measurements, reported as test properties and on
   // stdout:
@@ -264,69 +330,22 @@ TEST(ScatteringPrecision, WhereHalfFloatsLose) {
       }(),
       BakeContext{});
 
-  auto storage_error = [](const TexelVector& values, double& normal, double& subnormal,
-                          double& subnormal_share) {
-    normal = subnormal = 0.0;
-    size_t count = 0, small = 0;
-    for (float v : values) {
-      if (!(v > 0.0f)) continue;
-      ++count;
-      const double e = std::abs(double(round_to_half(v)) - v) / v;
-      if (v < 6.103515625e-5f) {
-        ++small;
-        subnormal = std::max(subnormal, e);
-      } else {
-        normal = std::max(normal, e);
-      }
-    }
-    subnormal_share = count ? double(small) / count : 0.0;
-  };
-  double normal = 0, subnormal = 0, share = 0;
-  storage_error(t.scattering.data, normal, subnormal, share);
+  const HalfStorageError all = half_storage_error(t.scattering.data);
   TexelVector fourth(t.scattering.data.size());
   for (size_t i = 0; i < fourth.size(); ++i)
     fourth[i] = std::max(0.0f, t.scattering.data[i] - three.scattering.data[i]);
-  double normal4 = 0, subnormal4 = 0, share4 = 0;
-  storage_error(fourth, normal4, subnormal4, share4);
-  EXPECT_LE(normal, std::ldexp(1.0, -11) * 1.0001);  // half's unit roundoff
+  const HalfStorageError order4 = half_storage_error(fourth);
+  EXPECT_LE(all.normal, std::ldexp(1.0, -11) * 1.0001);  // half's unit roundoff
 
-  // Aerial perspective.
-  Texture half_scattering = t.scattering, half_mie = t.single_mie;
-  for (float& v : half_scattering.data) v = round_to_half(v);
-  for (float& v : half_mie.data) v = round_to_half(v);
-  const double rb = atm.bottom_radius_m;
-  std::vector<double> lengths = {10.0, 100.0, 1e3, 10e3};
-  std::vector<double> float_error(lengths.size(), 0.0), half_error(lengths.size(), 0.0);
-  for (size_t li = 0; li < lengths.size(); ++li)
-    for (double h : {2.0, 500.0, 3e3})
-      for (double mu : {0.3, 0.05, 0.0, -0.02})
-        for (double mu_s : {0.9, 0.3, 0.05}) {
-          const double nu = mu * mu_s, r = rb + h, l = lengths[li];
-          const bool hits = ray_intersects_ground(rb, r, mu);
-          if (hits && l >= distance_to_bottom_boundary(rb, r, mu)) continue;
-          const double r_y = radius_after(r, mu, l), mu_y = mu_after(r, mu, l, r_y);
-          const double mu_s_y = (r * mu_s + l * nu) / r_y;
-          const glm::dvec3 T = lookup_transmittance(lut, atm, r, mu, l, hits);
-          auto read = [&](const Texture& s, const Texture& m, double rr, double mm, double ss) {
-            return lookup_scattering(s, m, t.shape, atm, rr, mm, ss, nu, hits);
-          };
-          const glm::dvec3 Sx = read(t.scattering, t.single_mie, r, mu, mu_s);
-          const glm::dvec3 Sy = read(t.scattering, t.single_mie, r_y, mu_y, mu_s_y);
-          const glm::dvec3 Hx = read(half_scattering, half_mie, r, mu, mu_s);
-          const glm::dvec3 Hy = read(half_scattering, half_mie, r_y, mu_y, mu_s_y);
-          for (int c = 0; c < 3; ++c) {
-            const double exact = Sx[c] - T[c] * Sy[c];
-            if (!(exact > 0.0)) continue;
-            const float f = float(Sx[c]) - float(T[c]) * float(Sy[c]);
-            const float hf = float(Hx[c]) - float(T[c]) * float(Hy[c]);
-            float_error[li] = std::max(float_error[li], std::abs(f - exact) / exact);
-            half_error[li] = std::max(half_error[li], std::abs(hf - exact) / exact);
-          }
-        }
+  const std::vector<double> lengths = {10.0, 100.0, 1e3, 10e3};
+  const ApErrors ap = aerial_perspective_errors(atm, lut, t, lengths);
+  const std::vector<double>& float_error = ap.float_error;
+  const std::vector<double>& half_error = ap.half_error;
   std::string report = fmt::format(
       "half storage: max rel error {:.2g} (normal range), {:.2g} on the {:.1f} % of texels below "
       "6.1e-5; 4th order alone: {:.2g} normal, {:.2g} on its {:.1f} % subnormal texels.\n",
-      normal, subnormal, 100 * share, normal4, subnormal4, 100 * share4);
+      all.normal, all.subnormal, 100 * all.subnormal_share, order4.normal, order4.subnormal,
+      100 * order4.subnormal_share);
   for (size_t li = 0; li < lengths.size(); ++li) {
     report += fmt::format("aerial perspective over {:g} m: float32 {:.2g}, half {:.2g}\n",
                           lengths[li], float_error[li], half_error[li]);
@@ -340,9 +359,9 @@ TEST(ScatteringPrecision, WhereHalfFloatsLose) {
     // as bad there, five times from 100 m.
     EXPECT_GT(half_error[li], (lengths[li] < 100.0 ? 2.0 : 5.0) * float_error[li]) << lengths[li];
   }
-  RecordProperty("half_storage_normal", fmt::format("{:.3g}", normal));
-  RecordProperty("half_storage_subnormal", fmt::format("{:.3g}", subnormal));
-  RecordProperty("half_4th_order_subnormal", fmt::format("{:.3g}", subnormal4));
+  RecordProperty("half_storage_normal", fmt::format("{:.3g}", all.normal));
+  RecordProperty("half_storage_subnormal", fmt::format("{:.3g}", all.subnormal));
+  RecordProperty("half_4th_order_subnormal", fmt::format("{:.3g}", order4.subnormal));
   std::cout << report;
 }
 
