@@ -99,12 +99,16 @@ Texture bake_sky_environment(const Atmosphere& atm, const SkyRadianceSource& sou
     const int layer = row / n, j = row % n;
     const SkyEnvironmentView& view = spec.views[size_t(layer / kCubeFaces)];
     for (int i = 0; i < n; ++i) {
+      // The sky is symmetric about the sun's vertical plane, z = 0 here
+      // (docs/runtime.md "Sky environment"): half the texels are marched.
+      if (!cube_texel_in_z_half(layer % kCubeFaces, i, j, n)) continue;
       const glm::dvec3 l = sky_environment_radiance(
           atm, source, spec, view, cube_texel_direction(layer % kCubeFaces, i, j, n));
       for (int c = 0; c < 3; ++c) tex.at(i, j, 0, layer, c) = float(l[c]);
     }
     if (j == n - 1) progress.tick();
   });
+  fill_z_mirrors(tex);
   set_sky_environment_metadata(tex, atm, source, spec);
   return tex;
 }

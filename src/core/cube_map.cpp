@@ -42,6 +42,42 @@ CubeCoord cube_coord(glm::dvec3 d) {
   return c;
 }
 
+CubeTexel cube_texel_mirrored_z(int face, int i, int j, int n) {
+  switch (face) {
+    case 0:
+    case 1: return {face, n - 1 - i, j};
+    case 2:
+    case 3: return {face, i, n - 1 - j};
+    case 4: return {5, n - 1 - i, j};
+    default: return {4, n - 1 - i, j};
+  }
+}
+
+bool cube_texel_in_z_half(int face, int i, int j, int n) {
+  switch (face) {
+    case 0:
+    case 1: return 2 * i < n;
+    case 2:
+    case 3: return 2 * j < n;
+    case 4: return true;
+    default: return false;
+  }
+}
+
+void fill_z_mirrors(Texture& tex) {
+  const int n = tex.width, channels = tex.channel_count();
+  for (int layer = 0; layer < tex.layers; ++layer) {
+    const int cube = layer / kCubeFaces, face = layer % kCubeFaces;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        if (cube_texel_in_z_half(face, i, j, n)) continue;
+        const CubeTexel m = cube_texel_mirrored_z(face, i, j, n);
+        std::copy_n(tex.texel(m.i, m.j, 0, kCubeFaces * cube + m.face), channels,
+                    tex.texel(i, j, 0, layer));
+      }
+  }
+}
+
 namespace {
 
 // The solid angle of the cube-face rectangle [0, x] x [0, y] at distance 1

@@ -36,6 +36,21 @@ struct CubeCoord {
 };
 CubeCoord cube_coord(glm::dvec3 d);
 
+// The texel mirroring (face, i, j) of an n x n face through the plane
+// z = 0 (x and y kept), by the table above: +X and -X reverse their
+// columns, +Y and -Y their rows, +Z and -Z swap with their columns
+// reversed.
+struct CubeTexel {
+  int face = 0, i = 0, j = 0;
+};
+CubeTexel cube_texel_mirrored_z(int face, int i, int j, int n);
+// The half a z-symmetric fill computes: every texel is in it or mirrors
+// one that is (a middle column or row of an odd face mirrors itself).
+bool cube_texel_in_z_half(int face, int i, int j, int n);
+// Copies every texel outside that half of every cube of `tex` from its
+// mirror: for cubes whose content is symmetric about z = 0.
+void fill_z_mirrors(Texture& tex);
+
 // The solid angle of texel (i, j) of an n x n face, exact (the area of its
 // square on the unit cube projected onto the sphere).
 double cube_texel_solid_angle(int i, int j, int n);

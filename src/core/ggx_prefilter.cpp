@@ -84,7 +84,8 @@ glm::dvec3 ggx_prefiltered_radiance(const std::vector<Texture>& box_chain, int c
   return weight > 0.0 ? sum / weight : glm::dvec3(0.0);
 }
 
-std::vector<Texture> ggx_prefilter_levels(const Texture& level0, int levels, int samples) {
+std::vector<Texture> ggx_prefilter_levels(const Texture& level0, int levels, int samples,
+                                          bool z_mirror) {
   const std::vector<Texture> box = build_mip_chain(level0, MipEdge::clamp);
   std::vector<Texture> out;
   for (int m = 1; m < levels; ++m) {
@@ -95,12 +96,14 @@ std::vector<Texture> ggx_prefilter_levels(const Texture& level0, int levels, int
     tbb::parallel_for(0, level.layers * n, [&](int row) {
       const int layer = row / n, j = row % n;
       for (int i = 0; i < n; ++i) {
+        if (z_mirror && !cube_texel_in_z_half(layer % kCubeFaces, i, j, n)) continue;
         const glm::dvec3 d = cube_texel_direction(layer % kCubeFaces, i, j, n);
         const glm::dvec3 p = ggx_prefiltered_radiance(box, layer / kCubeFaces, d, set);
         for (int c = 0; c < std::min(3, level.channel_count()); ++c)
           level.at(i, j, 0, layer, c) = float(p[c]);
       }
     });
+    if (z_mirror) fill_z_mirrors(level);
     out.push_back(std::move(level));
   }
   return out;

@@ -38,9 +38,12 @@ double ggx_distribution(double cos_h, double alpha);
 // `level0` (core/cube_map.hpp: square faces, 6 layers per cube; channels kept,
 // channels 0-2 filtered, any others copied from the box filter). Parallel,
 // independent of the thread count.
+// With z_mirror, level 0 symmetric about z = 0 (core/cube_map.hpp
+// fill_z_mirrors): half of each level is filtered and the rest mirrored.
 constexpr int kGgxDefaultSamples = 512;
 std::vector<Texture> ggx_prefilter_levels(const Texture& level0, int levels,
-                                          int samples = kGgxDefaultSamples);
+                                          int samples = kGgxDefaultSamples,
+                                          bool z_mirror = false);
 
 // One sample of the estimate, the same for every texel of a level: the half
 // vector in the texel's tangent frame, and the level of the box chain its

@@ -103,10 +103,11 @@ Texture bake_sky_environment_product(const Scene& scene, const OutputSpec& spec,
   return bake_sky_environment(scene.atmosphere, held.source(), e, stage_context(ctx, 0.5, 1.0));
 }
 
-// Levels 1.. of the cube's chain: GGX-prefiltered from level 0 (core/ggx_prefilter.hpp).
+// Levels 1.. of the cube's chain: GGX-prefiltered from level 0 (core/ggx_prefilter.hpp),
+// half of each filtered and mirrored, as level 0 is symmetric about the sun's plane.
 std::vector<Texture> sky_environment_lower_levels(const Texture& level0, const OutputSpec& spec) {
   const SkyEnvironmentSpec s = sky_environment_spec(spec);
-  return ggx_prefilter_levels(level0, sky_environment_levels(s), s.samples);
+  return ggx_prefilter_levels(level0, sky_environment_levels(s), s.samples, true);
 }
 
 std::vector<ProductProblem> sky_environment_problems(const OutputSpec& spec) {

@@ -56,6 +56,47 @@ TEST(CubeMap, TexelSolidAnglesCoverTheSphere) {
   EXPECT_LT(cube_texel_solid_angle(0, 0, 16), cube_texel_solid_angle(8, 8, 16));
 }
 
+TEST(CubeMap, ZMirrorTexelsMirrorTheirDirections) {
+  for (int n : {1, 4, 5}) {
+    int kept = 0, self = 0;
+    for (int f = 0; f < 6; ++f)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const CubeTexel m = cube_texel_mirrored_z(f, i, j, n);
+          const glm::dvec3 d = cube_texel_direction(f, i, j, n);
+          expect_direction(cube_texel_direction(m.face, m.i, m.j, n), {d.x, d.y, -d.z});
+          const CubeTexel back = cube_texel_mirrored_z(m.face, m.i, m.j, n);
+          EXPECT_TRUE(back.face == f && back.i == i && back.j == j);
+          const bool same = m.face == f && m.i == i && m.j == j;
+          const bool in = cube_texel_in_z_half(f, i, j, n);
+          // The half and its mirror tile the cube: exactly one of a pair
+          // is in it, a texel that mirrors itself is.
+          EXPECT_EQ(in, same || !cube_texel_in_z_half(m.face, m.i, m.j, n)) << f << i << j;
+          kept += in;
+          self += same;
+        }
+    EXPECT_EQ(2 * kept - self, 6 * n * n) << n;
+  }
+}
+
+TEST(CubeMap, FillZMirrorsCopiesEachTexelFromItsMirror) {
+  const int n = 6;
+  Texture t(n, n, 1, 12, {"R", "G"});  // two cubes
+  for (size_t k = 0; k < t.data.size(); ++k) t.data[k] = float(k);
+  const Texture before = t;
+  fill_z_mirrors(t);
+  for (int layer = 0; layer < 12; ++layer)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int f = layer % 6;
+        const CubeTexel m = cube_texel_mirrored_z(f, i, j, n);
+        const int from = cube_texel_in_z_half(f, i, j, n) ? layer : 6 * (layer / 6) + m.face;
+        const int fi = cube_texel_in_z_half(f, i, j, n) ? i : m.i;
+        const int fj = cube_texel_in_z_half(f, i, j, n) ? j : m.j;
+        for (int c = 0; c < 2; ++c) EXPECT_EQ(t.at(i, j, 0, layer, c), before.at(fi, fj, 0, from, c));
+      }
+}
+
 TEST(CubeMap, SampleReadsALinearFieldExactlyInsideAFace) {
   const int n = 8;
   Texture t(n, n, 1, 6, {"R", "G", "B"});

@@ -55,33 +55,67 @@ glm::dvec3 brute_force_ggx(const Texture& level0, glm::dvec3 n_dir, double alpha
   return sum / weight;
 }
 
+// A prefiltered level against brute force: RMS and max relative error.
+struct LevelError {
+  double rms = 0.0, max = 0.0;
+};
+LevelError level_vs_brute_force(const Texture& level0, const Texture& level, double roughness) {
+  double sq = 0.0, worst = 0.0;
+  int count = 0;
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < level.width; ++j)
+      for (int i = 0; i < level.width; ++i) {
+        const glm::dvec3 want = brute_force_ggx(
+            level0, cube_texel_direction(f, i, j, level.width), roughness * roughness);
+        for (int c = 0; c < 3; ++c) {
+          const double e = level.at(i, j, 0, f, c) / want[c] - 1.0;
+          sq += e * e;
+          worst = std::max(worst, std::abs(e));
+          ++count;
+        }
+      }
+  return {std::sqrt(sq / count), worst};
+}
+
 TEST(GgxPrefilter, EachLevelIsWithinTwoPercentOfBruteForce) {
   const int n = 32, levels = 4;  // faces 32, 16, 8, 4: roughness 0, 1/3, 2/3, 1
   const Texture level0 = cube_of(n, sky_like);
   const std::vector<Texture> chain = ggx_prefilter_levels(level0, levels);
   ASSERT_EQ(chain.size(), size_t(levels - 1));
   for (int m = 1; m < levels; ++m) {
-    const Texture& level = chain[size_t(m - 1)];
     const double r = ggx_level_roughness(m, levels);
-    double sq = 0.0, worst = 0.0;
-    int count = 0;
+    const LevelError e = level_vs_brute_force(level0, chain[size_t(m - 1)], r);
+    EXPECT_LT(e.max, 0.05) << "level " << m;
+    EXPECT_LT(e.rms, 0.02) << "level " << m << " roughness " << r << ", max " << e.max;
+    RecordProperty("level_" + std::to_string(m) + "_rms", std::to_string(e.rms));
+    RecordProperty("level_" + std::to_string(m) + "_max", std::to_string(e.max));
+  }
+}
+
+TEST(GgxPrefilter, ZMirrorFiltersOneHalfAndMirrorsIt) {
+  // sky_like is symmetric about z = 0 (its sun in the x-y plane).
+  const int n = 32, levels = 4;
+  const Texture level0 = cube_of(n, sky_like);
+  const std::vector<Texture> mirrored = ggx_prefilter_levels(level0, levels, 512, true);
+  const std::vector<Texture> full = ggx_prefilter_levels(level0, levels, 512, false);
+  for (int m = 1; m < levels; ++m) {
+    const Texture &a = mirrored[size_t(m - 1)], &b = full[size_t(m - 1)];
+    const int w = a.width;
     for (int f = 0; f < 6; ++f)
-      for (int j = 0; j < level.width; ++j)
-        for (int i = 0; i < level.width; ++i) {
-          const glm::dvec3 want =
-              brute_force_ggx(level0, cube_texel_direction(f, i, j, level.width), r * r);
+      for (int j = 0; j < w; ++j)
+        for (int i = 0; i < w; ++i) {
+          const CubeTexel t = cube_texel_mirrored_z(f, i, j, w);
+          const bool in = cube_texel_in_z_half(f, i, j, w);
           for (int c = 0; c < 3; ++c) {
-            const double e = level.at(i, j, 0, f, c) / want[c] - 1.0;
-            sq += e * e;
-            worst = std::max(worst, std::abs(e));
-            ++count;
+            // Exactly symmetric, and the half filtered as without the mirror.
+            EXPECT_EQ(a.at(i, j, 0, f, c), a.at(t.i, t.j, 0, t.face, c));
+            if (in) EXPECT_EQ(a.at(i, j, 0, f, c), b.at(i, j, 0, f, c));
           }
         }
-    const double rms = std::sqrt(sq / count);
-    EXPECT_LT(worst, 0.05) << "level " << m;
-    EXPECT_LT(rms, 0.02) << "level " << m << " roughness " << r << ", max " << worst;
-    RecordProperty("level_" + std::to_string(m) + "_rms", std::to_string(rms));
-    RecordProperty("level_" + std::to_string(m) + "_max", std::to_string(worst));
+    // The mirrored half as close to brute force as a filtered one.
+    const LevelError e = level_vs_brute_force(level0, a, ggx_level_roughness(m, levels));
+    EXPECT_LT(e.max, 0.05) << "level " << m;
+    EXPECT_LT(e.rms, 0.02) << "level " << m;
   }
 }
 

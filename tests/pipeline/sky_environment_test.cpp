@@ -17,6 +17,7 @@
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/sky_environment.hpp"
 #include "atmosphere/transmittance_lut.hpp"
+#include "core/cube_map.hpp"
 #include "io/dds.hpp"
 #include "io/ktx2.hpp"
 #include "pipeline/output_writer.hpp"
@@ -106,6 +107,26 @@ TEST(SkyEnvironment, LevelZeroMatchesTheDirectlyIntegratedRadiance) {
   const double rms = std::sqrt(sq / count) / (mean / count);
   EXPECT_LT(rms, 0.01);
   RecordProperty("level0_rms", std::to_string(rms));
+}
+
+// The sky is symmetric about the sun's vertical plane (z = 0 in the cube
+// frame): each texel equals its mirror, bit for bit, at level 0 and in the
+// GGX levels the writer adds.
+TEST(SkyEnvironment, CubeIsSymmetricAboutTheSunsPlane) {
+  const EnvFixture& fx = env_fixture();
+  const Texture level0 = bake_sky_environment(fx.atm, fx.source, small_spec(), {});
+  const fs::path dir = write_environment(level0, "sky_environment_mirror");
+  const Ktx2Image ktx2 = read_ktx2((dir / "env.ktx2").string());
+  for (const Texture& level : ktx2.mips) {
+    const int n = level.width;
+    for (int f = 0; f < 6; ++f)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const CubeTexel m = cube_texel_mirrored_z(f, i, j, n);
+          for (int c = 0; c < 3; ++c)
+            EXPECT_EQ(level.at(i, j, 0, f, c), level.at(m.i, m.j, 0, m.face, c));
+        }
+  }
 }
 
 TEST(SkyEnvironment, ShAgreesWithTheIrradianceProjection) {
