@@ -52,7 +52,7 @@ TEST(Validate, AcceptsEveryShippedPresetOfEveryKindWithoutWarnings) {
   }
   EXPECT_GE(kinds["scene"], 6);
   EXPECT_EQ(kinds["clouds"], 4) << "clear, fair_weather_cumulus, overcast_stratus, storm";
-  EXPECT_EQ(kinds["atmosphere"], 2) << "earth, earth_spectral";
+  EXPECT_EQ(kinds["atmosphere"], 3) << "earth, earth_spectral, mars";
 }
 
 TEST(Validate, CloudsPresetsValidateByTheirSchema) {
