@@ -15,7 +15,7 @@
 //
 // report.json: {"tool", "scene", "preset", "level", "level_settings",
 //   "seconds", "products": [per product, ladders.hpp or
-//   {"product", "kind": "exact" | "preview" | "not_measured", "note"}],
+//   {"product", "kind": "exact" | "preview" | "section" | "not_measured", "note"}],
 //   "sky_radiance": sky_radiance.hpp or null,
 //   "precision": {"horizon_transmittance": precision.hpp or null,
 //                 "half": [{"product", "float", "half", "storage"}]},

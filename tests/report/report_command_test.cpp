@@ -1,6 +1,6 @@
 // skybake report end to end (docs/report.md): one quick Earth report (a few
 // seconds), checked through report.json, the --json summary, report.html and
-// the preview; plus the usage error and a noise-only scene. The Bruneton
+// the preview; plus the usage error, a noise-only scene and the sky light preset. The Bruneton
 // family's ladders are in report_ladders_accuracy_test.cpp. ctest runs every
 // TEST in its own process, so the checks of the one report are functions
 // called from a single TEST rather than TESTs sharing a static (which would
@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <regex>
 #include <string>
 
@@ -277,6 +278,24 @@ TEST(ReportCommand, NoiseProductsAreListedAsExact) {
   ASSERT_FALSE(products.empty());
   for (const json& p : products) EXPECT_EQ(p["kind"], "exact") << p["product"];
   EXPECT_TRUE(summary["reports"][0]["sky_radiance"].is_null());
+}
+
+TEST(ReportCommand, SkyLightProductsSayWhereTheyAreMeasured) {
+  const fs::path out = test::fresh_dir("report_sky_light");
+  const auto r = test::run_skybake(
+      {"report", test::source_path("presets/earth_sky_light.json").string(), "--quick", "-o",
+       out.string(), "-q", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json summary = json::parse(r.out);
+  std::map<std::string, std::string> kinds;
+  for (const json& p : summary["reports"][0]["products"]) kinds[p["product"]] = p["kind"];
+  EXPECT_EQ(kinds["sky_irradiance"], "section");
+  EXPECT_EQ(kinds["sky_environment"], "not_measured");
+  // The section the entry names is in report.json, with its target judged.
+  const json report =
+      json::parse(test::read_file(out / "earth_sky_light" / "report" / "report.json"));
+  EXPECT_EQ(report["sky_irradiance"]["product"], "sky_irradiance");
+  EXPECT_TRUE(report["sky_irradiance"]["target"].contains("status"));
 }
 
 }  // namespace
