@@ -43,40 +43,38 @@ std::vector<std::string> selected_products(const Scene& scene,
   return out;
 }
 
-// What the report says of a product it does not measure with a ladder.
-nlohmann::json unmeasured_product(const std::string& product) {
-  const ProductInfo* info = find_product(product);
-  const bool atmosphere =
-      info && std::find(info->scene_sections.begin(), info->scene_sections.end(), "atmosphere") !=
-                  info->scene_sections.end();
+// What the report says of a product it does not measure with a ladder:
+// its kind and a note.
+struct Unmeasured {
+  const char* kind;
+  const char* note;
+};
+
+Unmeasured unmeasured_kind(const std::string& product) {
   if (product == "sky_preview")
-    return {{"product", product},
-            {"kind", "preview"},
-            {"note",
-             "pictures rendered from the tables (sky_preview.png in this folder); how close "
-             "the rendered sky is to the truth is the sky radiance section"}};
+    return {"preview",
+            "pictures rendered from the tables (sky_preview.png in this folder); how close the "
+            "rendered sky is to the truth is the sky radiance section"};
   if (product == "sky_irradiance")
-    return {{"product", product},
-            {"kind", "section"},
-            {"note",
-             "measured against the path tracer in the sky_irradiance section: the decode, "
-             "L2's own limit and the read between texels"}};
+    return {"section",
+            "measured against the path tracer in the sky_irradiance section: the decode, L2's "
+            "own limit and the read between texels"};
   if (product == "sky_environment")
-    return {{"product", product},
-            {"kind", "not_measured"},
-            {"note",
-             "no ladder; the test suite checks level 0 against the integrated radiance and "
-             "each GGX level against a brute-force convolution (docs/runtime.md, \"Sky "
-             "environment\")"}};
-  if (atmosphere)
-    return {{"product", product},
-            {"kind", "not_measured"},
-            {"note", "no ladder for this product in this version of the report"}};
-  return {{"product", product},
-          {"kind", "exact"},
-          {"note",
-           "an exact evaluation of its function at every texel (noise, clouds): no "
-           "discretisation to measure; check-tiling checks its seams"}};
+    return {"not_measured",
+            "no ladder; the test suite checks level 0 against the integrated radiance and each "
+            "GGX level against a brute-force convolution (docs/runtime.md, \"Sky environment\")"};
+  const ProductInfo* info = find_product(product);
+  if (info && std::find(info->scene_sections.begin(), info->scene_sections.end(),
+                        "atmosphere") != info->scene_sections.end())
+    return {"not_measured", "no ladder for this product in this version of the report"};
+  return {"exact",
+          "an exact evaluation of its function at every texel (noise, clouds): no "
+          "discretisation to measure; check-tiling checks its seams"};
+}
+
+nlohmann::json unmeasured_product(const std::string& product) {
+  const Unmeasured u = unmeasured_kind(product);
+  return {{"product", product}, {"kind", u.kind}, {"note", u.note}};
 }
 
 // A section's JSON with the wall seconds it took ("section_seconds").
