@@ -54,14 +54,10 @@ CubeTexel cube_texel_mirrored_z(int face, int i, int j, int n) {
 }
 
 bool cube_texel_in_z_half(int face, int i, int j, int n) {
-  switch (face) {
-    case 0:
-    case 1: return 2 * i < n;
-    case 2:
-    case 3: return 2 * j < n;
-    case 4: return true;
-    default: return false;
-  }
+  // The first of each mirror pair: +Z of the +Z / -Z pairs, the lower
+  // column (+X, -X) or row (+Y, -Y) within a face, a texel on the mirror.
+  const CubeTexel m = cube_texel_mirrored_z(face, i, j, n);
+  return m.face != face ? face < m.face : i + j <= m.i + m.j;
 }
 
 void fill_z_mirrors(Texture& tex) {
