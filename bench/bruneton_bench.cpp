@@ -60,7 +60,8 @@ BENCHMARK(BM_BakeScattering3dEarth)
     ->Iterations(3);
 
 // The stages of one 4D order, single-threaded: single scattering (once per
-// bake), then per order the density and the multiple-scattering pass.
+// bake), then per order the density and the multiple-scattering pass, on
+// the 4D table's texels and in the sun's frame.
 void BM_BrunetonStage(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
   const Atmosphere atm = fixtures::earth_atmosphere();
@@ -70,6 +71,14 @@ void BM_BrunetonStage(benchmark::State& state) {
   const SingleScatteringTables single = bake_single_scattering(atm, lut, shape, 50, BakeContext{});
   const ScatteringOrder order1{&single.rayleigh, &single.mie, nullptr, &phases};
   const Texture density = bake_scattering_density(atm, lut, shape, order1, {}, 16, BakeContext{});
+  const int kSunFrameAzimuths = sun_frame_azimuths(shape);
+  SunFrameDensity sun_density, sun_per_sigma_s;
+  bake_sun_frame_density(atm, lut, shape, order1, {}, 16, kSunFrameAzimuths, BakeContext{},
+                         sun_per_sigma_s);
+  divide_by_scattering(atm, sun_per_sigma_s);
+  Texture delta;
+  MultipleScatteringWork work;
+  bake_multiple_scattering(atm, sun_per_sigma_s, 50, BakeContext{}, delta, work);  // its nodes
   for (auto _ : state) {
     switch (state.range(0)) {
       case 0:
@@ -79,17 +88,25 @@ void BM_BrunetonStage(benchmark::State& state) {
         benchmark::DoNotOptimize(
             bake_scattering_density(atm, lut, shape, order1, {}, 16, BakeContext{}));
         break;
-      default:
+      case 2:
         benchmark::DoNotOptimize(
             bake_multiple_scattering(atm, shape, density, 50, BakeContext{}));
+        break;
+      case 3:
+        bake_sun_frame_density(atm, lut, shape, order1, {}, 16, kSunFrameAzimuths, BakeContext{},
+                               sun_density);
+        break;
+      default:
+        bake_multiple_scattering(atm, sun_per_sigma_s, 50, BakeContext{}, delta, work);
         break;
     }
   }
 }
 BENCHMARK(BM_BrunetonStage)
-    // stage 0 single, 1 density, 2 multiple, on the best SIMD target
+    // stage 0 single, 1 density, 2 multiple, 3 density in the sun's frame,
+    // 4 multiple over it (its rows' nodes made before), on the best SIMD target
     ->ArgNames({"stage"})
-    ->DenseRange(0, 2)
+    ->DenseRange(0, 4)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(2);

@@ -76,6 +76,7 @@ void set_scattering_metadata(Metadata& meta, const Atmosphere& atm, const Brunet
                          "p_M(nu) * RGB"));
     return;
   }
+  if (out.mid_texel_error >= 0.0) set_meta(meta, "mid_texel_error", out.mid_texel_error);
   set_meta(meta, "mie_in_alpha", spec.combined_mie_alpha ? 1 : 0);
   set_rayleigh_divisor_metadata(meta);
   set_meta(

@@ -7,10 +7,12 @@
 #include <vector>
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "atmosphere/geometry.hpp"
 #include "atmosphere/kernels/node_slice_reads.hpp"
+#include "atmosphere/kernels/sun_frame_reads.hpp"
 #include "atmosphere/kernels/row_blend.hpp"
 #include "atmosphere/ray_transfer.hpp"
 #include "atmosphere/row_texels.hpp"
@@ -20,27 +22,40 @@ namespace skybake {
 
 namespace {
 
+// sigma_s at each r texel of the table.
+std::vector<glm::dvec3> texel_scattering(const Atmosphere& atm, const ScatteringTexelGrid& texels) {
+  std::vector<glm::dvec3> sigma_s(texels.r.size());
+  for (size_t z = 0; z < texels.r.size(); ++z)
+    sigma_s[z] = sample_medium(atm, texels.r[z] - atm.bottom_radius_m).scattering;
+  return sigma_s;
+}
+
+// The r texel whose J / sigma_s channel c of r texel z takes: z itself,
+// or where sigma_s = 0 (a layer that ends at the top texel, r = Rt
+// exactly) and J / sigma_s is undefined, the nearest r texel's.
+int scattering_source_texel(const std::vector<glm::dvec3>& sigma_s, int z, int c) {
+  const int n = int(sigma_s.size());
+  int from = z;
+  for (int k = 1; sigma_s[from][c] == 0.0 && k < n; ++k)
+    for (int candidate : {z - k, z + k})
+      if (candidate >= 0 && candidate < n && sigma_s[candidate][c] > 0.0 &&
+          sigma_s[from][c] == 0.0)
+        from = candidate;
+  return from;
+}
+
 // J / sigma_s of every texel (density_per_scattering), each value handed to
 // store(texel index, channel, value): a Texture or the padded texels of the
 // fast path, without a copy in between.
 template <class Store>
 void for_each_density_per_scattering(const Atmosphere& atm, const ScatteringShape& shape,
                                      const Texture& density, Store&& store) {
-  const ScatteringTexelGrid texels = scattering_texel_grid(atm, shape);
-  std::vector<glm::dvec3> sigma_s(shape.r_size);
-  for (int z = 0; z < shape.r_size; ++z)
-    sigma_s[z] = sample_medium(atm, texels.r[z] - atm.bottom_radius_m).scattering;
+  const std::vector<glm::dvec3> sigma_s =
+      texel_scattering(atm, scattering_texel_grid(atm, shape));
   // Each r slice on its own (it reads others, writes only itself).
   tbb::parallel_for(0, shape.r_size, [&](int z) {
     for (int c = 0; c < 3; ++c) {
-      // Where sigma_s = 0 (a layer that ends at the top texel, r = Rt
-      // exactly), J / sigma_s is undefined: take the nearest r texel's.
-      int from = z;
-      for (int k = 1; sigma_s[from][c] == 0.0 && k < shape.r_size; ++k)
-        for (int candidate : {z - k, z + k})
-          if (candidate >= 0 && candidate < shape.r_size && sigma_s[candidate][c] > 0.0 &&
-              sigma_s[from][c] == 0.0)
-            from = candidate;
+      const int from = scattering_source_texel(sigma_s, z, c);
       for (int y = 0; y < density.height; ++y)
         for (int x = 0; x < density.width; ++x)
           store(density.index(x, y, z) / density.channel_count(), c,
@@ -121,6 +136,10 @@ void make_row_nodes(const Atmosphere& atm, const ScatteringShape& shape, const S
                         float(tr.w * (1.0 - tm.w)), float(tr.w * tm.w)};
     std::copy_n(rows, 4, n.rows);
     std::copy_n(w, 4, n.w);
+    n.z0 = tr.i0;
+    n.z1 = tr.i1;
+    n.rw = float(tr.w);
+    n.mu_i = mu_i;
     out.push_back(n);
   }
 }
@@ -130,17 +149,15 @@ bool same_shape(const ScatteringShape& a, const ScatteringShape& b) {
          a.nu_size == b.nu_size && a.mu_s_min == b.mu_s_min;
 }
 
-}  // namespace
-
-void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shape,
-                              const Texture& density, int nodes, const BakeContext& ctx,
-                              Texture& out, MultipleScatteringWork& work) {
+// Every texel row (r, mu) of the table: its ray's nodes (made once, kept in
+// `work`), its texels (RowTexels, then row_setup(row_texels)),
+// node_reads(row_texels, p0, node, sum) adding each node's reads to the
+// row's sums, then the sums into `out`.
+template <class RowSetup, class NodeReads>
+void for_each_row(const Atmosphere& atm, const ScatteringShape& shape, int nodes,
+                  const BakeContext& ctx, Texture& out, MultipleScatteringWork& work,
+                  RowSetup&& row_setup, NodeReads&& node_reads) {
   const ScatteringTexelGrid texels = scattering_texel_grid(atm, shape);
-  std::vector<Rgb4>& radiance = work.radiance;
-  const SunCosineTapsFloat mu_s_taps(MuSAxis(atm, shape).constants());
-  radiance.resize(density.texel_count());  // every texel's R, G, B written below, pads 0
-  for_each_density_per_scattering(atm, shape, density,
-                                  [&](size_t t, int c, float v) { radiance[t].v[c] = v; });
   const int W = shape.texture_width();
   reuse_rgb_table(out, shape);
   const int rows = shape.r_size * shape.mu_size;
@@ -151,20 +168,16 @@ void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shap
   tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& range) {
     RayTransfer transfer;
     RowTexels row_texels(shape);
-    std::vector<Rgb4> slice(W), sum(row_texels.mu_s.size());
+    std::vector<Rgb4> sum(row_texels.mu_s.size());
     for (int row = range.begin(); row != range.end(); ++row) {
       const int z = row / shape.mu_size, y = row % shape.mu_size;
       const ScatteringParams p0 = texels.params(0, y, z);
       row_texels.make(texels, shape, p0.mu);
+      row_setup(row_texels);
       if (make_nodes) make_row_nodes(atm, shape, p0, nodes, transfer, work.nodes[size_t(row)]);
       std::fill(sum.begin(), sum.begin() + row_texels.end, Rgb4{});
-      for (const MultipleScatteringWork::Node& a : work.nodes[size_t(row)]) {
-        const Rgb4* rows4[4];
-        for (int i = 0; i < 4; ++i) rows4[i] = &radiance[size_t(a.rows[i]) * W];
-        blend_rows(rows4, a.w, W, slice.data());
-        add_node_slice_reads(row_texels.node(p0.r, a.s, a.inv_r_i), mu_s_taps, slice.data(), a.wS,
-                             row_texels.end, sum.data());
-      }
+      for (const MultipleScatteringWork::Node& a : work.nodes[size_t(row)])
+        node_reads(row_texels, p0, a, sum.data());
       float* texels_out = out.texel(0, y, z);
       for (int x = 0; x < W; ++x)
         for (int c = 0; c < 3; ++c) texels_out[3 * x + c] = sum[row_texels.slot[x]].v[c];
@@ -175,6 +188,93 @@ void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shap
     work.nodes_per_ray = nodes;
     work.shape = shape;
   }
+}
+
+}  // namespace
+
+void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shape,
+                              const Texture& density, int nodes, const BakeContext& ctx,
+                              Texture& out, MultipleScatteringWork& work) {
+  std::vector<Rgb4>& radiance = work.radiance;
+  const SunCosineTapsFloat mu_s_taps(MuSAxis(atm, shape).constants());
+  radiance.resize(density.texel_count());  // every texel's R, G, B written below, pads 0
+  for_each_density_per_scattering(atm, shape, density,
+                                  [&](size_t t, int c, float v) { radiance[t].v[c] = v; });
+  const int W = shape.texture_width();
+  // Per thread: the node's blend of four rows of J / sigma_s.
+  tbb::enumerable_thread_specific<std::vector<Rgb4>> slices(W);
+  for_each_row(atm, shape, nodes, ctx, out, work, [](RowTexels&) {},
+               [&](RowTexels& row_texels, const ScatteringParams& p0,
+                   const MultipleScatteringWork::Node& a, Rgb4* sum) {
+                 std::vector<Rgb4>& slice = slices.local();
+                 const Rgb4* rows4[4];
+                 for (int i = 0; i < 4; ++i) rows4[i] = &radiance[size_t(a.rows[i]) * W];
+                 blend_rows(rows4, a.w, W, slice.data());
+                 add_node_slice_reads(row_texels.node(p0.r, a.s, a.inv_r_i), mu_s_taps,
+                                      slice.data(), a.wS, row_texels.end, sum);
+               });
+}
+
+// ---- Over the density in the sun's frame ----
+
+void divide_by_scattering(const Atmosphere& atm, SunFrameDensity& J) {
+  const ScatteringShape& shape = J.shape;
+  const std::vector<glm::dvec3> sigma_s = texel_scattering(atm, scattering_texel_grid(atm, shape));
+  const size_t stride = J.r_stride();
+  // Where sigma_s > 0 first; then the texels that take another's.
+  tbb::parallel_for(0, shape.r_size, [&](int z) {
+    for (int c = 0; c < 3; ++c) {
+      if (sigma_s[z][c] == 0.0) continue;
+      const float inv = float(1.0 / sigma_s[z][c]);
+      for (size_t t = z * stride; t < (z + 1) * stride; ++t) J.texels[t].v[c] *= inv;
+    }
+  });
+  for (int z = 0; z < shape.r_size; ++z)
+    for (int c = 0; c < 3; ++c) {
+      if (sigma_s[z][c] != 0.0) continue;
+      const int from = scattering_source_texel(sigma_s, z, c);
+      for (size_t t = 0; t < stride; ++t)
+        J.texels[z * stride + t].v[c] =
+            sigma_s[from][c] > 0.0 ? J.texels[from * stride + t].v[c] : 0.0f;
+    }
+}
+
+glm::dvec3 compute_multiple_scattering(const Atmosphere& atm, const SunFrameDensity& J_per_sigma_s,
+                                       double r, double mu, double mu_s, double nu,
+                                       bool ray_hits_ground, int nodes) {
+  const ScatteringShape& shape = J_per_sigma_s.shape;
+  const double rb = atm.bottom_radius_m, rt = atm.top_radius_m;
+  const MuSAxis mu_s_axis(atm, shape);
+  RayTransfer transfer;
+  ray_transfer(atm, r, mu, distance_to_nearest_boundary(rb, rt, r, mu, ray_hits_ground), nodes,
+               transfer);
+  glm::dvec3 sum(0.0);
+  for (const TransferNode& q : transfer.nodes) {
+    const double mu_i = mu_after(r, mu, q.s, q.r);
+    const double mu_s_i = clamp_cosine((r * mu_s + q.s * nu) / q.r);
+    const AxisTap tr =
+        axis_tap(scattering_u_mu_r(atm, shape, q.r, mu_i, ray_hits_ground).y, shape.r_size);
+    sum += q.weight * sample_medium(atm, q.r - rb).scattering *
+           lookup_sun_frame_density(J_per_sigma_s, mu_s_axis, tr, mu_i, mu_s_i, nu);
+  }
+  return sum;
+}
+
+void bake_multiple_scattering(const Atmosphere& atm, const SunFrameDensity& J_per_sigma_s,
+                              int nodes, const BakeContext& ctx, Texture& out,
+                              MultipleScatteringWork& work) {
+  const SunFrameDensity& J = J_per_sigma_s;
+  const SunCosineTapsFloat mu_s_taps(MuSAxis(atm, J.shape).constants());
+  const size_t stride = J.r_stride();
+  for_each_row(atm, J.shape, nodes, ctx, out, work,
+               [&](RowTexels& row_texels) { row_texels.make_sun_frame_nu(J.nu, J.shape.mu_s_size); },
+               [&](RowTexels& row_texels, const ScatteringParams& p0,
+                   const MultipleScatteringWork::Node& a, Rgb4* sum) {
+                 add_sun_frame_reads(
+                     row_texels.sun_frame_node(p0.r, a.s, a.inv_r_i, a.mu_i, J.phi_size),
+                     mu_s_taps, &J.texels[a.z0 * stride], &J.texels[a.z1 * stride], a.rw, a.wS,
+                     row_texels.end, sum);
+               });
 }
 
 }  // namespace skybake

@@ -10,6 +10,7 @@
 #include "atmosphere/kernels/row_blend.hpp"
 #include "atmosphere/medium.hpp"
 #include "atmosphere/scattering_lut.hpp"
+#include "atmosphere/sun_frame_density.hpp"
 #include "core/bake_context.hpp"
 #include "core/texture.hpp"
 
@@ -48,6 +49,9 @@ struct MultipleScatteringWork {
     Rgb4 wS;                    // ray_transfer weight x sigma_s, RGB
     int rows[4] = {0, 0, 0, 0};  // texel rows (z mu_size + y) of the bilinear blend
     float w[4] = {0, 0, 0, 0};   // and their weights
+    int z0 = 0, z1 = 0;          // the r texels alone (the reads in the sun's frame)
+    float rw = 0;                // and the weight of z1
+    double mu_i = 0;             // the view's zenith cosine at the node
   };
   std::vector<Rgb4> radiance;
   std::vector<std::vector<Node>> nodes;  // per texel row
@@ -59,5 +63,24 @@ struct MultipleScatteringWork {
 void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shape,
                               const Texture& density, int nodes, const BakeContext& ctx,
                               Texture& out, MultipleScatteringWork& work);
+
+// ---- Over the density in the sun's frame (sun_frame_density.hpp) ----------
+
+// J / sigma_s in place, with density_per_scattering's rule where sigma_s
+// is 0.
+void divide_by_scattering(const Atmosphere& atm, SunFrameDensity& J);
+
+// DeltaS_k of one ray by the straightforward quadrature over J / sigma_s in
+// the sun's frame (lookup_sun_frame_density at each node, in double): the
+// reference for the fast path below.
+glm::dvec3 compute_multiple_scattering(const Atmosphere& atm, const SunFrameDensity& J_per_sigma_s,
+                                       double r, double mu, double mu_s, double nu,
+                                       bool ray_hits_ground, int nodes);
+
+// DeltaS_k at every texel of the 4D table from J / sigma_s in the sun's
+// frame, into `out` with `work` kept from order to order.
+void bake_multiple_scattering(const Atmosphere& atm, const SunFrameDensity& J_per_sigma_s,
+                              int nodes, const BakeContext& ctx, Texture& out,
+                              MultipleScatteringWork& work);
 
 }  // namespace skybake

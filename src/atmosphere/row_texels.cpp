@@ -2,6 +2,7 @@
 #include "atmosphere/row_texels.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace skybake {
 
@@ -20,6 +21,9 @@ RowTexels::RowTexels(const ScatteringShape& shape) {
   for (auto* v : {&nu_i0, &nu_i1, &at0, &at1}) v->assign(size, 0);
   nu_w.assign(size, 0.0f);
   lw.assign(size, 0.0f);
+  for (auto* v : {&nu_f, &sin_nu, &sun_nu_w, &pw}) v->assign(size, 0.0f);
+  sun_nu_i0.assign(size, 0);
+  sun_nu_i1.assign(size, 0);
   slot.assign(W, 0);
   spread_.assign(shape.mu_s_size, 0.0);
   staged_.assign(W, Staged{});
@@ -71,9 +75,47 @@ void RowTexels::make(const ScatteringTexelGrid& texels, const ScatteringShape& s
   for (int x = 0; x < W; ++x) slot[x] = place_[slot[x]];
 }
 
+// A texel of one slice (k < single) reads its slice's node alone: its nu
+// is the slice's, or within a float's rounding of it (a 4D weight that
+// rounds to 1 in float), so the nearer node.
+void RowTexels::make_sun_frame_nu(const std::vector<double>& grid, int mu_s_size) {
+  for (int k = 0; k < end; ++k) {
+    nu_f[k] = float(nu[k]);
+    sin_nu[k] = float(std::sqrt(std::max(1.0 - nu[k] * nu[k], 0.0)));
+    AxisTap t = sun_frame_nu_tap(grid, nu[k]);
+    if (k < single) t = t.w > 0.5 ? AxisTap{t.i1, t.i1, 0.0} : AxisTap{t.i0, t.i0, 0.0};
+    sun_nu_i0[k] = t.i0 * mu_s_size;
+    sun_nu_i1[k] = t.i1 * mu_s_size;
+    sun_nu_w[k] = float(t.w);
+  }
+}
+
 NodeRow RowTexels::node(double r, double s, double inv_r_i) {
   NodeRow q{r, s, inv_r_i, single, mu_s.data(), nu.data(), nu_i0.data(), nu_i1.data(),
             nu_w.data(), at0.data(), at1.data(), lw.data()};
+  return q;
+}
+
+SunFrameNode RowTexels::sun_frame_node(double r, double s, double inv_r_i, double mu_i,
+                                       int phi_size) {
+  SunFrameNode q;
+  q.r = r;
+  q.s = s;
+  q.inv_r_i = inv_r_i;
+  q.mu_i = float(mu_i);
+  q.phi_size = phi_size;
+  q.single = single;
+  q.mu_s = mu_s.data();
+  q.nu = nu.data();
+  q.nu_f = nu_f.data();
+  q.sin_nu = sin_nu.data();
+  q.nu_i0 = sun_nu_i0.data();
+  q.nu_i1 = sun_nu_i1.data();
+  q.nu_w = sun_nu_w.data();
+  q.at0 = at0.data();
+  q.at1 = at1.data();
+  q.lw = lw.data();
+  q.pw = pw.data();
   return q;
 }
 

@@ -6,7 +6,9 @@
 #include <vector>
 
 #include "atmosphere/kernels/node_slice_reads.hpp"
+#include "atmosphere/kernels/sun_frame_reads.hpp"
 #include "atmosphere/scattering_lut.hpp"
+#include "atmosphere/sun_frame_density.hpp"
 
 namespace skybake {
 
@@ -15,6 +17,11 @@ struct RowTexels {
   std::vector<double> mu_s, nu;
   std::vector<int> nu_i0, nu_i1, at0, at1;
   std::vector<float> nu_w, lw;
+  // For the reads in the sun's frame (SunFrameNode): nu and sin_nu in
+  // float, the density's nu nodes (sun_frame_nu_grid, as offsets m *
+  // mu_s_size) and the weight of the second, the cos_phi weights.
+  std::vector<float> nu_f, sin_nu, sun_nu_w, pw;
+  std::vector<int> sun_nu_i0, sun_nu_i1;
   // Per texel of the row: where its value is computed. Slices whose nu
   // clamps to the same value (texels.at) are the same texel, computed once.
   std::vector<int> slot;
@@ -27,6 +34,9 @@ struct RowTexels {
   // with the spread of nu once per mu_s texel.
   void make(const ScatteringTexelGrid& texels, const ScatteringShape& shape, double mu);
   NodeRow node(double r, double s, double inv_r_i);
+  // After make(): the texels' taps on the density's nu grid.
+  void make_sun_frame_nu(const std::vector<double>& grid, int mu_s_size);
+  SunFrameNode sun_frame_node(double r, double s, double inv_r_i, double mu_i, int phi_size);
 
  private:
   struct Staged {

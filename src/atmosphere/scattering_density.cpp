@@ -13,6 +13,7 @@
 
 #include "atmosphere/kernels/mie_batch.hpp"
 #include "atmosphere/phase.hpp"
+#include "atmosphere/sun_frame_density.hpp"
 #include "core/math.hpp"
 
 namespace skybake {
@@ -134,19 +135,45 @@ glm::dvec3 rayleigh_density(const DensityBake& b, const FieldMoments& f, const g
   return sigma_r * q / (b.grid_w0 + quadratic_form(b.grid_w2, v));
 }
 
+// What every view of one (r, mu_s) pair shares: the incident field, its
+// moments and the groups' sigma_s; at(v) is J_k toward v.
+class PairDensity {
+ public:
+  PairDensity(const DensityBake& b, MieBatch& batch, int z, int l) : b_(b), batch_(batch) {
+    const double r = b.texels.r[z], mu_s = b.texels.mu_s[l];
+    const std::vector<glm::dvec3> L = compute_incident_radiance(
+        b.atm, b.transmittance_lut, b.shape, b.previous, b.ground, r, mu_s, b.grid, b.parts[z]);
+    scattering_by_group(b.atm, r - b.atm.bottom_radius_m, sigma_r_, sigma_m_);
+    rayleigh_ = b.phases.has_rayleigh && sigma_r_ != glm::dvec3(0.0);
+    mie_ = b.phases.has_mie && sigma_m_ != glm::dvec3(0.0);
+    if (mie_) batch.set_field(L);
+    moments_ = field_moments(b.grid, L);
+  }
+
+  glm::dvec3 at(const glm::dvec3& v) const {
+    glm::dvec3 J(0.0);
+    if (rayleigh_) J += rayleigh_density(b_, moments_, sigma_r_, v);
+    if (mie_) {
+      double sum[4];
+      batch_.sums(b_.mie_kernel, v, sum);
+      J += sigma_m_ * glm::dvec3(sum[0], sum[1], sum[2]) / sum[3];
+    }
+    return J;
+  }
+
+ private:
+  const DensityBake& b_;
+  MieBatch& batch_;
+  FieldMoments moments_;
+  glm::dvec3 sigma_r_, sigma_m_;
+  bool rayleigh_ = false, mie_ = false;
+};
+
 // Every (mu, nu) texel of the pair (r texel z, mu_s texel l).
 void bake_density_pair(const DensityBake& b, MieBatch& batch, int z, int l, Texture& out) {
   const ScatteringShape& shape = b.shape;
-  const double r = b.texels.r[z], mu_s = b.texels.mu_s[l];
-  const std::vector<glm::dvec3> L = compute_incident_radiance(
-      b.atm, b.transmittance_lut, shape, b.previous, b.ground, r, mu_s, b.grid, b.parts[z]);
-  glm::dvec3 sigma_r, sigma_m;
-  scattering_by_group(b.atm, r - b.atm.bottom_radius_m, sigma_r, sigma_m);
-  const bool rayleigh = b.phases.has_rayleigh && sigma_r != glm::dvec3(0.0);
-  const bool mie = b.phases.has_mie && sigma_m != glm::dvec3(0.0);
-  if (mie) batch.set_field(L);
-  const FieldMoments moments = field_moments(b.grid, L);
-  const double sin_sun = safe_sqrt(1.0 - mu_s * mu_s);
+  const PairDensity density(b, batch, z, l);
+  const double mu_s = b.texels.mu_s[l], sin_sun = safe_sqrt(1.0 - mu_s * mu_s);
   for (int y = 0; y < shape.mu_size; ++y) {
     // texels.params(x, y, z) of the row's nu slices, with what they share once.
     const double mu = b.texels.mu[size_t(z) * shape.mu_size + y];
@@ -162,26 +189,31 @@ void bake_density_pair(const DensityBake& b, MieBatch& batch, int z, int l, Text
         continue;
       }
       nu_before = nu;
-      const glm::dvec3 v = view_direction(mu, mu_s, nu, sin_view, sin_sun);
-      glm::dvec3 J(0.0);
-      if (rayleigh) J += rayleigh_density(b, moments, sigma_r, v);
-      if (mie) {
-        double sum[4];
-        batch.sums(b.mie_kernel, v, sum);
-        J += sigma_m * glm::dvec3(sum[0], sum[1], sum[2]) / sum[3];
-      }
+      const glm::dvec3 J = density.at(view_direction(mu, mu_s, nu, sin_view, sin_sun));
       float* texel = out.texel(x, y, z);
       for (int c = 0; c < 3; ++c) texel[c] = float(J[c]);
     }
   }
 }
 
-}  // namespace
+// Every (nu, cos_phi) texel of the pair (r texel z, mu_s texel l) of the
+// table in the sun's frame.
+void bake_sun_frame_pair(const DensityBake& b, MieBatch& batch, int z, int l,
+                         SunFrameDensity& out) {
+  const PairDensity density(b, batch, z, l);
+  const double mu_s = b.texels.mu_s[l];
+  for (int m = 0; m < out.nu_count(); ++m)
+    for (int p = 0; p < out.phi_size; ++p) {
+      const glm::dvec3 J =
+          density.at(sun_frame_view(mu_s, out.nu[m], sun_frame_cos_phi(p, out.phi_size)));
+      Rgb4& texel = out.texels[out.index(z, m, l, p)];
+      texel = Rgb4{{float(J.r), float(J.g), float(J.b), 0.0f}};
+    }
+}
 
-void bake_scattering_density(const Atmosphere& atm, const Texture& transmittance_lut,
-                             const ScatteringShape& shape, const ScatteringOrder& previous,
-                             const GroundIrradiance& ground, int bands, const BakeContext& ctx,
-                             Texture& out) {
+DensityBake make_density_bake(const Atmosphere& atm, const Texture& transmittance_lut,
+                              const ScatteringShape& shape, const ScatteringOrder& previous,
+                              const GroundIrradiance& ground, int bands) {
   const ScatteringPhases phases = scattering_phases(atm);
   DensityBake b{atm,    transmittance_lut,  shape,
                 previous, ground,           phases,
@@ -193,19 +225,51 @@ void bake_scattering_density(const Atmosphere& atm, const Texture& transmittance
     b.grid_w0 += b.grid.solid_angle[j];
     for (int e = 0; e < 6; ++e) b.grid_w2[e] += o[e] * b.grid.solid_angle[j];
   }
-  reuse_rgb_table(out, shape);
   b.parts.resize(size_t(shape.r_size));
   tbb::parallel_for(0, shape.r_size, [&](int z) {
     b.parts[z] = grid_band_parts(atm, b.texels.r[z], b.grid, previous);
   });
-  const int pairs = shape.r_size * shape.mu_s_size;
+  return b;
+}
+
+// pair_bake(batch, z, l) for every (r, mu_s) pair, in parallel.
+template <class PairBake>
+void for_each_density_pair(const DensityBake& b, const BakeContext& ctx, PairBake&& pair_bake) {
+  const int pairs = b.shape.r_size * b.shape.mu_s_size;
   ProgressCounter progress(ctx, size_t(pairs));
   tbb::parallel_for(tbb::blocked_range<int>(0, pairs), [&](const tbb::blocked_range<int>& range) {
     MieBatch batch(b.grid);
     for (int pair = range.begin(); pair != range.end(); ++pair) {
-      bake_density_pair(b, batch, pair / shape.mu_s_size, pair % shape.mu_s_size, out);
+      pair_bake(batch, pair / b.shape.mu_s_size, pair % b.shape.mu_s_size);
       progress.tick();
     }
+  });
+}
+
+}  // namespace
+
+void bake_scattering_density(const Atmosphere& atm, const Texture& transmittance_lut,
+                             const ScatteringShape& shape, const ScatteringOrder& previous,
+                             const GroundIrradiance& ground, int bands, const BakeContext& ctx,
+                             Texture& out) {
+  const DensityBake b = make_density_bake(atm, transmittance_lut, shape, previous, ground, bands);
+  reuse_rgb_table(out, shape);
+  for_each_density_pair(b, ctx, [&](MieBatch& batch, int z, int l) {
+    bake_density_pair(b, batch, z, l, out);
+  });
+}
+
+void bake_sun_frame_density(const Atmosphere& atm, const Texture& transmittance_lut,
+                            const ScatteringShape& shape, const ScatteringOrder& previous,
+                            const GroundIrradiance& ground, int bands, int phi_size,
+                            const BakeContext& ctx, SunFrameDensity& out) {
+  const DensityBake b = make_density_bake(atm, transmittance_lut, shape, previous, ground, bands);
+  out.shape = shape;
+  out.phi_size = phi_size;
+  out.nu = sun_frame_nu_grid(shape.nu_size);
+  out.texels.resize(out.r_stride() * shape.r_size);  // every texel written
+  for_each_density_pair(b, ctx, [&](MieBatch& batch, int z, int l) {
+    bake_sun_frame_pair(b, batch, z, l, out);
   });
 }
 

@@ -8,6 +8,7 @@
 #include "atmosphere/incident_radiance.hpp"
 #include "atmosphere/medium.hpp"
 #include "atmosphere/scattering_lut.hpp"
+#include "atmosphere/sun_frame_density.hpp"
 #include "core/bake_context.hpp"
 #include "core/texture.hpp"
 
@@ -31,5 +32,13 @@ void bake_scattering_density(const Atmosphere& atm, const Texture& transmittance
                              const ScatteringShape& shape, const ScatteringOrder& previous,
                              const GroundIrradiance& ground, int bands, const BakeContext& ctx,
                              Texture& out);
+
+// J_k in the sun's frame (sun_frame_density.hpp), phi_size >= 2 texels of
+// cos_phi, into `out` (its buffer kept when it has the size): J itself,
+// which density_per_scattering's sun-frame overload divides by sigma_s.
+void bake_sun_frame_density(const Atmosphere& atm, const Texture& transmittance_lut,
+                            const ScatteringShape& shape, const ScatteringOrder& previous,
+                            const GroundIrradiance& ground, int bands, int phi_size,
+                            const BakeContext& ctx, SunFrameDensity& out);
 
 }  // namespace skybake

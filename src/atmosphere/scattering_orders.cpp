@@ -18,6 +18,7 @@
 #include "atmosphere/energy_balance.hpp"
 #include "atmosphere/geometric_tail.hpp"
 #include "atmosphere/irradiance_lut.hpp"
+#include "atmosphere/mid_texel_error.hpp"
 #include "atmosphere/order_progress.hpp"
 #include "core/error.hpp"
 
@@ -158,8 +159,16 @@ class BrunetonIteration {
   // Order k: DeltaS_k into the sums, E_{k-1} into the irradiance; returns
   // the residual.
   double add_next_order(int k, const BakeContext& ctx) {
-    bake_scattering_density(atm_, lut_, shape_, density_previous(k), ground_,
-                            spec_.density_directions, stage_context(ctx, 0.0, 0.45), density_);
+    const bool sun_frame = spec_.density_in_sun_frame;
+    if (sun_frame) {
+      bake_sun_frame_density(atm_, lut_, shape_, density_previous(k), ground_,
+                             spec_.density_directions, sun_frame_azimuths(shape_),
+                             stage_context(ctx, 0.0, 0.45), sun_density_);
+      divide_by_scattering(atm_, sun_density_);
+    } else {
+      bake_scattering_density(atm_, lut_, shape_, density_previous(k), ground_,
+                              spec_.density_directions, stage_context(ctx, 0.0, 0.45), density_);
+    }
     // Order 1 per opacity is read by order 2's density alone: two tables
     // fewer from here on (the bake's peak memory is the orders after it).
     single_r_per_opacity_ = Texture();
@@ -168,8 +177,14 @@ class BrunetonIteration {
                                          spec_.irradiance_height, spec_.irradiance_directions,
                                          BakeContext{});
     for (size_t i = 0; i < irradiance_.data.size(); ++i) irradiance_.data[i] += E.data[i];
-    bake_multiple_scattering(atm_, shape_, density_, spec_.ray_nodes,
-                             stage_context(ctx, 0.5, 1.0), delta_, work_);
+    if (sun_frame)
+      bake_multiple_scattering(atm_, sun_density_, spec_.ray_nodes, stage_context(ctx, 0.5, 1.0),
+                               delta_, work_);
+    else
+      bake_multiple_scattering(atm_, shape_, density_, spec_.ray_nodes,
+                               stage_context(ctx, 0.5, 1.0), delta_, work_);
+    if (sun_frame && k == 2)
+      mid_texel_error_ = mid_texel_error(atm_, sun_density_, delta_, spec_.ray_nodes);
     const OrderChange change = measure_and_add_order(accumulated_, single_.mie, phase_, delta_);
     // The geometric tail (header): f from this order's total and the last's.
     tail_factor_ =
@@ -203,12 +218,14 @@ class BrunetonIteration {
   }
 
   const Texture& accumulated() const { return accumulated_; }
+  double measured_mid_texel_error() const { return mid_texel_error_; }
 
   // After take_irradiance nothing reads the next order's buffers: freed
   // before the outputs are assembled, whose copies would otherwise peak on
   // top of them.
   void release_order_buffers() {
     density_ = Texture();
+    sun_density_ = SunFrameDensity();
     delta_ = Texture();
     previous_per_opacity_ = Texture();
     previous_radiance_ = Texture();
@@ -251,11 +268,13 @@ class BrunetonIteration {
   // Buffers every order rewrites whole, kept so that the kernel does not
   // fault in and clear fresh pages each order (about 3% of a tolerance bake).
   Texture density_, delta_;
+  SunFrameDensity sun_density_;  // J / sigma_s in the sun's frame (header)
   MultipleScatteringWork work_;   // J / sigma_s and the rows' nodes
   Texture ground_table_;          // E_{k-2} for k >= 3
   ScatteringOrder previous_;      // order k - 1 as the irradiance reads it
   GroundIrradiance ground_;       // direct sunlight for order 2
   glm::dvec3 previous_order_sum_{0.0}, tail_factor_{0.0};
+  double mid_texel_error_ = -1.0;  // of order 2 (mid_texel_error.hpp); -1: not measured
 };
 
 }  // namespace
@@ -309,6 +328,7 @@ BrunetonTextures bake_bruneton(const Atmosphere& atm, const Texture& transmittan
     if (converge && residual < spec.tolerance) break;
   }
   if (converge && spec.geometric_tail) out.tail_factor = orders.add_geometric_tail();
+  out.mid_texel_error = orders.measured_mid_texel_error();
   out.direct_irradiance = bake_direct_irradiance(atm, transmittance_lut, spec.irradiance_width,
                                                  spec.irradiance_height, BakeContext{});
   Texture irradiance = orders.take_irradiance(out.tail_factor, out.direct_irradiance);

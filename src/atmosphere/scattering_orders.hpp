@@ -29,12 +29,23 @@
 // radiance at (r, mu_s) does not depend on the view direction once the
 // direction grid is fixed in the frame of the sun (azimuth measured from the
 // sun's vertical plane, not from the view's as in Bruneton), so it is read
-// once per (r, mu_s) pair (1024 at default sizes) and shared by its 1024
-// (mu, nu) texels. The Rayleigh phase is quadratic in the cosine, so its
+// once per (r, mu_s) pair (1024 at default sizes) and shared by its views
+// (480 in the sun's frame, 1024 (mu, nu) texels on the table's own). The Rayleigh phase is quadratic in the cosine, so its
 // part of J is exact from the field's moments (int L, int omega' omega'^T L);
 // only the Mie part loops over the directions per texel. Along view rays the
 // nodes, transmittances and (r, mu) interpolation taps are shared by the
 // 256 (mu_s, nu) texels of a row.
+//
+// J_k in the sun's frame (sun_frame_density.hpp, the default): J_k is
+// baked per r texel, nu node, mu_s texel and azimuth of the view about the
+// sun, not per texel of the 4D table, and the pass along the view rays
+// reads it there (kernels/sun_frame_reads.hpp): nu is constant along a ray,
+// so a texel whose nu is its slice's reads that slice alone, and J's peak
+// around the sun lies along nu instead of across (mu, mu_s) texels. Against
+// the path tracer (worst channel): Earth 0.76 -> 0.67 %, Mars 2.80 ->
+// 2.24 % (docs/reference.md "Precomputed scattering"). Order 2 is read
+// back at midpoints between mu texels against its quadrature
+// (mid_texel_error.hpp), for the bake's coarse_table warning.
 //
 // Storage of orders >= 2 (Bruneton 2017 stores them the same way): in the
 // Rayleigh channels, divided by p_R, since the runtime multiplies them by
@@ -112,6 +123,9 @@ struct BrunetonSpec {
   int ray_nodes = 51;                       // quadrature nodes per view ray (ray_quadrature)
   int density_directions = 16;     // zenith bands of the density's sphere grid (x 2 azimuths)
   int irradiance_directions = 32;  // zenith bands x 2 of the hemisphere (Bruneton: 32)
+  // J_k in the sun's frame (header, "J_k in the sun's frame"); false: on
+  // the 4D table's own texels, as Bruneton.
+  bool density_in_sun_frame = true;
 
   ScatteringShape shape() const { return {r_size, mu_size, mu_s_size, nu_size, mu_s_min}; }
 };
@@ -127,6 +141,7 @@ struct BrunetonTextures {
   double last_residual = 1.0;     // 1 when only single scattering was baked
   glm::dvec3 tail_factor{0.0};    // f of the geometric tail added, per channel (0: none)
   std::vector<double> residuals;  // of orders 2..orders_used
+  double mid_texel_error = -1.0;  // order 2 between mu texels (mid_texel_error.hpp); -1: none
 };
 
 // Throws Error ("expected ..., got ...") naming the first bad field.

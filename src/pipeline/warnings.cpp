@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "atmosphere/energy_balance.hpp"
+#include "atmosphere/mid_texel_error.hpp"
 #include "pipeline/product_options.hpp"
 
 namespace skybake {
@@ -104,6 +105,20 @@ void energy_warnings(const Texture& t, std::vector<OutputWarning>& out) {
                  {{"out_over_in", ratio}, {"tolerance", kEnergyGainTolerance}}});
 }
 
+// A 4D table whose second order, read between mu texels, is far from its
+// quadrature (atmosphere/mid_texel_error.hpp).
+void mid_texel_warnings(const Texture& t, std::vector<OutputWarning>& out) {
+  const double error = meta_max(t, "mid_texel_error");
+  if (!(error > kMidTexelErrorLimit)) return;
+  out.push_back({"coarse_table",
+                 fmt::format("the second order read between mu texels is {:.3g} (RMS, relative) "
+                             "from its quadrature at their midpoints: the mu axis is too coarse "
+                             "for this sky (a thin shell, a sharp lobe); more mu texels "
+                             "(scattering.shape) bring it down",
+                             error),
+                 {{"mid_texel_error", error}, {"limit", kMidTexelErrorLimit}}});
+}
+
 // Texels of the transmittance table that are 0 in some channel: the optical
 // depth to the top is above ~103 there and float32 holds 0, so an engine's
 // transmittance between two points, a ratio of two reads, is 0 / 0.
@@ -154,6 +169,7 @@ std::vector<OutputWarning> output_warnings(const Scene& scene, const OutputSpec&
   std::vector<OutputWarning> out;
   if (kSumsOrders.count(spec.product)) order_warnings(texture, out);
   energy_warnings(texture, out);
+  mid_texel_warnings(texture, out);
   if (spec.product == "multiscattering") multiscattering_warnings(texture, out);
   if (spec.product == "transmittance") underflow_warnings(texture, out);
   if (kScatteredLight.count(spec.product) && scatters(scene, spec.product) &&

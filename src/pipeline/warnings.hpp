@@ -6,6 +6,8 @@
 //   tail_dominates     the geometric tail stands for much of the table
 //   fms_clamped        f_ms of multiple scattering reached 1 and was clamped
 //   energy_gain        a 4D table returns more light than the sun gives
+//   coarse_table       a 4D table's second order between mu texels is far
+//                      from its quadrature
 //   black_output       every colour texel is 0 though the medium scatters
 //   transmittance_underflow  transmittance texels that float32 holds as 0
 //   error_above_limit  the measured max_rel is above max_error (or the

@@ -133,10 +133,14 @@ TEST(BakeBruneton, OrdersAboveOneReadBackAsTheOrdersOwnTable) {
   const SingleScatteringTables single =
       bake_single_scattering(atm, lut, shape, spec.ray_nodes, BakeContext{});
   const ScatteringOrder order1{&single.rayleigh, &single.mie, nullptr, &phases};
-  const Texture density = bake_scattering_density(atm, lut, shape, order1, GroundIrradiance{},
-                                                  spec.density_directions, BakeContext{});
-  const Texture delta =
-      bake_multiple_scattering(atm, shape, density, spec.ray_nodes, BakeContext{});
+  // Order 2 as the bake makes it (scattering_orders.hpp, J_k in the sun's frame).
+  SunFrameDensity density;
+  bake_sun_frame_density(atm, lut, shape, order1, GroundIrradiance{}, spec.density_directions,
+                         sun_frame_azimuths(shape), BakeContext{}, density);
+  divide_by_scattering(atm, density);
+  Texture delta;
+  MultipleScatteringWork work;
+  bake_multiple_scattering(atm, density, spec.ray_nodes, BakeContext{}, delta, work);
   const double r = atm.bottom_radius_m + 200.0, deg = kPi / 180.0;
   for (double sun_elevation : {60.0, 20.0})
     for (double elevation : {60.0, 20.0, 5.0})

@@ -22,6 +22,7 @@
 #include "atmosphere/kernels/node_slice_reads.hpp"
 #include "atmosphere/kernels/row_blend.hpp"
 #include "atmosphere/kernels/skyview_row_luminance.hpp"
+#include "atmosphere/kernels/sun_frame_reads.hpp"
 #include "atmosphere/kernels/sun_and_psi_ms_reads.hpp"
 #include "atmosphere/multiscattering_lut.hpp"
 #include "atmosphere/scattering_lut.hpp"
@@ -269,6 +270,60 @@ TEST_P(KernelsOnEachTarget, NodeSliceReadsAreOneTexelAtATime) {
     }
   const std::vector<Rgb4> sum = node_sums(row, taps);
   for (int x = 0; x < Row::kN; ++x)
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(sum[size_t(x)].v[c], expected[size_t(x)].v[c]) << x;
+}
+
+// A row of 13 texels over a made-up density in the sun's frame (2 r
+// texels x 3 nu slices x 9 mu_s texels x 5 cos_phi texels), at nodes of
+// several distances and view cosines: every texel's sum equals
+// sun_frame_tap and sun_frame_read one texel at a time, bit for bit, the
+// texels of one nu slice (0-7) and of two (8-12), the view along the sun
+// (nu = 1: no azimuth) and cos_phi at both ends included.
+TEST_P(KernelsOnEachTarget, SunFrameReadsAreOneTexelAtATime) {
+  constexpr int kN = 13, kArrays = 32, kSingle = 8, kMuS = 9, kNu = 3, kPhi = 5;
+  const Atmosphere atm = fixtures::earth_atmosphere();
+  const SunCosineTapsFloat taps(MuSAxis(atm, ScatteringShape{4, 8, kMuS, kNu, -0.2}).constants());
+  std::vector<double> mu_s(kArrays), nu(kArrays);
+  std::vector<float> nu_f(kArrays), sin_nu(kArrays), nu_w(kArrays), lw(kArrays), pw(kArrays);
+  std::vector<int> nu_i0(kArrays), nu_i1(kArrays), at0(kArrays), at1(kArrays);
+  for (int x = 0; x < kN; ++x) {
+    mu_s[x] = -0.3 + 1.3 * x / (kN - 1);
+    nu[x] = x == 3 ? 1.0 : std::sin(0.7 * x);
+    nu_f[x] = float(nu[x]);
+    sin_nu[x] = float(std::sqrt(1.0 - nu[x] * nu[x]));
+    nu_i0[x] = (x % (kNu - 1)) * kMuS;
+    nu_i1[x] = x < kSingle ? nu_i0[x] : nu_i0[x] + kMuS;
+    nu_w[x] = x < kSingle ? 0.0f : float(0.1 + 0.06 * x);
+  }
+  std::vector<Rgb4> table(2 * kNu * kMuS * kPhi);
+  for (size_t t = 0; t < table.size(); ++t)
+    table[t] = Rgb4{{float(1.0 + t), float(std::sqrt(1.0 + t)), float(1.0 / (1.0 + t)), 0.0f}};
+  const Rgb4* r0 = table.data();
+  const Rgb4* r1 = table.data() + kNu * kMuS * kPhi;
+  const Rgb4 wS{{0.5f, 0.25f, 0.125f, 0.0f}};
+  std::vector<Rgb4> sum(kArrays), expected(kN);
+  for (double s : {0.0, 3e4, 2e5})
+    for (float mu_i : {-1.0f, -0.3f, 0.2f, 0.9f, 1.0f}) {
+      const SunFrameNode q{6.37e6,       s,           1.0 / 6.372e6, mu_i,        kPhi,
+                           kSingle,      mu_s.data(), nu.data(),     nu_f.data(), sin_nu.data(),
+                           nu_i0.data(), nu_i1.data(), nu_w.data(),  at0.data(),  at1.data(),
+                           lw.data(),    pw.data()};
+      const float rw = float(s / 3e5);
+      add_sun_frame_reads(q, taps, r0, r1, rw, wS, 16, sum.data());
+      std::vector<int> one_at0(kN), one_at1(kN);
+      std::vector<float> one_lw(kN), one_pw(kN);
+      for (int x = 0; x < kN; ++x)
+        sun_frame_tap(q, taps, x, one_at0[x], one_at1[x], one_lw[x], one_pw[x]);
+      const SunFrameNode one{q.r,          q.s,           q.inv_r_i,      q.mu_i,        kPhi,
+                             kSingle,      mu_s.data(),   nu.data(),      nu_f.data(),   sin_nu.data(),
+                             nu_i0.data(), nu_i1.data(),  nu_w.data(),    one_at0.data(), one_at1.data(),
+                             one_lw.data(), one_pw.data()};
+      for (int x = 0; x < kN; ++x) {
+        const Rgb4 read = sun_frame_read(one, r0, r1, rw, x);
+        for (int c = 0; c < 4; ++c) expected[size_t(x)].v[c] += wS.v[c] * read.v[c];
+      }
+    }
+  for (int x = 0; x < kN; ++x)
     for (int c = 0; c < 3; ++c) ASSERT_EQ(sum[size_t(x)].v[c], expected[size_t(x)].v[c]) << x;
 }
 

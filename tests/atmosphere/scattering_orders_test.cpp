@@ -191,6 +191,36 @@ TEST(ScatteringDensity, FastPassEqualsTheDirectQuadrature) {
       }
 }
 
+TEST(ScatteringDensity, SunFrameTexelsAreTheDirectQuadratureAtTheirViews) {
+  // Each texel (z, m, l, p) of the density in the sun's frame is J_k at r
+  // texel z, mu_s texel l, toward the view of nu slice m and cos_phi texel
+  // p, whose zenith cosine is nu mu_s + sin_nu sin_s cos_phi
+  // (sun_frame_density.hpp): the per-view sum of compute_scattering_density.
+  const Orders o(fixtures::earth_atmosphere());
+  SunFrameDensity J;
+  bake_sun_frame_density(o.atm, o.lut, kSmall, o.order1, {}, 8, 7, BakeContext{}, J);
+  const ScatteringTexelGrid texels = scattering_texel_grid(o.atm, kSmall);
+  float peak = 0.0f;
+  for (const Rgb4& t : J.texels) peak = std::max({peak, t.v[0], t.v[1], t.v[2]});
+  for (int z = 0; z < kSmall.r_size; z += 3)
+    for (int m = 0; m < J.nu_count(); ++m)
+      for (int l = 0; l < kSmall.mu_s_size; l += 2)
+        for (int p = 0; p < J.phi_size; ++p) {
+          const double mu_s = texels.mu_s[l], nu = J.nu[m];
+          const double cos_phi = sun_frame_cos_phi(p, J.phi_size);
+          const glm::dvec3 v = sun_frame_view(mu_s, nu, cos_phi);
+          ASSERT_NEAR(glm::length(v), 1.0, 1e-12);
+          ASSERT_NEAR(v.x * std::sqrt(1.0 - mu_s * mu_s) + v.z * mu_s, nu, 1e-12);
+          ASSERT_NEAR(sun_frame_cos_phi_of(v.z, mu_s, nu), std::abs(nu) == 1.0 ? 1.0 : cos_phi,
+                      1e-9);
+          const glm::dvec3 ref = compute_scattering_density(o.atm, o.lut, kSmall, o.order1, {},
+                                                            texels.r[z], v.z, mu_s, nu, 8);
+          const Rgb4& got = J.texels[J.index(z, m, l, p)];
+          for (int c = 0; c < 3; ++c)
+            ASSERT_NEAR(got.v[c], ref[c], 2e-6 * ref[c] + 1e-9 * peak) << z << m << l << p;
+        }
+}
+
 // The incident field as the header of incident_radiance.hpp defines it,
 // one quadrilinear read (ScatteringOrder::radiance_at) per direction and
 // band part: compute_incident_radiance reads each part's nu slices once.
@@ -267,6 +297,31 @@ TEST(MultipleScattering, FastPassEqualsTheDirectQuadrature) {
                                                            p.mu_s, p.nu, p.ray_hits_ground, 30);
         for (int c = 0; c < 3; ++c)
           ASSERT_NEAR(S.at(x, y, z, 0, c), ref[c], 1e-6 * ref[c] + 1e-9 * peak) << x << " " << y;
+      }
+}
+
+TEST(MultipleScattering, SunFramePassEqualsTheDirectQuadrature) {
+  // The rows' lanes over J / sigma_s in the sun's frame (single precision
+  // taps and reads) against the per-ray quadrature over the same table in
+  // double. cos_phi in float, where sin_nu sin_s is small, moves a read by
+  // a few 1e-4 of a texel (below 1e-3 of the texel's value here).
+  const Orders o(fixtures::earth_atmosphere());
+  SunFrameDensity J;
+  bake_sun_frame_density(o.atm, o.lut, kSmall, o.order1, {}, 8, 9, BakeContext{}, J);
+  divide_by_scattering(o.atm, J);
+  Texture S;
+  MultipleScatteringWork work;
+  bake_multiple_scattering(o.atm, J, 30, BakeContext{}, S, work);
+  const float peak = max_value(S);
+  for (int z = 0; z < kSmall.r_size; z += 2)
+    for (int y = 0; y < kSmall.mu_size; y += 3)
+      for (int x = 0; x < kSmall.texture_width(); x += 5) {
+        const ScatteringParams p = scattering_texel_params(o.atm, kSmall, x, y, z);
+        const glm::dvec3 ref = compute_multiple_scattering(o.atm, J, p.r, p.mu, p.mu_s, p.nu,
+                                                           p.ray_hits_ground, 30);
+        for (int c = 0; c < 3; ++c)
+          ASSERT_NEAR(S.at(x, y, z, 0, c), ref[c], 1e-3 * ref[c] + 1e-7 * peak)
+              << x << " " << y << " " << z;
       }
 }
 

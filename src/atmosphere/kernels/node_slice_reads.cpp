@@ -11,52 +11,23 @@
 
 #include <hwy/highway.h>
 
+#include "atmosphere/kernels/node_taps-inl.h"
+
 HWY_BEFORE_NAMESPACE();
 namespace skybake {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 namespace {
 
-// The cosines at the node of texels x .. x + Lanes(df) - 1 in double (as
-// single scattering's SingleScatteringRay::at_suns: the product by 1 / r_i,
-// not a division), rounded to float.
-template <class DD>
-HWY_INLINE hn::Vec<DD> NodeCosines(DD dd, const NodeRow& q, int x) {
-  return hn::Mul(hn::Add(hn::Mul(hn::Set(dd, q.r), hn::LoadU(dd, q.mu_s + x)),
-                         hn::Mul(hn::Set(dd, q.s), hn::LoadU(dd, q.nu + x))),
-                 hn::Set(dd, q.inv_r_i));
-}
-template <class DF>
-HWY_INLINE hn::Vec<DF> NodeCosinesFloat(DF df, const NodeRow& q, int x) {
-#if HWY_TARGET == HWY_SCALAR  // one lane
-  return hn::DemoteTo(df, NodeCosines(hn::Rebind<double, DF>(), q, x));
-#else  // a full vector of floats is twice the doubles'
-  const hn::Half<DF> dh;
-  const hn::Rebind<double, decltype(dh)> dd;
-  return hn::Combine(df, hn::DemoteTo(dh, NodeCosines(dd, q, x + int(hn::Lanes(dh)))),
-                     hn::DemoteTo(dh, NodeCosines(dd, q, x)));
-#endif
-}
-
 // SunCosineTapsFloat::tap of the texels from x, and their reads' texels.
 template <class DF>
 HWY_INLINE void NodeTaps(DF df, const SunCosineTapsFloat& k, const NodeRow& q, int x) {
-  using V = hn::Vec<DF>;
   const hn::Rebind<int32_t, DF> di;
-  const V one = hn::Set(df, 1.0f), h2 = hn::Set(df, k.h2);
-  const V m = hn::Min(one, hn::Max(hn::Set(df, k.lo), NodeCosinesFloat(df, q, x)));
-  const V D = hn::Add(m, hn::Sqrt(hn::Add(hn::Mul(m, m), h2)));
-  const V N = hn::Max(hn::Zero(df), hn::Sub(hn::Mul(D, hn::Set(df, k.k1)), h2));
-  const V Q = hn::Add(hn::Mul(D, hn::Set(df, k.ak2)), hn::Set(df, k.ah2));
-  const V t = hn::Mul(hn::Min(one, hn::Div(N, Q)), hn::Set(df, k.last));
-  // float(int(t)) is Trunc(t) + 0 (the sum turns a -0 into int's +0), and
-  // the whole number i (|i| < 2^22) is the low bits of i + 1.5 2^23: no
-  // conversion instructions, whose overflow checks Highway adds.
-  const V i = hn::Min(hn::Set(df, k.below_last), hn::Add(hn::Trunc(t), hn::Zero(df)));
-  hn::StoreU(hn::Sub(t, i), df, q.lw + x);
-  const V magic = hn::Set(df, 0x1.8p23f);
-  const hn::Vec<decltype(di)> tap =
-      hn::Sub(hn::BitCast(di, hn::Add(i, magic)), hn::BitCast(di, magic));
+  hn::Vec<DF> w;
+  const hn::Vec<DF> i =
+      MuSTap(df, k, NodeCosinesFloat(df, q.r, q.s, q.inv_r_i, q.mu_s, q.nu, x), w);
+  hn::StoreU(w, df, q.lw + x);
+  const hn::Vec<decltype(di)> tap = WholeToInt(df, i);
   hn::StoreU(hn::Add(tap, hn::LoadU(di, q.nu_i0 + x)), di, q.at0 + x);
   hn::StoreU(hn::Add(tap, hn::LoadU(di, q.nu_i1 + x)), di, q.at1 + x);
 }
