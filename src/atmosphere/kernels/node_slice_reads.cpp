@@ -86,10 +86,9 @@ HWY_INLINE void NodeReadPair(const Rgb4* slice, const NodeRow& q, const Rgb4& wS
 
 }  // namespace
 
-// The taps run kAhead texels ahead of the reads, so that the reads do not
-// wait on the divider's latency and the two overlap. The loops read local
-// copies of the constants: through the references, the compiler reloaded
-// them after every store (a store of floats might have changed them).
+// The loops read local copies of the constants: through the references,
+// the compiler reloaded them after every store (a store of floats might
+// have changed them).
 void AddNodeSliceReads(const NodeRow& row_in, const SunCosineTapsFloat& taps_in,
                        const Rgb4* slice, const Rgb4& wS_in, int end, Rgb4* sum) {
   const NodeRow row = row_in;
@@ -97,20 +96,15 @@ void AddNodeSliceReads(const NodeRow& row_in, const SunCosineTapsFloat& taps_in,
   const Rgb4 wS = wS_in;
   const hn::ScalableTag<float> df;
   const hn::CappedTag<float, 4> d4;
-  constexpr int kAhead = 16;
-  const int step = int(hn::Lanes(df));
-  for (int x = 0; x < std::min(kAhead, end); x += step) NodeTaps(df, taps, row, x);
-  for (int x = 0; x < end; x += step) {
-    if (x + kAhead < end) NodeTaps(df, taps, row, x + kAhead);
-    // Sixteen lanes: the taps of a last group may run past `end` (RowTexels'
-    // arrays hold 16 more texels) on valid texels; their reads do not.
-    const int x_end = std::min(x + step, end);
+  TapsAheadOfReads(
+      df, end, [&](int x) { NodeTaps(df, taps, row, x); },
+      [&](int x, int x_end) {
 #if HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_AVX3  // two texels a vector
-    for (int j = x; j < x_end; j += 2) NodeReadPair(slice, row, wS, j, j < row.single, sum);
+        for (int j = x; j < x_end; j += 2) NodeReadPair(slice, row, wS, j, j < row.single, sum);
 #else
-    for (int j = x; j < x_end; ++j) NodeRead(d4, slice, row, wS, j, j < row.single, sum[j]);
+        for (int j = x; j < x_end; ++j) NodeRead(d4, slice, row, wS, j, j < row.single, sum[j]);
 #endif
-  }
+      });
 }
 
 }  // namespace HWY_NAMESPACE

@@ -17,6 +17,8 @@
 
 #include <hwy/highway.h>
 
+#include <algorithm>
+
 #include "atmosphere/kernels/node_slice_reads.hpp"
 
 HWY_BEFORE_NAMESPACE();
@@ -76,6 +78,23 @@ HWY_INLINE hn::Vec<DF> MuSTap(DF df, const SunCosineTapsFloat& k, hn::Vec<DF> c,
   const V i = hn::Min(hn::Set(df, k.below_last), hn::Add(hn::Trunc(t), hn::Zero(df)));
   weight = hn::Sub(t, i);
   return i;
+}
+
+// The loop of a node over texels [0, end): taps(x) for the group of
+// Lanes(df) texels from x, kTapsAhead texels ahead of reads(x, x_end) for
+// the group's texels, so that the reads do not wait on the divider's
+// latency and the two overlap. Sixteen lanes: the taps of a last group may
+// run past `end` (RowTexels' arrays hold 16 more texels) on valid texels;
+// the reads do not.
+constexpr int kTapsAhead = 16;
+template <class DF, class Taps, class Reads>
+HWY_INLINE void TapsAheadOfReads(DF df, int end, const Taps& taps, const Reads& reads) {
+  const int step = int(hn::Lanes(df));
+  for (int x = 0; x < std::min(kTapsAhead, end); x += step) taps(x);
+  for (int x = 0; x < end; x += step) {
+    if (x + kTapsAhead < end) taps(x + kTapsAhead);
+    reads(x, std::min(x + step, end));
+  }
 }
 
 }  // namespace HWY_NAMESPACE

@@ -102,8 +102,7 @@ HWY_INLINE void Read(D4 d4, const SunFrameNode& q, const Rgb4* r0, const Rgb4* r
 
 }  // namespace
 
-// The taps run kAhead texels ahead of the reads (node_slice_reads.cpp), on
-// local copies of the constants.
+// On local copies of the constants (node_slice_reads.cpp).
 void AddSunFrameReads(const SunFrameNode& q_in, const SunCosineTapsFloat& taps_in,
                       const Rgb4* r0, const Rgb4* r1, float rw, const Rgb4& wS_in, int end,
                       Rgb4* sum) {
@@ -112,14 +111,11 @@ void AddSunFrameReads(const SunFrameNode& q_in, const SunCosineTapsFloat& taps_i
   const Rgb4 wS = wS_in;
   const hn::ScalableTag<float> df;
   const hn::CappedTag<float, 4> d4;
-  constexpr int kAhead = 16;
-  const int step = int(hn::Lanes(df));
-  for (int x = 0; x < std::min(kAhead, end); x += step) Taps(df, taps, q, x);
-  for (int x = 0; x < end; x += step) {
-    if (x + kAhead < end) Taps(df, taps, q, x + kAhead);
-    const int x_end = std::min(x + step, end);
-    for (int j = x; j < x_end; ++j) Read(d4, q, r0, r1, rw, wS, j, j < q.single, sum[j]);
-  }
+  TapsAheadOfReads(
+      df, end, [&](int x) { Taps(df, taps, q, x); },
+      [&](int x, int x_end) {
+        for (int j = x; j < x_end; ++j) Read(d4, q, r0, r1, rw, wS, j, j < q.single, sum[j]);
+      });
 }
 
 }  // namespace HWY_NAMESPACE
