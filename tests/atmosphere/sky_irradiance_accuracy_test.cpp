@@ -79,8 +79,8 @@ constexpr int kRows[] = {0, 4};
 
 // The daylight columns of each planet, and the ones whose target is open.
 std::vector<int> daylight_columns(const std::string& planet, bool open) {
-  // Mars with the sun within 10 degrees of the horizon: 4.3-6.6% RMS and
-  // 15-19% max, where L2's own limit is 3.7-4.9% and 10-14%
+  // Mars with the sun within 10 degrees of the horizon: 4.8-5.2% RMS and
+  // 14-19% max, where L2's own limit is 3.7-4.9% and 10-14%
   // (docs/decisions/sky-irradiance-source.md).
   if (planet == "mars") return open ? std::vector<int>{23, 25} : std::vector<int>{0, 13};
   return open ? std::vector<int>{} : std::vector<int>(std::begin(kDaylightColumns),
