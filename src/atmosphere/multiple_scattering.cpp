@@ -7,7 +7,6 @@
 #include <vector>
 
 #include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "atmosphere/geometry.hpp"
@@ -151,8 +150,9 @@ bool same_shape(const ScatteringShape& a, const ScatteringShape& b) {
 
 // Every texel row (r, mu) of the table: its ray's nodes (made once, kept in
 // `work`), its texels (RowTexels, then row_setup(row_texels)),
-// node_reads(row_texels, p0, node, sum) adding each node's reads to the
-// row's sums, then the sums into `out`.
+// node_reads(row_texels, p0, node, sum, scratch) adding each node's reads
+// to the row's sums (scratch: the task's own W texels, for a node's blend),
+// then the sums into `out`.
 template <class RowSetup, class NodeReads>
 void for_each_row(const Atmosphere& atm, const ScatteringShape& shape, int nodes,
                   const BakeContext& ctx, Texture& out, MultipleScatteringWork& work,
@@ -168,7 +168,7 @@ void for_each_row(const Atmosphere& atm, const ScatteringShape& shape, int nodes
   tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& range) {
     RayTransfer transfer;
     RowTexels row_texels(shape);
-    std::vector<Rgb4> sum(row_texels.mu_s.size());
+    std::vector<Rgb4> sum(row_texels.mu_s.size()), scratch(size_t(shape.texture_width()));
     for (int row = range.begin(); row != range.end(); ++row) {
       const int z = row / shape.mu_size, y = row % shape.mu_size;
       const ScatteringParams p0 = texels.params(0, y, z);
@@ -177,7 +177,7 @@ void for_each_row(const Atmosphere& atm, const ScatteringShape& shape, int nodes
       if (make_nodes) make_row_nodes(atm, shape, p0, nodes, transfer, work.nodes[size_t(row)]);
       std::fill(sum.begin(), sum.begin() + row_texels.end, Rgb4{});
       for (const MultipleScatteringWork::Node& a : work.nodes[size_t(row)])
-        node_reads(row_texels, p0, a, sum.data());
+        node_reads(row_texels, p0, a, sum.data(), scratch.data());
       float* texels_out = out.texel(0, y, z);
       for (int x = 0; x < W; ++x)
         for (int c = 0; c < 3; ++c) texels_out[3 * x + c] = sum[row_texels.slot[x]].v[c];
@@ -201,17 +201,15 @@ void bake_multiple_scattering(const Atmosphere& atm, const ScatteringShape& shap
   for_each_density_per_scattering(atm, shape, density,
                                   [&](size_t t, int c, float v) { radiance[t].v[c] = v; });
   const int W = shape.texture_width();
-  // Per thread: the node's blend of four rows of J / sigma_s.
-  tbb::enumerable_thread_specific<std::vector<Rgb4>> slices(W);
+  // The scratch holds the node's blend of four rows of J / sigma_s.
   for_each_row(atm, shape, nodes, ctx, out, work, [](RowTexels&) {},
                [&](RowTexels& row_texels, const ScatteringParams& p0,
-                   const MultipleScatteringWork::Node& a, Rgb4* sum) {
-                 std::vector<Rgb4>& slice = slices.local();
+                   const MultipleScatteringWork::Node& a, Rgb4* sum, Rgb4* slice) {
                  const Rgb4* rows4[4];
                  for (int i = 0; i < 4; ++i) rows4[i] = &radiance[size_t(a.rows[i]) * W];
-                 blend_rows(rows4, a.w, W, slice.data());
-                 add_node_slice_reads(row_texels.node(p0.r, a.s, a.inv_r_i), mu_s_taps,
-                                      slice.data(), a.wS, row_texels.end, sum);
+                 blend_rows(rows4, a.w, W, slice);
+                 add_node_slice_reads(row_texels.node(p0.r, a.s, a.inv_r_i), mu_s_taps, slice,
+                                      a.wS, row_texels.end, sum);
                });
 }
 
@@ -269,7 +267,7 @@ void bake_multiple_scattering(const Atmosphere& atm, const SunFrameDensity& J_pe
   for_each_row(atm, J.shape, nodes, ctx, out, work,
                [&](RowTexels& row_texels) { row_texels.make_sun_frame_nu(J.nu, J.shape.mu_s_size); },
                [&](RowTexels& row_texels, const ScatteringParams& p0,
-                   const MultipleScatteringWork::Node& a, Rgb4* sum) {
+                   const MultipleScatteringWork::Node& a, Rgb4* sum, Rgb4*) {
                  add_sun_frame_reads(
                      row_texels.sun_frame_node(p0.r, a.s, a.inv_r_i, a.mu_i, J.phi_size),
                      mu_s_taps, &J.texels[a.z0 * stride], &J.texels[a.z1 * stride], a.rw, a.wS,
